@@ -1,0 +1,213 @@
+//! Event alphabets: interned event names with their controllability.
+
+use rustc_hash::FxHashMap;
+use std::fmt;
+
+/// Index of an event in one automaton's [`Alphabet`] (dense, from 0).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct EventId(pub u32);
+
+impl EventId {
+    /// The index as `usize`.
+    #[inline]
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+impl fmt::Display for EventId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.0)
+    }
+}
+
+/// One event: its name and whether the controller generates it.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct Event {
+    /// The event's name, free text.
+    pub name: String,
+    /// `true` for Σc (the controller may disable it), `false` for Σu.
+    pub controllable: bool,
+}
+
+/// The same event name was declared controllable in one place and
+/// uncontrollable in another.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("event `{name}` is declared both controllable and uncontrollable")]
+pub struct ControllabilityConflict {
+    /// The event.
+    pub name: String,
+}
+
+/// An ordered set of events with name lookup.
+///
+/// Event ids are positions in insertion order, so an alphabet built in the
+/// same order always numbers its events the same way.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Alphabet {
+    events: Vec<Event>,
+    by_name: FxHashMap<String, EventId>,
+}
+
+impl Alphabet {
+    /// An empty alphabet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Number of events.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.events.len()
+    }
+
+    /// `true` when there are no events.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.events.is_empty()
+    }
+
+    /// Adds `name` (or finds it) and returns its id; the controllability
+    /// must agree with an earlier declaration of the same name.
+    pub fn insert(
+        &mut self,
+        name: &str,
+        controllable: bool,
+    ) -> Result<EventId, ControllabilityConflict> {
+        if let Some(&id) = self.by_name.get(name) {
+            if self.events[id.index()].controllable != controllable {
+                return Err(ControllabilityConflict {
+                    name: name.to_owned(),
+                });
+            }
+            return Ok(id);
+        }
+        let id = EventId(u32::try_from(self.events.len()).expect("more than 2^32 events"));
+        self.events.push(Event {
+            name: name.to_owned(),
+            controllable,
+        });
+        self.by_name.insert(name.to_owned(), id);
+        Ok(id)
+    }
+
+    /// The id of `name`, if present.
+    #[inline]
+    pub fn id(&self, name: &str) -> Option<EventId> {
+        self.by_name.get(name).copied()
+    }
+
+    /// `true` when `name` is in the alphabet.
+    #[inline]
+    pub fn contains(&self, name: &str) -> bool {
+        self.by_name.contains_key(name)
+    }
+
+    /// The event with id `id`.
+    #[inline]
+    pub fn event(&self, id: EventId) -> &Event {
+        &self.events[id.index()]
+    }
+
+    /// The name of event `id`.
+    #[inline]
+    pub fn name(&self, id: EventId) -> &str {
+        &self.events[id.index()].name
+    }
+
+    /// Whether event `id` is controllable.
+    #[inline]
+    pub fn is_controllable(&self, id: EventId) -> bool {
+        self.events[id.index()].controllable
+    }
+
+    /// All events with their ids, in id order.
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = (EventId, &Event)> + '_ {
+        self.events
+            .iter()
+            .enumerate()
+            .map(|(i, e)| (EventId(i as u32), e))
+    }
+
+    /// All event ids in order.
+    pub fn ids(&self) -> impl ExactSizeIterator<Item = EventId> {
+        (0..self.events.len() as u32).map(EventId)
+    }
+
+    /// Number of controllable events.
+    pub fn controllable_count(&self) -> usize {
+        self.events.iter().filter(|e| e.controllable).count()
+    }
+
+    /// The union of several alphabets: events in order of first appearance.
+    pub fn union<'a>(
+        alphabets: impl IntoIterator<Item = &'a Alphabet>,
+    ) -> Result<Alphabet, ControllabilityConflict> {
+        let mut out = Alphabet::new();
+        for a in alphabets {
+            for e in &a.events {
+                out.insert(&e.name, e.controllable)?;
+            }
+        }
+        Ok(out)
+    }
+
+    /// `true` when every event of `self` is in `other` (names only).
+    pub fn is_subset_of(&self, other: &Alphabet) -> bool {
+        self.events.iter().all(|e| other.contains(&e.name))
+    }
+
+    /// `true` when both hold the same event names with the same
+    /// controllability, in any order.
+    pub fn same_events(&self, other: &Alphabet) -> bool {
+        self.len() == other.len()
+            && self.events.iter().all(|e| {
+                other
+                    .id(&e.name)
+                    .is_some_and(|id| other.is_controllable(id) == e.controllable)
+            })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_follow_insertion_order_and_repeat_inserts_find_the_same_id() {
+        let mut a = Alphabet::new();
+        let start = a.insert("start", true).unwrap();
+        let finish = a.insert("finish", false).unwrap();
+        assert_eq!((start, finish), (EventId(0), EventId(1)));
+        assert_eq!(a.insert("start", true).unwrap(), start);
+        assert_eq!(a.id("finish"), Some(finish));
+        assert_eq!(a.id("nope"), None);
+        assert_eq!(a.controllable_count(), 1);
+    }
+
+    #[test]
+    fn conflicting_controllability_is_an_error() {
+        let mut a = Alphabet::new();
+        a.insert("e", true).unwrap();
+        let err = a.insert("e", false).unwrap_err();
+        assert_eq!(err.name, "e");
+    }
+
+    #[test]
+    fn union_keeps_first_appearance_order_and_detects_conflicts() {
+        let mut a = Alphabet::new();
+        a.insert("x", true).unwrap();
+        a.insert("y", false).unwrap();
+        let mut b = Alphabet::new();
+        b.insert("z", false).unwrap();
+        b.insert("x", true).unwrap();
+        let u = Alphabet::union([&a, &b]).unwrap();
+        let names: Vec<_> = u.iter().map(|(_, e)| e.name.as_str()).collect();
+        assert_eq!(names, ["x", "y", "z"]);
+        assert!(a.is_subset_of(&u) && b.is_subset_of(&u) && !u.is_subset_of(&a));
+
+        let mut c = Alphabet::new();
+        c.insert("y", true).unwrap();
+        assert!(Alphabet::union([&a, &c]).is_err());
+    }
+}

@@ -1,0 +1,166 @@
+//! Automaton file formats, chosen by file extension.
+//!
+//! | extension | format | components per file |
+//! |---|---|---|
+//! | `.toml` | native ([`toml`]) | one |
+//! | `.gen` | libFAUDES generator ([`gen`]) | one |
+//! | `.ads` | TCT ASCII description ([`ads`]) | one |
+//! | `.wmod` | Supremica / Waters module ([`wmod`]) | many |
+//!
+//! Readers never panic: malformed input is an [`Error`] naming the file,
+//! the line and (where the format has one) the column.
+
+pub mod ads;
+pub mod gen;
+pub mod toml;
+pub mod wmod;
+
+use crate::automaton::Automaton;
+use crate::error::{Error, Result};
+use std::fmt;
+use std::path::Path;
+
+/// A supported file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Native TOML.
+    Toml,
+    /// libFAUDES `.gen`.
+    Gen,
+    /// TCT `.ads`.
+    Ads,
+    /// Supremica / Waters `.wmod`.
+    Wmod,
+}
+
+impl Format {
+    /// The format named by `path`'s extension.
+    pub fn from_path(path: &Path) -> Result<Format> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("toml") => Ok(Format::Toml),
+            Some("gen") => Ok(Format::Gen),
+            Some("ads") => Ok(Format::Ads),
+            Some("wmod") => Ok(Format::Wmod),
+            _ => Err(Error::UnknownFormat {
+                path: path.to_path_buf(),
+            }),
+        }
+    }
+
+    /// `true` when one file can hold several automata.
+    pub fn holds_many(self) -> bool {
+        self == Format::Wmod
+    }
+}
+
+/// The role of an automaton in a file that says so (Waters modules and,
+/// optionally, native TOML).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Kind {
+    /// A plant component.
+    Plant,
+    /// A specification.
+    Spec,
+    /// A supervisor.
+    Supervisor,
+    /// A property (Waters `PROPERTY`), checked rather than enforced.
+    Property,
+    /// The file does not say.
+    Unspecified,
+}
+
+impl fmt::Display for Kind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Kind::Plant => "plant",
+            Kind::Spec => "spec",
+            Kind::Supervisor => "supervisor",
+            Kind::Property => "property",
+            Kind::Unspecified => "unspecified",
+        })
+    }
+}
+
+/// An automaton with the role its file gives it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Component {
+    /// The role.
+    pub kind: Kind,
+    /// The automaton.
+    pub automaton: Automaton,
+}
+
+impl Component {
+    /// An automaton whose role is not stated.
+    pub fn unspecified(automaton: Automaton) -> Self {
+        Component {
+            kind: Kind::Unspecified,
+            automaton,
+        }
+    }
+}
+
+/// Parses `text` in `format`; `origin` names the file in errors.
+pub fn read_str(text: &str, format: Format, origin: &Path) -> Result<Vec<Component>> {
+    match format {
+        Format::Toml => toml::read(text, origin).map(|c| vec![c]),
+        Format::Gen => gen::read(text, origin).map(|a| vec![Component::unspecified(a)]),
+        Format::Ads => ads::read(text, origin).map(|a| vec![Component::unspecified(a)]),
+        Format::Wmod => wmod::read(text, origin),
+    }
+}
+
+/// Reads every automaton in the file at `path` (format by extension).
+pub fn read_file(path: &Path) -> Result<Vec<Component>> {
+    let format = Format::from_path(path)?;
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    // libFAUDES writes ISO-8859-1; accept it by mapping bytes to chars
+    // when the file is not UTF-8 (names stay intact for ASCII input).
+    let text = match String::from_utf8(bytes) {
+        Ok(t) => t,
+        Err(e) => e.into_bytes().iter().map(|&b| b as char).collect(),
+    };
+    read_str(&text, format, path)
+}
+
+/// Reads the file at `path`, which must hold exactly one automaton.
+pub fn read_automaton(path: &Path) -> Result<Automaton> {
+    let mut components = read_file(path)?;
+    if components.len() != 1 {
+        return Err(Error::model(
+            crate::error::Location::file(path),
+            format!(
+                "expected one automaton, found {} (name the component to use)",
+                components.len()
+            ),
+        ));
+    }
+    Ok(components.remove(0).automaton)
+}
+
+/// Renders `components` in `format`; single-automaton formats take one.
+pub fn write_string(format: Format, components: &[Component]) -> Result<String> {
+    if !format.holds_many() && components.len() != 1 {
+        return Err(Error::Incompatible(format!(
+            "{format:?} files hold exactly one automaton, got {}",
+            components.len()
+        )));
+    }
+    Ok(match format {
+        Format::Toml => toml::write(&components[0]),
+        Format::Gen => gen::write(&components[0].automaton),
+        Format::Ads => ads::write(&components[0].automaton),
+        Format::Wmod => wmod::write(components),
+    })
+}
+
+/// Writes `components` to `path` in the format its extension names.
+pub fn write_file(path: &Path, components: &[Component]) -> Result<()> {
+    let text = write_string(Format::from_path(path)?, components)?;
+    std::fs::write(path, text).map_err(|e| Error::io(path, e))
+}

@@ -1,0 +1,18 @@
+//! Supervisor synthesis and PLC code generation.
+//!
+//! - [`automaton`]: the automaton model (dense ids, CSR transitions).
+//! - [`formats`]: native TOML, libFAUDES `.gen`, TCT `.ads`, Waters `.wmod`.
+//! - [`ops`]: the discrete-event operations (sync, supcon, minstate, …).
+//! - [`dot`]: Graphviz output.
+
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod automaton;
+pub mod dot;
+pub mod error;
+pub mod formats;
+pub mod ops;
+
+pub use automaton::{Alphabet, Automaton, AutomatonBuilder, EventId, StateId};
+pub use error::{Error, Location, Result};
