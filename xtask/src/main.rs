@@ -1,1 +1,135 @@
-fn main(){}
+//! Project automation: `cargo xtask <task>`.
+//!
+//! - `ci`: everything CI checks, in order, failing fast (the README's test
+//!   command).
+//! - `bench-faudes [--runs N] [MODEL…]`: our compose + supcon against
+//!   libFAUDES on the benchmark models, in one run, as ratios.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+mod bench;
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = match args.first().map(String::as_str) {
+        Some("ci") => ci(),
+        Some("bench-faudes") => bench::run(&args[1..]),
+        _ => {
+            eprintln!(
+                "usage: cargo xtask <task>\n\
+                 tasks:\n  \
+                 ci                         fmt, clippy, all tests, differential tests vs libFAUDES\n  \
+                 bench-faudes [--runs N] [MODEL…]  compose + supcon timings and memory vs libFAUDES"
+            );
+            Err("no task given".into())
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("xtask: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Errors of a task, as text for the user.
+pub type Result<T = ()> = std::result::Result<T, String>;
+
+/// The workspace root.
+pub fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives in the workspace")
+        .to_path_buf()
+}
+
+/// The `cargo` that runs us.
+pub fn cargo() -> Command {
+    let mut cmd = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+    cmd.current_dir(root());
+    cmd
+}
+
+/// Runs `cmd`, echoing it, and fails on a non-zero exit.
+pub fn run(cmd: &mut Command) -> Result {
+    eprintln!("$ {}", describe(cmd));
+    let status = cmd
+        .status()
+        .map_err(|e| format!("cannot start {}: {e}", describe(cmd)))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!("`{}` failed ({status})", describe(cmd)))
+    }
+}
+
+fn describe(cmd: &Command) -> String {
+    let mut s = cmd.get_program().to_string_lossy().into_owned();
+    for a in cmd.get_args() {
+        s.push(' ');
+        s.push_str(&a.to_string_lossy());
+    }
+    s
+}
+
+/// A Python interpreter that can `import faudes`, installing the package
+/// with pip when it is missing.
+pub fn python_with_faudes() -> Result<String> {
+    let python = std::env::var("PYTHON").unwrap_or_else(|_| "python3".into());
+    let has = |py: &str| {
+        Command::new(py)
+            .args(["-c", "import faudes"])
+            .stderr(std::process::Stdio::null())
+            .stdout(std::process::Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success())
+    };
+    if has(&python) {
+        return Ok(python);
+    }
+    eprintln!("xtask: libFAUDES (pip package `faudes`) is missing; installing it");
+    run(Command::new(&python).args(["-m", "pip", "install", "--quiet", "faudes"]))?;
+    if has(&python) {
+        Ok(python)
+    } else {
+        Err(format!(
+            "`{python} -c 'import faudes'` still fails after pip install; \
+             install the `faudes` package for {python} by hand"
+        ))
+    }
+}
+
+/// The whole CI pipeline.
+fn ci() -> Result {
+    // Installs the pinned toolchain's targets and components when missing
+    // (rustup does not do that on its own for an installed toolchain).
+    run(Command::new("rustup")
+        .arg("toolchain")
+        .arg("install")
+        .current_dir(root()))?;
+    run(cargo().args(["fmt", "--all", "--", "--check"]))?;
+    run(cargo().args([
+        "clippy",
+        "--workspace",
+        "--all-targets",
+        "--",
+        "-D",
+        "warnings",
+    ]))?;
+    run(cargo().args(["test", "--workspace"]))?;
+    let python = python_with_faudes()?;
+    run(cargo().env("PYTHON", &python).args([
+        "test",
+        "--release",
+        "-p",
+        "codegen",
+        "--test",
+        "faudes_diff",
+        "--",
+        "--ignored",
+    ]))?;
+    eprintln!("xtask: ci passed");
+    Ok(())
+}

@@ -13,6 +13,8 @@ pub mod dot;
 pub mod error;
 pub mod formats;
 pub mod ops;
+#[cfg(test)]
+mod testing;
 
 pub use automaton::{Alphabet, Automaton, AutomatonBuilder, EventId, StateId};
 pub use error::{Error, Location, Result};

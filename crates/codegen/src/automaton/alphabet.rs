@@ -43,16 +43,44 @@ pub struct ControllabilityConflict {
 ///
 /// Event ids are positions in insertion order, so an alphabet built in the
 /// same order always numbers its events the same way.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
+///
+/// Some files do not state controllability at all (a plain libFAUDES
+/// generator, typically a specification). Their alphabet is marked
+/// *unstated*: its events read as uncontrollable, and when it is combined
+/// with alphabets that do state controllability, theirs wins without a
+/// conflict.
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Alphabet {
     events: Vec<Event>,
     by_name: FxHashMap<String, EventId>,
+    stated: bool,
+}
+
+impl Default for Alphabet {
+    fn default() -> Self {
+        Alphabet {
+            events: Vec::new(),
+            by_name: FxHashMap::default(),
+            stated: true,
+        }
+    }
 }
 
 impl Alphabet {
-    /// An empty alphabet.
+    /// An empty alphabet (controllability stated).
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Whether the source stated the events' controllability (see the type
+    /// docs).
+    pub fn controllability_stated(&self) -> bool {
+        self.stated
+    }
+
+    /// Records whether the source stated controllability.
+    pub fn set_controllability_stated(&mut self, stated: bool) {
+        self.stated = stated;
     }
 
     /// Number of events.
@@ -140,15 +168,36 @@ impl Alphabet {
     }
 
     /// The union of several alphabets: events in order of first appearance.
+    ///
+    /// Controllability comes from the alphabets that state it, which must
+    /// agree; an event only unstated alphabets know is uncontrollable. The
+    /// union states controllability when any part does (or there are none).
     pub fn union<'a>(
-        alphabets: impl IntoIterator<Item = &'a Alphabet>,
+        alphabets: impl IntoIterator<Item = &'a Alphabet> + Clone,
     ) -> Result<Alphabet, ControllabilityConflict> {
+        let mut stated = Alphabet::new();
+        let mut any_stated = false;
+        let mut any = false;
+        for a in alphabets.clone() {
+            any = true;
+            if a.stated {
+                any_stated = true;
+                for e in &a.events {
+                    stated.insert(&e.name, e.controllable)?;
+                }
+            }
+        }
         let mut out = Alphabet::new();
         for a in alphabets {
             for e in &a.events {
-                out.insert(&e.name, e.controllable)?;
+                let controllable = stated
+                    .id(&e.name)
+                    .map_or(a.stated && e.controllable, |id| stated.is_controllable(id));
+                out.insert(&e.name, controllable)
+                    .expect("controllability is fixed by the first pass");
             }
         }
+        out.stated = any_stated || !any;
         Ok(out)
     }
 
@@ -158,13 +207,14 @@ impl Alphabet {
     }
 
     /// `true` when both hold the same event names with the same
-    /// controllability, in any order.
+    /// controllability (where both state it), in any order.
     pub fn same_events(&self, other: &Alphabet) -> bool {
+        let compare = self.stated && other.stated;
         self.len() == other.len()
             && self.events.iter().all(|e| {
                 other
                     .id(&e.name)
-                    .is_some_and(|id| other.is_controllable(id) == e.controllable)
+                    .is_some_and(|id| !compare || other.is_controllable(id) == e.controllable)
             })
     }
 }
@@ -209,5 +259,26 @@ mod tests {
         let mut c = Alphabet::new();
         c.insert("y", true).unwrap();
         assert!(Alphabet::union([&a, &c]).is_err());
+    }
+
+    #[test]
+    fn unstated_controllability_defers_to_stated_alphabets() {
+        let mut spec = Alphabet::new();
+        spec.insert("start", false).unwrap();
+        spec.insert("note", false).unwrap();
+        spec.set_controllability_stated(false);
+        let mut plant = Alphabet::new();
+        plant.insert("start", true).unwrap();
+        let u = Alphabet::union([&spec, &plant]).unwrap();
+        assert!(u.controllability_stated());
+        assert!(u.is_controllable(u.id("start").unwrap()));
+        assert!(!u.is_controllable(u.id("note").unwrap()));
+        // Alone, an unstated alphabet stays unstated.
+        assert!(!Alphabet::union([&spec]).unwrap().controllability_stated());
+        assert!(spec.same_events(&{
+            let mut p = plant.clone();
+            p.insert("note", false).unwrap();
+            p
+        }));
     }
 }

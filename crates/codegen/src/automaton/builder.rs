@@ -118,6 +118,12 @@ impl AutomatonBuilder {
         self.closed_states = true;
     }
 
+    /// Records that the source does not state controllability (see
+    /// [`Alphabet`]).
+    pub fn set_controllability_stated(&mut self, stated: bool) {
+        self.alphabet.set_controllability_stated(stated);
+    }
+
     /// Adds an event (or finds it; the controllability must agree).
     pub fn add_event(&mut self, name: &str, controllable: bool) -> Result<EventId, BuildError> {
         Ok(self.alphabet.insert(name, controllable)?)
@@ -195,8 +201,7 @@ impl AutomatonBuilder {
 
     /// Adds δ(source, event) = target; `line` is for error messages.
     pub fn add_transition(&mut self, source: StateId, event: EventId, target: StateId, line: u32) {
-        self.transitions
-            .push((source.0, event.0, target.0, line));
+        self.transitions.push((source.0, event.0, target.0, line));
     }
 
     /// Adds a transition by names; the event must be in the alphabet.
@@ -207,10 +212,13 @@ impl AutomatonBuilder {
         target: &str,
         line: u32,
     ) -> Result<(), BuildError> {
-        let e = self.alphabet.id(event).ok_or_else(|| BuildError::UnknownEvent {
-            event: event.to_owned(),
-            line,
-        })?;
+        let e = self
+            .alphabet
+            .id(event)
+            .ok_or_else(|| BuildError::UnknownEvent {
+                event: event.to_owned(),
+                line,
+            })?;
         let s = self.state(source, line)?;
         let t = self.state(target, line)?;
         self.add_transition(s, e, t, line);

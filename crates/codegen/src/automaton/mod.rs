@@ -189,7 +189,10 @@ impl Automaton {
     /// Unnamed automata answer to state indices.
     pub fn state_by_name(&self, name: &str) -> Option<StateId> {
         match &self.state_names {
-            Some(names) => names.iter().position(|n| n == name).map(|i| StateId(i as u32)),
+            Some(names) => names
+                .iter()
+                .position(|n| n == name)
+                .map(|i| StateId(i as u32)),
             None => name
                 .parse::<u32>()
                 .ok()

@@ -1,1 +1,44 @@
-//! Operations.
+//! Discrete-event operations on automata.
+//!
+//! | module | operations |
+//! |---|---|
+//! | [`reach`] | reachable, coreachable, accessible, coaccessible, trim |
+//! | [`sync`] | sync (parallel composition), meet (product) |
+//! | [`selfloop`] | selfloop, inverse projection |
+//! | [`supcon`] | supremal controllable nonblocking sublanguage |
+//! | [`minstate`] | language-preserving minimisation |
+//! | [`condat`] | control data: disabled events per supervisor state |
+//! | [`verify`] | controllability, nonblocking, nonconflict, with witnesses |
+//! | [`equivalence`] | language equality, isomorphism |
+
+pub mod condat;
+pub mod equivalence;
+pub mod minstate;
+pub mod reach;
+pub mod selfloop;
+pub mod supcon;
+pub mod sync;
+pub mod verify;
+
+pub use condat::{condat, Condat};
+pub use equivalence::{isomorphic, language_difference, language_equal, LanguageDifference};
+pub use minstate::minstate;
+pub use reach::{accessible, coaccessible, coreachable, is_trim, reachable, restrict, trim};
+pub use selfloop::{inverse_projection, selfloop};
+pub use supcon::{supcon, supcon_with};
+pub use sync::{compose, meet, sync, ComposeOptions, Composition, Product};
+pub use verify::{
+    check_controllable, check_nonblocking, check_nonconflicting, BlockingWitness,
+    UncontrollableWitness,
+};
+
+/// Receives progress reports of long operations.
+pub trait Progress {
+    /// `done` units (states, usually) of `phase` are finished.
+    fn report(&self, phase: &str, done: usize);
+}
+
+/// No progress reporting.
+impl Progress for () {
+    fn report(&self, _phase: &str, _done: usize) {}
+}

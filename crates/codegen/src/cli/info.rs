@@ -1,0 +1,74 @@
+//! `codegen info`: sizes and properties of automata.
+
+use super::{print_json, Outcome, Size};
+use codegen::formats;
+use codegen::ops;
+use codegen::Error;
+use std::path::PathBuf;
+
+#[derive(Debug, serde::Serialize)]
+struct Info {
+    file: String,
+    name: String,
+    kind: String,
+    #[serde(flatten)]
+    size: Size,
+    marked: usize,
+    deterministic: bool,
+    has_initial_state: bool,
+    reachable: usize,
+    coreachable: usize,
+    trim: bool,
+    nonblocking: bool,
+}
+
+pub fn run(files: &[PathBuf], json: bool) -> Result<Outcome, Error> {
+    let mut infos = Vec::new();
+    for file in files {
+        for c in formats::read_file(file)? {
+            let a = &c.automaton;
+            let reach = ops::reachable(a);
+            let co = ops::coreachable(a);
+            let reachable = reach.count_ones(..);
+            infos.push(Info {
+                file: file.display().to_string(),
+                name: a.name().to_owned(),
+                kind: c.kind.to_string(),
+                size: Size::of(a),
+                marked: a.marked().count_ones(..),
+                // Nondeterministic files are refused when read.
+                deterministic: true,
+                has_initial_state: a.initial().is_some(),
+                reachable,
+                coreachable: co.count_ones(..),
+                trim: reachable == a.num_states() && co.count_ones(..) == a.num_states(),
+                nonblocking: reach.is_subset(&co),
+            });
+        }
+    }
+    if json {
+        print_json(&infos);
+        return Ok(Outcome::Holds);
+    }
+    for i in &infos {
+        let yes = |b: bool| if b { "yes" } else { "no" };
+        println!("{} ({}, {}):", i.name, i.kind, i.file);
+        println!("  {}", i.size);
+        println!("  marked states: {}", i.marked);
+        println!("  deterministic: yes");
+        println!(
+            "  reachable:     {} of {}{}",
+            i.reachable,
+            i.size.states,
+            if i.has_initial_state {
+                ""
+            } else {
+                " (no initial state)"
+            }
+        );
+        println!("  coreachable:   {} of {}", i.coreachable, i.size.states);
+        println!("  trim:          {}", yes(i.trim));
+        println!("  nonblocking:   {}", yes(i.nonblocking));
+    }
+    Ok(Outcome::Holds)
+}

@@ -1,0 +1,238 @@
+//! Command-line interface: argument parsing, model loading and output.
+//!
+//! Exit codes: 0 = done and every checked property holds; 1 = a checked
+//! property fails; 2 = bad input or usage.
+
+mod check;
+mod condat;
+mod convert;
+mod info;
+mod progress;
+mod synth;
+
+use clap::{Parser, Subcommand};
+use codegen::formats::{self, Component, Kind};
+use codegen::{Automaton, Error};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Supervisor synthesis and checks for discrete-event models.
+///
+/// Model files: native `.toml`, libFAUDES `.gen`, TCT `.ads`, Supremica
+/// `.wmod` (chosen by extension).
+#[derive(Debug, Parser)]
+#[command(name = "codegen", version, about)]
+pub struct Cli {
+    /// Print machine-readable JSON on stdout instead of text.
+    #[arg(long, global = true)]
+    json: bool,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Sizes and properties of every automaton in the files.
+    Info {
+        /// Model files.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+    },
+    /// Synthesise a supervisor: supcon(sync(plants), sync(specs)).
+    Synth(synth::SynthArgs),
+    /// Check supervisors against a plant: controllable, nonblocking,
+    /// and (for several) nonconflicting.
+    Check {
+        /// Plant component files (their synchronous composition is the plant).
+        #[arg(long = "plant", required = true, num_args = 1..)]
+        plants: Vec<PathBuf>,
+        /// Supervisor files.
+        #[arg(long = "sup", required = true, num_args = 1..)]
+        sups: Vec<PathBuf>,
+    },
+    /// Control data: the controllable events each supervisor state disables.
+    Condat {
+        /// Plant component files.
+        #[arg(long = "plant", required = true, num_args = 1..)]
+        plants: Vec<PathBuf>,
+        /// The supervisor file.
+        #[arg(long = "sup", required = true)]
+        sup: PathBuf,
+    },
+    /// Convert between formats (by extension).
+    Convert {
+        /// Input file.
+        input: PathBuf,
+        /// Output file.
+        output: PathBuf,
+        /// Only this component (for files holding several).
+        #[arg(long)]
+        component: Option<String>,
+    },
+    /// Graphviz text of an automaton on stdout.
+    Dot {
+        /// Model file.
+        file: PathBuf,
+        /// Only this component (for files holding several).
+        #[arg(long)]
+        component: Option<String>,
+    },
+}
+
+/// How a command ended when it did not fail outright.
+pub enum Outcome {
+    /// Everything holds.
+    Holds,
+    /// A checked property fails (exit code 1).
+    Fails,
+}
+
+/// Parses the arguments, runs the command, prints errors.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let json = cli.json;
+    let result = match cli.command {
+        Command::Info { files } => info::run(&files, json),
+        Command::Synth(args) => synth::run(&args, json),
+        Command::Check { plants, sups } => check::run(&plants, &sups, json),
+        Command::Condat { plants, sup } => condat::run(&plants, &sup, json),
+        Command::Convert {
+            input,
+            output,
+            component,
+        } => convert::convert(&input, &output, component.as_deref(), json),
+        Command::Dot { file, component } => convert::dot(&file, component.as_deref(), json),
+    };
+    match result {
+        Ok(Outcome::Holds) => ExitCode::SUCCESS,
+        Ok(Outcome::Fails) => ExitCode::from(1),
+        Err(e) => {
+            if json {
+                println!("{}", serde_json::json!({ "error": e.to_string() }));
+            }
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// The role a file plays on the command line; for files that hold several
+/// components (Waters modules) it selects the components of that kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// `--plant`
+    Plant,
+    /// `--spec`
+    Spec,
+    /// `--sup`
+    Supervisor,
+}
+
+impl Role {
+    fn accepts(self, kind: Kind) -> bool {
+        match self {
+            Role::Plant => kind == Kind::Plant,
+            Role::Spec => matches!(kind, Kind::Spec | Kind::Property),
+            Role::Supervisor => matches!(kind, Kind::Supervisor | Kind::Spec),
+        }
+    }
+}
+
+/// Loads the automata of `paths` that play `role`: every automaton of a
+/// single-automaton file, the components of matching kind of a module.
+pub fn load(paths: &[PathBuf], role: Role) -> Result<Vec<Automaton>, Error> {
+    let mut out = Vec::new();
+    for path in paths {
+        let components = formats::read_file(path)?;
+        if components.len() == 1 {
+            out.push(components.into_iter().next().expect("one").automaton);
+            continue;
+        }
+        let before = out.len();
+        let kinds: Vec<String> = components
+            .iter()
+            .map(|c| format!("{} `{}`", c.kind, c.automaton.name()))
+            .collect();
+        out.extend(
+            components
+                .into_iter()
+                .filter(|c| role.accepts(c.kind))
+                .map(|c| c.automaton),
+        );
+        if out.len() == before {
+            return Err(Error::Incompatible(format!(
+                "{}: no component to use as {role:?} (the file has: {})",
+                path.display(),
+                if kinds.is_empty() {
+                    "nothing".to_owned()
+                } else {
+                    kinds.join(", ")
+                }
+            )));
+        }
+    }
+    Ok(out)
+}
+
+/// Reads `path` and keeps the component called `name`, or all.
+pub fn load_components(path: &Path, name: Option<&str>) -> Result<Vec<Component>, Error> {
+    let components = formats::read_file(path)?;
+    let Some(name) = name else {
+        return Ok(components);
+    };
+    let names: Vec<String> = components
+        .iter()
+        .map(|c| c.automaton.name().to_owned())
+        .collect();
+    let chosen: Vec<Component> = components
+        .into_iter()
+        .filter(|c| c.automaton.name() == name)
+        .collect();
+    if chosen.is_empty() {
+        return Err(Error::Incompatible(format!(
+            "{}: no component `{name}` (components: {})",
+            path.display(),
+            names.join(", ")
+        )));
+    }
+    Ok(chosen)
+}
+
+/// `states/transitions` plus event counts, for reports.
+#[derive(Debug, serde::Serialize)]
+pub struct Size {
+    states: usize,
+    transitions: usize,
+    events: usize,
+    controllable: usize,
+}
+
+impl Size {
+    /// The size of `a`.
+    pub fn of(a: &Automaton) -> Size {
+        Size {
+            states: a.num_states(),
+            transitions: a.num_transitions(),
+            events: a.alphabet().len(),
+            controllable: a.alphabet().controllable_count(),
+        }
+    }
+}
+
+impl std::fmt::Display for Size {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} states, {} transitions, {} events ({} controllable)",
+            self.states, self.transitions, self.events, self.controllable
+        )
+    }
+}
+
+/// Prints `value` as one line of JSON.
+pub fn print_json(value: &impl serde::Serialize) {
+    println!(
+        "{}",
+        serde_json::to_string_pretty(value).expect("plain data serialises")
+    );
+}

@@ -1,0 +1,330 @@
+//! The `codegen` command as a user runs it: synthesis, checks, control
+//! data, conversions, Graphviz, and how it reports bad input.
+
+use codegen::formats::read_automaton;
+use codegen::ops;
+use e2e::{model, run_codegen, run_json};
+use std::path::Path;
+
+const SMALL_FACTORY_PLANTS: [&str; 2] = [
+    "models/bench/smallfactory/MACH1.gen",
+    "models/bench/smallfactory/MACH2.gen",
+];
+const SMALL_FACTORY_SPECS: [&str; 2] = [
+    "models/bench/smallfactory/BUFSPEC.gen",
+    "models/bench/smallfactory/BRSPEC.gen",
+];
+
+fn synth_small_factory(out: &Path, extra: &[&str]) -> (i32, serde_json::Value) {
+    let mut args: Vec<String> = vec!["synth".into(), "--plant".into()];
+    args.extend(SMALL_FACTORY_PLANTS.map(String::from));
+    args.push("--spec".into());
+    args.extend(SMALL_FACTORY_SPECS.map(String::from));
+    args.push("-o".into());
+    args.push(out.display().to_string());
+    args.extend(extra.iter().map(|s| s.to_string()));
+    run_json(args)
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+#[test]
+fn synth_writes_the_small_factory_supervisor_and_check_accepts_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sup.gen");
+    let (code, report) = synth_small_factory(&out, &[]);
+    assert_eq!(code, 0, "{report}");
+    assert_eq!(report["plant"]["states"], 9);
+    assert_eq!(report["supervisor"]["states"], 12);
+    assert_eq!(report["supervisor"]["transitions"], 24);
+    assert_eq!(report["empty"], false);
+
+    let sup = read_automaton(&out).unwrap();
+    assert_eq!((sup.num_states(), sup.num_transitions()), (12, 24));
+    assert_eq!(sup.name(), "sup");
+
+    let mut args = vec!["check", "--plant"];
+    args.extend(SMALL_FACTORY_PLANTS);
+    args.push("--sup");
+    let out_str = out.display().to_string();
+    args.push(&out_str);
+    let (code, check) = run_json(&args);
+    assert_eq!(code, 0, "{check}");
+    assert_eq!(check["holds"], true);
+    assert_eq!(check["supervisors"][0]["controllable"], true);
+    assert_eq!(check["supervisors"][0]["nonblocking"], true);
+
+    let (code, info) = run_json(["info", &out_str]);
+    assert_eq!(code, 0);
+    assert_eq!(info[0]["trim"], true);
+    assert_eq!(info[0]["nonblocking"], true);
+    assert_eq!(info[0]["controllable"], 4);
+}
+
+#[test]
+fn synth_minstate_keeps_the_language_and_shrinks_the_supervisor() {
+    let dir = tempfile::tempdir().unwrap();
+    let full = dir.path().join("full.toml");
+    let small = dir.path().join("small.wmod");
+    let (code, _) = synth_small_factory(&full, &[]);
+    assert_eq!(code, 0);
+    let (code, report) = synth_small_factory(&small, &["--minstate"]);
+    assert_eq!(code, 0, "{report}");
+    let a = read_automaton(&full).unwrap();
+    let b = read_automaton(&small).unwrap();
+    assert!(ops::language_equal(&a, &b));
+    assert_eq!(report["minimised"]["states"], b.num_states());
+    assert!(b.num_states() < a.num_states(), "{} states", b.num_states());
+}
+
+#[test]
+fn synth_without_spec_gives_the_nonblocking_supervisor() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("phil5.gen");
+    let mut args = vec![
+        "synth".to_string(),
+        "-o".into(),
+        out.display().to_string(),
+        "--plant".into(),
+    ];
+    for i in 1..=5 {
+        args.push(format!("models/bench/phil5/P{i}.gen"));
+        args.push(format!("models/bench/phil5/F{i}.gen"));
+    }
+    let (code, report) = run_json(&args);
+    assert_eq!(code, 0, "{report}");
+    assert_eq!(report["plant"]["states"], 243);
+    assert_eq!(report["supervisor"]["states"], 241);
+    assert_eq!(report["supervisor"]["transitions"], 935);
+    assert!(report["spec"].is_null());
+}
+
+#[test]
+fn an_empty_supervisor_is_written_and_announced() {
+    let dir = tempfile::tempdir().unwrap();
+    // The plant can always do `leak` (uncontrollable); the spec forbids it.
+    let plant = write(
+        dir.path(),
+        "tank.toml",
+        r#"
+name = "tank"
+initial = "full"
+controllable = ["fill"]
+uncontrollable = ["leak"]
+transitions = [["full", "leak", "empty"], ["empty", "fill", "full"]]
+"#,
+    );
+    let spec = write(
+        dir.path(),
+        "noleak.toml",
+        r#"
+name = "noleak"
+initial = "ok"
+controllable = ["fill"]
+uncontrollable = ["leak"]
+transitions = [["ok", "fill", "ok"]]
+"#,
+    );
+    let out = dir.path().join("sup.toml");
+    let args = [
+        "synth",
+        "--plant",
+        &plant,
+        "--spec",
+        &spec,
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let run = run_codegen(args);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("EMPTY"), "{}", run.stdout);
+    let sup = read_automaton(&out).unwrap();
+    assert!(sup.is_empty());
+    let (_, report) = run_json(args);
+    assert_eq!(report["empty"], true);
+    assert_eq!(report["supervisor"]["states"], 0);
+}
+
+#[test]
+fn check_reports_an_uncontrollable_supervisor_with_a_witness_and_exit_1() {
+    // The buffer spec itself, used as a supervisor, disables the
+    // uncontrollable `e10` (M1 finishing) when the buffer is full.
+    let mut args = vec!["check", "--plant"];
+    args.extend(SMALL_FACTORY_PLANTS);
+    args.extend(["--sup", SMALL_FACTORY_SPECS[0]]);
+    let (code, report) = run_json(&args);
+    assert_eq!(code, 1, "{report}");
+    assert_eq!(report["holds"], false);
+    let w = &report["supervisors"][0]["uncontrollable"];
+    assert_eq!(w["event"], "e10");
+    // A shortest string: M1 starts, finishes (buffer full), starts again.
+    assert_eq!(w["path"], serde_json::json!(["e11", "e10", "e11"]));
+    let run = run_codegen(&args);
+    assert_eq!(run.code, 1);
+    assert!(run.stdout.contains("controllable: NO"), "{}", run.stdout);
+    assert!(run.stdout.contains("e11 e10 e11"), "{}", run.stdout);
+}
+
+#[test]
+fn check_finds_conflicting_modular_supervisors() {
+    let dir = tempfile::tempdir().unwrap();
+    let plant = write(
+        dir.path(),
+        "g.toml",
+        r#"
+name = "g"
+initial = "0"
+controllable = ["a", "b"]
+uncontrollable = []
+transitions = [["0", "a", "1"], ["0", "b", "2"], ["1", "b", "3"], ["2", "a", "3"]]
+marked = ["3"]
+"#,
+    );
+    let ab = write(
+        dir.path(),
+        "ab.toml",
+        r#"
+name = "ab"
+initial = "0"
+controllable = ["a", "b"]
+uncontrollable = []
+transitions = [["0", "a", "1"], ["1", "b", "2"]]
+marked = ["2"]
+"#,
+    );
+    let ba = write(
+        dir.path(),
+        "ba.toml",
+        r#"
+name = "ba"
+initial = "0"
+controllable = ["a", "b"]
+uncontrollable = []
+transitions = [["0", "b", "1"], ["1", "a", "2"]]
+marked = ["2"]
+"#,
+    );
+    let (code, report) = run_json(["check", "--plant", &plant, "--sup", &ab, &ba]);
+    assert_eq!(code, 1, "{report}");
+    assert_eq!(report["supervisors"][0]["controllable"], true);
+    assert_eq!(report["supervisors"][1]["nonblocking"], true);
+    assert_eq!(report["nonconflicting"], false);
+    assert_eq!(report["conflict"]["path"], serde_json::json!([]));
+}
+
+#[test]
+fn condat_lists_the_disabled_restart_when_the_buffer_is_full() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sup.gen");
+    assert_eq!(synth_small_factory(&out, &[]).0, 0);
+    let mut args = vec!["condat", "--plant"];
+    args.extend(SMALL_FACTORY_PLANTS);
+    let out_str = out.display().to_string();
+    args.extend(["--sup", &out_str]);
+    let (code, rows) = run_json(&args);
+    assert_eq!(code, 0);
+    let rows = rows.as_array().unwrap();
+    assert_eq!(rows.len(), 12);
+    let disabled: Vec<&str> = rows
+        .iter()
+        .flat_map(|r| r["disabled"].as_array().unwrap())
+        .map(|e| e.as_str().unwrap())
+        .collect();
+    // Only controllable events are ever disabled: M1's start (e11) when
+    // the buffer is full, M2's start (e21) when it is empty, M1's repair
+    // (e13) while M2 is down.
+    assert!(disabled.contains(&"e11") && disabled.contains(&"e21"));
+    assert!(disabled
+        .iter()
+        .all(|e| ["e11", "e13", "e21", "e23"].contains(e)));
+}
+
+#[test]
+fn convert_round_trips_through_every_format() {
+    let dir = tempfile::tempdir().unwrap();
+    let original = model("models/bench/transferline/TU.gen");
+    let mut current = original.clone();
+    for ext in ["wmod", "toml", "ads", "gen"] {
+        let next = dir.path().join(format!("tu.{ext}"));
+        let run = run_codegen(["convert", current.to_str().unwrap(), next.to_str().unwrap()]);
+        assert_eq!(run.code, 0, "{ext}: {}", run.stderr);
+        current = next;
+    }
+    let a = read_automaton(&original).unwrap();
+    let b = read_automaton(&current).unwrap();
+    assert!(ops::isomorphic(&a, &b));
+    assert_eq!(a.name(), b.name());
+}
+
+#[test]
+fn dot_draws_controllable_solid_and_uncontrollable_dashed() {
+    let run = run_codegen(["dot", SMALL_FACTORY_PLANTS[0]]);
+    assert_eq!(run.code, 0);
+    assert!(
+        run.stdout.starts_with("digraph \"MACH1\""),
+        "{}",
+        run.stdout
+    );
+    assert!(run.stdout.contains("[label=\"e11\"]"));
+    assert!(run.stdout.contains("[label=\"e10\", style=dashed]"));
+    assert!(run.stdout.contains("shape=doublecircle"));
+}
+
+#[test]
+fn malformed_input_is_reported_with_file_and_line_and_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = write(
+        dir.path(),
+        "bad.toml",
+        "name = \"m\"\ninitial = \"a\"\ncontrollable = [\"go\"]\nuncontrollable = []\ntransitions = [\n  [\"a\", \"go\", \"b\"],\n  [\"a\", \"stop\", \"b\"],\n]\n",
+    );
+    let run = run_codegen(["info", &bad]);
+    assert_eq!(run.code, 2);
+    assert!(run.stderr.contains("bad.toml:7"), "{}", run.stderr);
+    assert!(run.stderr.contains("stop"), "{}", run.stderr);
+
+    let nondet = write(
+        dir.path(),
+        "nd.toml",
+        "name = \"m\"\ninitial = \"a\"\ncontrollable = [\"go\"]\nuncontrollable = []\ntransitions = [\n  [\"a\", \"go\", \"b\"],\n  [\"a\", \"go\", \"c\"],\n]\n",
+    );
+    let run = run_codegen(["info", &nondet]);
+    assert_eq!(run.code, 2);
+    assert!(run.stderr.contains("nondeterministic"), "{}", run.stderr);
+    assert!(run.stderr.contains("nd.toml:7"), "{}", run.stderr);
+
+    let (code, err) = run_json(["info", "no/such/file.gen"]);
+    assert_eq!(code, 2);
+    assert!(err["error"].as_str().unwrap().contains("no/such/file.gen"));
+
+    let run = run_codegen(["info", "README.md"]);
+    assert_eq!(run.code, 2);
+    assert!(
+        run.stderr.contains("unknown model format"),
+        "{}",
+        run.stderr
+    );
+}
+
+#[test]
+fn nothing_but_results_reaches_a_pipe() {
+    // The progress spinner stays off when stderr is not a terminal.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sup.ads");
+    let mut args = vec!["synth", "-o", out.to_str().unwrap(), "--plant"];
+    args.extend(SMALL_FACTORY_PLANTS);
+    args.push("--spec");
+    args.extend(SMALL_FACTORY_SPECS);
+    let run = run_codegen(&args);
+    assert_eq!(run.code, 0);
+    assert_eq!(run.stderr, "");
+    assert!(
+        run.stdout.contains("supervisor: 12 states, 24 transitions"),
+        "{}",
+        run.stdout
+    );
+}
