@@ -1,0 +1,230 @@
+//! What a controller runs: the project's signals, events and supervisors.
+//!
+//! A [`Config`] is plain data (slices and small integers), so the code
+//! generator can emit it as a `static` in flash and a host can build it at
+//! run time from vectors. Lists that vary in length (the inputs of an OR
+//! binding, an event's actions, …) live in shared pools and are referred
+//! to by [`Span`]s. Supervisor dynamics come through the [`Program`] trait,
+//! implemented by bit-packed tables ([`crate::table`]) and by generated
+//! CMSSM logic functions alike.
+
+/// Index of an input, output, timer, event or supervisor.
+pub type Index = u16;
+
+/// A range `start..start + len` of one of the [`Config`] pools.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Span {
+    /// First element.
+    pub start: u16,
+    /// Number of elements.
+    pub len: u16,
+}
+
+impl Span {
+    /// The empty span.
+    pub const EMPTY: Span = Span { start: 0, len: 0 };
+
+    /// A span of `len` elements from `start`.
+    pub const fn new(start: u16, len: u16) -> Span {
+        Span { start, len }
+    }
+
+    /// The elements of `pool` this span covers (empty if out of range,
+    /// which validation of the program rules out).
+    #[inline]
+    pub fn of<T>(self, pool: &[T]) -> &[T] {
+        let start = self.start as usize;
+        pool.get(start..start + self.len as usize).unwrap_or(&[])
+    }
+
+    /// `true` when the span has no elements.
+    pub const fn is_empty(self) -> bool {
+        self.len == 0
+    }
+}
+
+/// An input signal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct InputSpec {
+    /// Scans a new raw value must persist before the filtered value
+    /// follows it; 0 and 1 mean no filtering.
+    pub debounce_scans: u8,
+}
+
+/// An output signal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OutputSpec {
+    /// Level in fault mode.
+    pub safe: bool,
+    /// Level at start and after reset (action-driven outputs).
+    pub initial: bool,
+    /// Moore output: entries of [`Config::state_map`]; empty for an
+    /// action-driven output.
+    pub state_map: Span,
+}
+
+/// A timer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TimerSpec {
+    /// Preset in milliseconds, `0 < preset < 2^31`.
+    pub preset_ms: u32,
+}
+
+/// What makes an uncontrollable event occur.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Trigger {
+    /// A controllable event: the controller chooses it.
+    Command,
+    /// Rising edge of the OR of the inputs in the span of
+    /// [`Config::input_lists`].
+    Rising(Span),
+    /// Falling edge of the OR of the inputs in the span.
+    Falling(Span),
+    /// Expiry of the timer.
+    Expired(Index),
+}
+
+/// One change an executed event makes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Action {
+    /// Raise an action-driven output.
+    Set(Index),
+    /// Lower an action-driven output.
+    Clear(Index),
+    /// Start (or restart) a timer: deadline = this scan's time + preset.
+    Start(Index),
+    /// Stop a timer without expiry.
+    Reset(Index),
+}
+
+/// A supervisor that has an event in its alphabet, with the event's local
+/// index there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Membership {
+    /// The supervisor.
+    pub supervisor: Index,
+    /// The event's index in that supervisor's local alphabet.
+    pub local: Index,
+}
+
+/// An event of the global alphabet.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EventSpec {
+    /// What makes it occur ([`Trigger::Command`] for controllable events).
+    pub trigger: Trigger,
+    /// Inputs (span of [`Config::input_lists`]) that must all be 1.
+    pub when: Span,
+    /// Inputs that must all be 0.
+    pub unless: Span,
+    /// Controllable events: an input that must be 1 for the event to be
+    /// chosen (manual mode).
+    pub request: Option<Index>,
+    /// Its actions (span of [`Config::actions`]).
+    pub actions: Span,
+    /// The supervisors that have it (span of [`Config::memberships`]).
+    pub members: Span,
+}
+
+impl EventSpec {
+    /// `true` for controllable events.
+    #[inline]
+    pub fn is_controllable(&self) -> bool {
+        matches!(self.trigger, Trigger::Command)
+    }
+}
+
+/// One entry of a Moore output's state map: the output is 1 while the
+/// supervisor is in the state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StateMapEntry {
+    /// The supervisor.
+    pub supervisor: Index,
+    /// The state.
+    pub state: u32,
+}
+
+/// A supervisor's size and initial state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SupervisorSpec {
+    /// Number of states; a state index at or above it is corrupt.
+    pub states: u32,
+    /// The initial state.
+    pub initial: u32,
+}
+
+/// What to do with an uncontrollable event no supervisor can explain.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UnexpectedPolicy {
+    /// Enter fault mode (the default).
+    Fault,
+    /// Drop the event, count it and record it.
+    Ignore,
+}
+
+/// The static description of a controller.
+#[derive(Debug, Clone, Copy)]
+pub struct Config<'a> {
+    /// Project name.
+    pub name: &'a str,
+    /// Nominal scan period.
+    pub scan_period_ms: u32,
+    /// Controllable events per scan; 0 = no limit.
+    pub max_commands_per_scan: u16,
+    /// Unexpected uncontrollable events.
+    pub unexpected: UnexpectedPolicy,
+    /// Input whose rising edge leaves fault mode.
+    pub reset: Option<Index>,
+    /// Scans late beyond which a scan counts as overrun (board only).
+    pub overrun_limit: u16,
+    /// Overruns are faults rather than just counted.
+    pub overrun_fault: bool,
+    /// Lost edges are faults rather than just counted.
+    pub lost_edge_fault: bool,
+    /// Inputs in declaration order.
+    pub inputs: &'a [InputSpec],
+    /// Outputs in declaration order.
+    pub outputs: &'a [OutputSpec],
+    /// Timers in declaration order.
+    pub timers: &'a [TimerSpec],
+    /// Events in declaration (priority) order.
+    pub events: &'a [EventSpec],
+    /// Supervisors in declaration order.
+    pub supervisors: &'a [SupervisorSpec],
+    /// Pool of input lists (OR bindings, `when`, `unless`).
+    pub input_lists: &'a [Index],
+    /// Pool of actions.
+    pub actions: &'a [Action],
+    /// Pool of event memberships.
+    pub memberships: &'a [Membership],
+    /// Pool of state-map entries.
+    pub state_map: &'a [StateMapEntry],
+}
+
+/// Supervisor dynamics plus the static description: what a
+/// [`crate::Controller`] runs.
+pub trait Program {
+    /// The static description.
+    fn config(&self) -> &Config<'_>;
+
+    /// δ of supervisor `supervisor` in `state` on its local event `local`,
+    /// `None` when undefined. Called only with `state` in range.
+    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32>;
+
+    /// Recomputes the program image's checksum and compares it with the
+    /// one recorded at generation; `false` means corrupt.
+    fn image_intact(&self) -> bool;
+}
+
+impl<P: Program + ?Sized> Program for &P {
+    fn config(&self) -> &Config<'_> {
+        (**self).config()
+    }
+
+    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
+        (**self).next_state(supervisor, state, local)
+    }
+
+    fn image_intact(&self) -> bool {
+        (**self).image_intact()
+    }
+}

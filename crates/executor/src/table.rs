@@ -1,0 +1,373 @@
+//! Bit-packed supervisor tables and the program that runs them.
+//!
+//! # Encoding
+//!
+//! A supervisor with `n` states and `m` local events stores its states in
+//! `b = max(1, ⌈log2 n⌉)` bits. Its table has three parts, all arrays of
+//! `u32` words with bit `i` at word `i / 32`, bit `i % 32` (least
+//! significant first):
+//!
+//! - `defined`: `n·m` bits, bit `s·m + e` set when δ(s, e) is defined. For a
+//!   controllable event this is "enabled", for an uncontrollable one
+//!   "expected": an event whose bit is clear is unexpected in that state.
+//! - `targets`: `b`-bit entries holding δ(s, e), in one of two layouts:
+//!   - **dense**: entry `s·m + e` (entries of undefined pairs are 0);
+//!   - **sparse**: only defined pairs, row by row; the entry of (s, e) is
+//!     `row_start[s]` plus the number of defined events of `s` before `e`.
+//!     `row_start` holds `n` entries of `⌈log2(total + 1)⌉` bits.
+//!
+//! The generator picks the layout with fewer words (dense on a tie: it is
+//! one step faster).
+//!
+//! # Worked example
+//!
+//! Three states, events `a` (local 0) and `b` (local 1), δ(0,a)=1,
+//! δ(1,b)=2, δ(2,a)=0. Then `b = 2`, and
+//!
+//! | part | bits (low first) | word |
+//! |---|---|---|
+//! | defined | `1 0 · 0 1 · 1 0` | `0x19` |
+//! | dense targets | `01 00 · 00 10 · 00 00` | `0x81` |
+//! | sparse targets | `01 · 10 · 00` | `0x09` |
+//! | sparse row starts (2 bits) | `00 · 01 · 10` | `0x24` |
+//!
+//! Looking up δ(1, b): bit `1·2 + 1 = 3` of `defined` is set; dense entry 3
+//! is bits 6–7 of `0x81` = `10` = state 2; sparse: row start of state 1 is
+//! 1, no defined event of state 1 precedes `b`, entry 1 is `10` = 2.
+//!
+//! # Integrity
+//!
+//! [`image_crc`] is a CRC-32 (ISO-HDLC, the Ethernet/zip polynomial) over
+//! the whole program image: every field of the [`Config`] in a fixed order
+//! and every table word. The generator records it; [`TableProgram`]
+//! recomputes it on demand.
+
+use crate::program::{Config, Index, Program};
+use crc::{Crc, Digest, CRC_32_ISO_HDLC};
+
+/// How the targets of a [`SupervisorTable`] are laid out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rows<'a> {
+    /// Entry `s·m + e` for every pair.
+    Dense,
+    /// Only defined pairs, with a packed row start per state.
+    Sparse {
+        /// `n` packed entries of `start_bits` bits.
+        row_starts: &'a [u32],
+        /// Width of a row start.
+        start_bits: u8,
+    },
+}
+
+/// One supervisor's transition function, bit-packed (see module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SupervisorTable<'a> {
+    /// Number of local events `m`.
+    pub events: Index,
+    /// Bits per state `b`.
+    pub state_bits: u8,
+    /// `n·m` defined-bits.
+    pub defined: &'a [u32],
+    /// Packed `b`-bit targets.
+    pub targets: &'a [u32],
+    /// Layout of `targets`.
+    pub rows: Rows<'a>,
+}
+
+/// The `width`-bit entry `index` of a packed array (0 if out of range).
+#[inline]
+pub fn read_bits(words: &[u32], index: usize, width: u8) -> u32 {
+    let width = width as usize;
+    if width == 0 {
+        return 0;
+    }
+    let bit = index * width;
+    let (word, offset) = (bit / 32, bit % 32);
+    let low = words.get(word).copied().unwrap_or(0) >> offset;
+    let value = if offset + width > 32 {
+        low | (words.get(word + 1).copied().unwrap_or(0) << (32 - offset))
+    } else {
+        low
+    };
+    if width >= 32 {
+        value
+    } else {
+        value & ((1u32 << width) - 1)
+    }
+}
+
+/// Bit `index` of a bit array.
+#[inline]
+pub fn bit(words: &[u32], index: usize) -> bool {
+    words
+        .get(index / 32)
+        .is_some_and(|w| (w >> (index % 32)) & 1 == 1)
+}
+
+/// Number of set bits in `from..to`.
+#[inline]
+fn ones_between(words: &[u32], from: usize, to: usize) -> usize {
+    let mut count = 0;
+    let mut i = from;
+    while i < to {
+        let word = words.get(i / 32).copied().unwrap_or(0) >> (i % 32);
+        let take = (32 - i % 32).min(to - i);
+        let mask = if take >= 32 {
+            u32::MAX
+        } else {
+            (1u32 << take) - 1
+        };
+        count += (word & mask).count_ones() as usize;
+        i += take;
+    }
+    count
+}
+
+impl SupervisorTable<'_> {
+    /// δ(state, local), `None` when undefined.
+    #[inline]
+    pub fn next_state(&self, state: u32, local: Index) -> Option<u32> {
+        let m = self.events as usize;
+        let local = local as usize;
+        if local >= m {
+            return None;
+        }
+        let pair = state as usize * m + local;
+        if !bit(self.defined, pair) {
+            return None;
+        }
+        let entry = match self.rows {
+            Rows::Dense => pair,
+            Rows::Sparse {
+                row_starts,
+                start_bits,
+            } => {
+                let row = state as usize * m;
+                read_bits(row_starts, state as usize, start_bits) as usize
+                    + ones_between(self.defined, row, pair)
+            }
+        };
+        Some(read_bits(self.targets, entry, self.state_bits))
+    }
+
+    fn digest(&self, d: &mut Digest<'_, u32>) {
+        d.update(&self.events.to_le_bytes());
+        d.update(&[self.state_bits]);
+        words(d, self.defined);
+        words(d, self.targets);
+        match self.rows {
+            Rows::Dense => d.update(&[0]),
+            Rows::Sparse {
+                row_starts,
+                start_bits,
+            } => {
+                d.update(&[1, start_bits]);
+                words(d, row_starts);
+            }
+        }
+    }
+}
+
+fn words(d: &mut Digest<'_, u32>, words: &[u32]) {
+    d.update(&(words.len() as u32).to_le_bytes());
+    for w in words {
+        d.update(&w.to_le_bytes());
+    }
+}
+
+/// The CRC-32 algorithm of program images.
+pub const IMAGE_CRC: Crc<u32> = Crc::<u32>::new(&CRC_32_ISO_HDLC);
+
+/// Feeds every field of `config` into `d` in a fixed order.
+pub fn digest_config(d: &mut Digest<'_, u32>, config: &Config<'_>) {
+    use crate::program::{Action, Trigger, UnexpectedPolicy};
+    let u16s = |d: &mut Digest<'_, u32>, v: &[u16]| {
+        d.update(&(v.len() as u32).to_le_bytes());
+        for x in v {
+            d.update(&x.to_le_bytes());
+        }
+    };
+    let span = |d: &mut Digest<'_, u32>, s: crate::program::Span| {
+        d.update(&s.start.to_le_bytes());
+        d.update(&s.len.to_le_bytes());
+    };
+    d.update(&(config.name.len() as u32).to_le_bytes());
+    d.update(config.name.as_bytes());
+    d.update(&config.scan_period_ms.to_le_bytes());
+    d.update(&config.max_commands_per_scan.to_le_bytes());
+    d.update(&[match config.unexpected {
+        UnexpectedPolicy::Fault => 0,
+        UnexpectedPolicy::Ignore => 1,
+    }]);
+    d.update(&config.reset.map_or(u32::MAX, u32::from).to_le_bytes());
+    d.update(&config.overrun_limit.to_le_bytes());
+    d.update(&[config.overrun_fault as u8, config.lost_edge_fault as u8]);
+    d.update(&(config.inputs.len() as u32).to_le_bytes());
+    for i in config.inputs {
+        d.update(&[i.debounce_scans]);
+    }
+    d.update(&(config.outputs.len() as u32).to_le_bytes());
+    for o in config.outputs {
+        d.update(&[o.safe as u8, o.initial as u8]);
+        span(d, o.state_map);
+    }
+    d.update(&(config.timers.len() as u32).to_le_bytes());
+    for t in config.timers {
+        d.update(&t.preset_ms.to_le_bytes());
+    }
+    d.update(&(config.events.len() as u32).to_le_bytes());
+    for e in config.events {
+        match e.trigger {
+            Trigger::Command => d.update(&[0]),
+            Trigger::Rising(s) => {
+                d.update(&[1]);
+                span(d, s);
+            }
+            Trigger::Falling(s) => {
+                d.update(&[2]);
+                span(d, s);
+            }
+            Trigger::Expired(t) => {
+                d.update(&[3]);
+                d.update(&t.to_le_bytes());
+            }
+        }
+        span(d, e.when);
+        span(d, e.unless);
+        d.update(&e.request.map_or(u32::MAX, u32::from).to_le_bytes());
+        span(d, e.actions);
+        span(d, e.members);
+    }
+    d.update(&(config.supervisors.len() as u32).to_le_bytes());
+    for s in config.supervisors {
+        d.update(&s.states.to_le_bytes());
+        d.update(&s.initial.to_le_bytes());
+    }
+    u16s(d, config.input_lists);
+    d.update(&(config.actions.len() as u32).to_le_bytes());
+    for a in config.actions {
+        let (tag, x) = match *a {
+            Action::Set(o) => (0u8, o),
+            Action::Clear(o) => (1, o),
+            Action::Start(t) => (2, t),
+            Action::Reset(t) => (3, t),
+        };
+        d.update(&[tag]);
+        d.update(&x.to_le_bytes());
+    }
+    d.update(&(config.memberships.len() as u32).to_le_bytes());
+    for m in config.memberships {
+        d.update(&m.supervisor.to_le_bytes());
+        d.update(&m.local.to_le_bytes());
+    }
+    d.update(&(config.state_map.len() as u32).to_le_bytes());
+    for s in config.state_map {
+        d.update(&s.supervisor.to_le_bytes());
+        d.update(&s.state.to_le_bytes());
+    }
+}
+
+/// The CRC-32 of a table program image: its config, then every table.
+pub fn image_crc(config: &Config<'_>, tables: &[SupervisorTable<'_>]) -> u32 {
+    let mut d = IMAGE_CRC.digest();
+    digest_config(&mut d, config);
+    d.update(&(tables.len() as u32).to_le_bytes());
+    for t in tables {
+        t.digest(&mut d);
+    }
+    d.finalize()
+}
+
+/// The CRC-32 of a program image without tables (logic backend: the
+/// supervisors are code, the config is data).
+pub fn config_crc(config: &Config<'_>) -> u32 {
+    let mut d = IMAGE_CRC.digest();
+    digest_config(&mut d, config);
+    d.finalize()
+}
+
+/// A program made of a [`Config`] and one [`SupervisorTable`] per
+/// supervisor, with the image CRC recorded at generation.
+#[derive(Debug, Clone, Copy)]
+pub struct TableProgram<'a> {
+    /// The static description.
+    pub config: Config<'a>,
+    /// One table per supervisor, in order.
+    pub tables: &'a [SupervisorTable<'a>],
+    /// [`image_crc`] as computed by the generator.
+    pub crc: u32,
+}
+
+impl Program for TableProgram<'_> {
+    fn config(&self) -> &Config<'_> {
+        &self.config
+    }
+
+    #[inline]
+    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
+        self.tables
+            .get(supervisor as usize)?
+            .next_state(state, local)
+    }
+
+    fn image_intact(&self) -> bool {
+        image_crc(&self.config, self.tables) == self.crc
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The worked example of the module docs, both layouts.
+    const DENSE: SupervisorTable<'static> = SupervisorTable {
+        events: 2,
+        state_bits: 2,
+        defined: &[0x19],
+        targets: &[0x81],
+        rows: Rows::Dense,
+    };
+    const SPARSE: SupervisorTable<'static> = SupervisorTable {
+        events: 2,
+        state_bits: 2,
+        defined: &[0x19],
+        targets: &[0x09],
+        rows: Rows::Sparse {
+            row_starts: &[0x24],
+            start_bits: 2,
+        },
+    };
+
+    #[test]
+    fn worked_example_decodes_in_both_layouts() {
+        for t in [DENSE, SPARSE] {
+            assert_eq!(t.next_state(0, 0), Some(1));
+            assert_eq!(t.next_state(0, 1), None);
+            assert_eq!(t.next_state(1, 0), None);
+            assert_eq!(t.next_state(1, 1), Some(2));
+            assert_eq!(t.next_state(2, 0), Some(0));
+            assert_eq!(t.next_state(2, 1), None);
+            assert_eq!(t.next_state(2, 7), None, "local event out of range");
+        }
+    }
+
+    #[test]
+    fn entries_straddling_a_word_boundary_read_back() {
+        // 5-bit entries: entry 6 spans bits 30..35.
+        let mut words = [0u32; 2];
+        let value = 0b10111u32;
+        words[0] |= value << 30;
+        words[1] |= value >> 2;
+        assert_eq!(read_bits(&words, 6, 5), value);
+        assert_eq!(read_bits(&words, 5, 5), 0);
+        assert_eq!(read_bits(&words, 100, 5), 0, "out of range reads 0");
+    }
+
+    #[test]
+    fn counting_ones_across_words() {
+        let words = [u32::MAX, 0b101];
+        assert_eq!(ones_between(&words, 0, 64), 34);
+        assert_eq!(ones_between(&words, 30, 35), 4);
+        assert_eq!(ones_between(&words, 33, 33), 0);
+    }
+}

@@ -1,0 +1,322 @@
+//! The scan cycle on a small conveyor: a light sensor `ls` starts the
+//! belt, its falling edge stops it and starts a 1 s "clear" timer.
+//!
+//! Supervisor `belt`: 0 -ls_on-> 1 -start-> 2 -ls_off-> 3 -stop-> 0, with
+//! `cleared` (timer expiry) in no alphabet.
+
+extern crate std;
+
+use crate::memory::StaticMemory;
+use crate::program::*;
+use crate::{Controller, Fault};
+use std::boxed::Box;
+
+const LS: Index = 0;
+const RESET: Index = 1;
+const AUTO: Index = 2;
+const BELT: usize = 0;
+const RUNNING_LAMP: usize = 1;
+
+const LS_ON: Index = 0;
+const LS_OFF: Index = 1;
+const CLEARED: Index = 2;
+const START: Index = 3;
+const STOP: Index = 4;
+
+struct Conveyor {
+    config: Config<'static>,
+    intact: bool,
+}
+
+const INPUT_LISTS: [Index; 2] = [LS, AUTO];
+const ACTIONS: [Action; 3] = [Action::Start(0), Action::Set(0), Action::Clear(0)];
+const MEMBERS: [Membership; 4] = [
+    Membership {
+        supervisor: 0,
+        local: 0,
+    },
+    Membership {
+        supervisor: 0,
+        local: 1,
+    },
+    Membership {
+        supervisor: 0,
+        local: 2,
+    },
+    Membership {
+        supervisor: 0,
+        local: 3,
+    },
+];
+
+fn event(trigger: Trigger, actions: Span, members: Span) -> EventSpec {
+    EventSpec {
+        trigger,
+        when: Span::EMPTY,
+        unless: Span::EMPTY,
+        request: None,
+        actions,
+        members,
+    }
+}
+
+fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Config<'static> {
+    let events: &'static [EventSpec] = Box::leak(Box::new([
+        event(
+            Trigger::Rising(Span::new(0, 1)),
+            Span::EMPTY,
+            Span::new(0, 1),
+        ),
+        event(
+            Trigger::Falling(Span::new(0, 1)),
+            Span::new(0, 1),
+            Span::new(2, 1),
+        ),
+        event(Trigger::Expired(0), Span::EMPTY, Span::EMPTY),
+        EventSpec {
+            request,
+            ..event(Trigger::Command, Span::new(1, 1), Span::new(1, 1))
+        },
+        event(Trigger::Command, Span::new(2, 1), Span::new(3, 1)),
+    ]));
+    let inputs: &'static [InputSpec] = Box::leak(Box::new([
+        InputSpec {
+            debounce_scans: debounce,
+        },
+        InputSpec { debounce_scans: 0 },
+        InputSpec { debounce_scans: 0 },
+    ]));
+    Config {
+        name: "conveyor",
+        scan_period_ms: 10,
+        max_commands_per_scan: 1,
+        unexpected: policy,
+        reset: Some(RESET),
+        overrun_limit: 1,
+        overrun_fault: false,
+        lost_edge_fault: true,
+        inputs,
+        outputs: &[
+            OutputSpec {
+                safe: false,
+                initial: false,
+                state_map: Span::EMPTY,
+            },
+            OutputSpec {
+                safe: true,
+                initial: false,
+                state_map: Span { start: 0, len: 1 },
+            },
+        ],
+        timers: &[TimerSpec { preset_ms: 1000 }],
+        events,
+        supervisors: &[SupervisorSpec {
+            states: 4,
+            initial: 0,
+        }],
+        input_lists: &INPUT_LISTS,
+        actions: &ACTIONS,
+        memberships: &MEMBERS,
+        state_map: &[StateMapEntry {
+            supervisor: 0,
+            state: 2,
+        }],
+    }
+}
+
+impl Program for Conveyor {
+    fn config(&self) -> &Config<'_> {
+        &self.config
+    }
+
+    fn next_state(&self, _supervisor: Index, state: u32, local: Index) -> Option<u32> {
+        match (state, local) {
+            (0, 0) => Some(1),
+            (1, 1) => Some(2),
+            (2, 2) => Some(3),
+            (3, 3) => Some(0),
+            _ => None,
+        }
+    }
+
+    fn image_intact(&self) -> bool {
+        self.intact
+    }
+}
+
+type Mem = StaticMemory<3, 2, 1, 1, 5>;
+
+fn controller(config: Config<'static>) -> Controller<Conveyor, Mem> {
+    Controller::new(
+        Conveyor {
+            config,
+            intact: true,
+        },
+        Mem::new(),
+    )
+    .unwrap()
+}
+
+fn plain() -> Controller<Conveyor, Mem> {
+    controller(config(0, UnexpectedPolicy::Fault, None))
+}
+
+/// Inputs (ls, reset, auto).
+fn io(ls: bool, reset: bool) -> [bool; 3] {
+    [ls, reset, true]
+}
+
+#[test]
+fn scan_zero_has_no_edges_even_with_the_sensor_already_on() {
+    let mut c = plain();
+    let r = c.scan(0, &io(true, false));
+    assert!(r.executed.is_empty());
+    assert_eq!(r.states, [0]);
+    assert_eq!(r.scan, 0);
+}
+
+#[test]
+fn an_edge_runs_its_event_then_one_command_in_the_same_scan() {
+    let mut c = plain();
+    c.scan(0, &io(false, false));
+    let r = c.scan(10, &io(true, false));
+    assert_eq!(r.executed, [LS_ON, START]);
+    assert_eq!(r.states, [2]);
+    assert_eq!((r.outputs[BELT], r.outputs[RUNNING_LAMP]), (true, true));
+    assert_eq!(r.fault, None);
+}
+
+#[test]
+fn falling_edge_starts_a_timer_that_expires_no_earlier_than_its_preset() {
+    let mut c = plain();
+    c.scan(0, &io(false, false));
+    c.scan(10, &io(true, false));
+    let r = c.scan(20, &io(false, false));
+    assert_eq!(r.executed, [LS_OFF, STOP]);
+    assert!(!r.outputs[BELT]);
+    assert!(c.scan(1019, &io(false, false)).executed.is_empty());
+    assert_eq!(c.scan(1020, &io(false, false)).executed, [CLEARED]);
+    assert!(
+        c.scan(3000, &io(false, false)).executed.is_empty(),
+        "expires once"
+    );
+}
+
+#[test]
+fn timers_work_across_the_wrap_of_the_millisecond_clock() {
+    let mut c = plain();
+    let t0 = u32::MAX - 15;
+    c.scan(t0, &io(false, false));
+    c.scan(t0.wrapping_add(5), &io(true, false));
+    c.scan(t0.wrapping_add(10), &io(false, false)); // timer started
+    assert!(c
+        .scan(t0.wrapping_add(1009), &io(false, false))
+        .executed
+        .is_empty());
+    assert_eq!(
+        c.scan(t0.wrapping_add(1010), &io(false, false)).executed,
+        [CLEARED]
+    );
+}
+
+#[test]
+fn unexpected_event_faults_with_safe_outputs_until_reset_rises() {
+    let mut c = plain();
+    c.scan(0, &io(true, false));
+    // The sensor falls in state 0, where no transition explains it.
+    let r = c.scan(10, &io(false, false));
+    assert_eq!(r.fault, Some(Fault::Unexpected { event: LS_OFF }));
+    assert_eq!(r.unexpected, [LS_OFF]);
+    assert!(r.executed.is_empty());
+    assert_eq!(r.outputs, [false, true], "safe image");
+    // Stays faulted, edges ignored.
+    let r = c.scan(20, &io(true, false));
+    assert_eq!(r.fault, Some(Fault::Unexpected { event: LS_OFF }));
+    assert!(r.executed.is_empty());
+    assert_eq!(r.outputs, [false, true]);
+    // Reset rising: re-initialised image, no fault cause, no events.
+    let r = c.scan(30, &io(false, true));
+    assert_eq!(r.fault, None);
+    assert!(r.executed.is_empty());
+    assert_eq!(r.states, [0]);
+    assert_eq!(r.outputs, [false, false]);
+    assert_eq!(c.scan(40, &io(true, true)).executed, [LS_ON, START]);
+    assert_eq!(c.counters().faults, 1);
+}
+
+#[test]
+fn ignore_policy_drops_and_counts_unexpected_events() {
+    let mut c = controller(config(0, UnexpectedPolicy::Ignore, None));
+    c.scan(0, &io(true, false));
+    let r = c.scan(10, &io(false, false));
+    assert_eq!(r.fault, None);
+    assert_eq!(r.unexpected, [LS_OFF]);
+    assert!(r.executed.is_empty());
+    assert_eq!(c.counters().ignored, 1);
+}
+
+#[test]
+fn debounce_needs_d_consecutive_differing_scans() {
+    let mut c = controller(config(3, UnexpectedPolicy::Fault, None));
+    c.scan(0, &io(false, false));
+    assert!(c.scan(10, &io(true, false)).executed.is_empty());
+    assert!(c.scan(20, &io(true, false)).executed.is_empty());
+    // A bounce back to 0 restarts the count.
+    assert!(c.scan(30, &io(false, false)).executed.is_empty());
+    assert!(c.scan(40, &io(true, false)).executed.is_empty());
+    assert!(c.scan(50, &io(true, false)).executed.is_empty());
+    assert_eq!(c.scan(60, &io(true, false)).executed, [LS_ON, START]);
+}
+
+#[test]
+fn a_command_with_a_request_input_waits_for_it() {
+    let mut c = controller(config(0, UnexpectedPolicy::Fault, Some(AUTO)));
+    c.scan(0, &[false, false, false]);
+    assert_eq!(c.scan(10, &[true, false, false]).executed, [LS_ON]);
+    assert!(c.scan(20, &[true, false, false]).executed.is_empty());
+    assert_eq!(c.scan(30, &[true, false, true]).executed, [START]);
+}
+
+#[test]
+fn a_corrupt_image_starts_in_fault_mode_and_reset_cannot_clear_it() {
+    let config = config(0, UnexpectedPolicy::Fault, None);
+    let mut c = Controller::new(
+        Conveyor {
+            config,
+            intact: false,
+        },
+        Mem::new(),
+    )
+    .unwrap();
+    assert_eq!(c.fault(), Some(Fault::Corrupt));
+    c.scan(0, &io(false, false));
+    let r = c.scan(10, &io(false, true));
+    assert_eq!(r.fault, Some(Fault::Corrupt));
+    assert_eq!(r.outputs, [false, true]);
+}
+
+#[test]
+fn lost_edges_are_faults_when_configured_and_overruns_only_counted() {
+    let mut c = plain();
+    c.scan(0, &io(false, false));
+    c.report_overrun();
+    assert_eq!(c.scan(10, &io(false, false)).fault, None);
+    c.report_lost_edge();
+    assert_eq!(c.scan(20, &io(false, false)).fault, Some(Fault::LostEdge));
+    let n = c.counters();
+    assert_eq!((n.overruns, n.lost_edges, n.faults), (1, 1, 1));
+}
+
+#[test]
+fn memory_of_the_wrong_size_is_refused() {
+    let config = config(0, UnexpectedPolicy::Fault, None);
+    let small: StaticMemory<3, 2, 1, 1, 4> = StaticMemory::new();
+    assert!(Controller::new(
+        Conveyor {
+            config,
+            intact: true
+        },
+        small
+    )
+    .is_err());
+}
