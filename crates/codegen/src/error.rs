@@ -61,7 +61,10 @@ pub fn line_column(text: &str, offset: usize) -> (u32, u32) {
         .iter()
         .rposition(|&b| b == b'\n')
         .map_or(0, |p| p + 1);
-    let column = String::from_utf8_lossy(&before[line_start..]).chars().count() + 1;
+    let column = String::from_utf8_lossy(&before[line_start..])
+        .chars()
+        .count()
+        + 1;
     (
         u32::try_from(line).unwrap_or(u32::MAX),
         u32::try_from(column).unwrap_or(u32::MAX),
@@ -123,6 +126,17 @@ impl Error {
         Error::Model {
             location,
             message: message.into(),
+        }
+    }
+
+    /// The location and message of a syntax or model error (`None` for the
+    /// other kinds), for editors and tests that point at the offending line.
+    pub fn located(&self) -> Option<(&Location, &str)> {
+        match self {
+            Error::Syntax { location, message } | Error::Model { location, message } => {
+                Some((location, message))
+            }
+            _ => None,
         }
     }
 

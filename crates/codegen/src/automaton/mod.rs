@@ -201,6 +201,12 @@ impl Automaton {
         }
     }
 
+    /// Records whether the events' controllability is stated (see
+    /// [`Alphabet`]); a file that leaves it open can be asserted as is.
+    pub fn set_controllability_stated(&mut self, stated: bool) {
+        self.alphabet.set_controllability_stated(stated);
+    }
+
     /// Drops state names (operations then number states).
     pub fn clear_state_names(&mut self) {
         self.state_names = None;

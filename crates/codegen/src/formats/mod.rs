@@ -16,7 +16,7 @@ pub mod toml;
 pub mod wmod;
 
 use crate::automaton::Automaton;
-use crate::error::{Error, Result};
+use crate::error::{Error, Location, Result};
 use std::fmt;
 use std::path::Path;
 
@@ -163,4 +163,23 @@ pub fn write_string(format: Format, components: &[Component]) -> Result<String> 
 pub fn write_file(path: &Path, components: &[Component]) -> Result<()> {
     let text = write_string(Format::from_path(path)?, components)?;
     std::fs::write(path, text).map_err(|e| Error::io(path, e))
+}
+
+/// Parses XML (DTDs allowed, as Supremica and libFAUDES write them), with a
+/// syntax error at the offending line and column of `origin`.
+fn parse_xml<'t>(text: &'t str, origin: &Path) -> Result<roxmltree::Document<'t>> {
+    let opts = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..roxmltree::ParsingOptions::default()
+    };
+    roxmltree::Document::parse_with_options(text, opts).map_err(|e| {
+        let pos = e.pos();
+        let msg = e.to_string();
+        let suffix = format!(" at {pos}");
+        let msg = msg.strip_suffix(&suffix).unwrap_or(&msg).to_owned();
+        Error::syntax(
+            Location::new(origin, pos.row, pos.col),
+            format!("malformed XML: {msg}"),
+        )
+    })
 }

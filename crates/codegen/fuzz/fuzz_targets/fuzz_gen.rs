@@ -1,0 +1,12 @@
+//! Feeds arbitrary bytes to the Gen reader: it must return, never panic.
+#![no_main]
+
+use codegen::formats::{read_str, Format};
+use libfuzzer_sys::fuzz_target;
+use std::path::Path;
+
+fuzz_target!(|data: &[u8]| {
+    if let Ok(text) = std::str::from_utf8(data) {
+        let _ = read_str(text, Format::Gen, Path::new("fuzz"));
+    }
+});

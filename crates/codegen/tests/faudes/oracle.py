@@ -1,0 +1,188 @@
+#!/usr/bin/env python3
+"""libFAUDES oracle for `tests/faudes_diff.rs`.
+
+Reads a JSON list of problems on stdin and writes a JSON list of results on
+stdout, one result per problem, in order. An automaton is
+
+    {"name": str, "events": [[name, controllable], ...], "states": n,
+     "initial": index or null, "marked": [index, ...],
+     "transitions": [[source, event_name, target], ...]}
+
+with states numbered 0..n-1. Problems come in two kinds:
+
+- synthesis: {"id", "plant": [automaton, ...], "spec": [automaton, ...]}.
+  plant = Parallel of the plant components, spec = Parallel of the spec
+  components, extended to the plant alphabet by InvProject (self-loops of
+  the plant events it lacks), sup = SupCon(plant, spec), min =
+  StateMin(sup). Result: {"id", "plant_size": [states, transitions],
+  "spec_size": [...], "sup": automaton, "sup_size": [...], "sup_trim":
+  bool, "min": automaton, "min_size": [...]}.
+- minimisation: {"id", "minimize": automaton}. Result: {"id", "min":
+  automaton, "min_size": [states, transitions]}.
+
+A problem on which libFAUDES throws gives {"id", "error": message}.
+
+Results are automata with states renumbered densely in libFAUDES's state
+order (ascending index). Everything libFAUDES prints (warnings about
+optional graphics modules on import, exception traces) goes to stderr: the
+real stdout carries nothing but the JSON.
+"""
+
+import json
+import os
+import sys
+
+
+def main():
+    # Keep the real stdout for the JSON and send fd 1 (Python and C++
+    # alike) to stderr while libFAUDES runs.
+    out = os.fdopen(os.dup(1), "w")
+    os.dup2(2, 1)
+    sys.stdout = sys.stderr
+    try:
+        import faudes
+    except ImportError as e:
+        sys.stderr.write(
+            "oracle.py: cannot import the Python package `faudes` "
+            f"(libFAUDES; pip install faudes): {e}\n"
+        )
+        return 3
+
+    problems = json.load(sys.stdin)
+    results = []
+    for problem in problems:
+        pid = problem.get("id")
+        try:
+            if "minimize" in problem:
+                results.append(minimize(faudes, problem))
+            else:
+                results.append(synthesise(faudes, problem))
+        except Exception as e:  # libFAUDES throws plain Exceptions
+            results.append({"id": pid, "error": f"{type(e).__name__}: {e}"})
+    sys.stdout.flush()
+    json.dump(results, out)
+    out.write("\n")
+    out.flush()
+    return 0
+
+
+def controllability(automata):
+    """Event name -> controllable, over all given automata."""
+    table = {}
+    for a in automata:
+        for name, controllable in a["events"]:
+            table[name] = bool(controllable)
+    return table
+
+
+def build(faudes, a):
+    """A faudes.Generator from a JSON automaton."""
+    g = faudes.Generator()
+    g.Name(a["name"])
+    for name, _ in a["events"]:
+        g.InsEvent(name)
+    xs = [g.InsState() for _ in range(a["states"])]
+    if a["initial"] is not None:
+        g.SetInitState(xs[a["initial"]])
+    for m in a["marked"]:
+        g.SetMarkedState(xs[m])
+    for s, e, t in a["transitions"]:
+        g.SetTransition(xs[s], g.EventIndex(e), xs[t])
+    return g
+
+
+def compose(faudes, gens):
+    """Parallel composition of a list of generators (none: the marked
+    empty string, the neutral element). The result is accessible."""
+    if not gens:
+        neutral = faudes.Generator()
+        neutral.SetMarkedState(neutral.InsInitState())
+        return neutral
+    result = faudes.Generator(gens[0])
+    # Parallel results are accessible; a lone component is made so too,
+    # as our `sync` of one automaton is its reachable part.
+    result.Accessible()
+    for g in gens[1:]:
+        nxt = faudes.Generator()
+        faudes.Parallel(result, g, nxt)
+        result = nxt
+    return result
+
+
+def iterate(begin, end):
+    it = begin
+    while it != end:
+        yield it
+        it.Inc()
+
+
+def to_json(g, controllable, name):
+    """A JSON automaton from a generator, states numbered densely."""
+    index = {}
+    for it in iterate(g.StatesBegin(), g.StatesEnd()):
+        index[it.Index()] = len(index)
+    events = [
+        [g.EventName(it.Index()), controllable.get(g.EventName(it.Index()), False)]
+        for it in iterate(g.AlphabetBegin(), g.AlphabetEnd())
+    ]
+    initial = [index[it.Index()] for it in iterate(g.InitStatesBegin(), g.InitStatesEnd())]
+    if len(initial) > 1:
+        raise RuntimeError(f"{name}: {len(initial)} initial states")
+    marked = sorted(index[it.Index()] for it in iterate(g.MarkedStatesBegin(), g.MarkedStatesEnd()))
+    transitions = [
+        [index[it.X1()], g.EventName(it.Ev()), index[it.X2()]]
+        for it in iterate(g.TransRelBegin(), g.TransRelEnd())
+    ]
+    return {
+        "name": name,
+        "events": events,
+        "states": len(index),
+        "initial": initial[0] if initial else None,
+        "marked": marked,
+        "transitions": transitions,
+    }
+
+
+def size(g):
+    return [g.Size(), g.TransRelSize()]
+
+
+def synthesise(faudes, problem):
+    table = controllability(problem["plant"] + problem["spec"])
+    plant = compose(faudes, [build(faudes, a) for a in problem["plant"]])
+    spec = compose(faudes, [build(faudes, a) for a in problem["spec"]])
+    faudes.InvProject(spec, plant.Alphabet())
+    contr = faudes.EventSet()
+    for name, c in table.items():
+        if c:
+            contr.Insert(name)
+    sup = faudes.Generator()
+    faudes.SupCon(plant, contr, spec, sup)
+    minimal = faudes.Generator()
+    faudes.StateMin(sup, minimal)
+    return {
+        "id": problem["id"],
+        "plant_size": size(plant),
+        "spec_size": size(spec),
+        "sup": to_json(sup, table, "sup"),
+        "sup_size": size(sup),
+        "sup_trim": bool(sup.IsTrim()) or sup.Size() == 0,
+        "min": to_json(minimal, table, "min"),
+        "min_size": size(minimal),
+    }
+
+
+def minimize(faudes, problem):
+    a = problem["minimize"]
+    table = controllability([a])
+    minimal = faudes.Generator()
+    faudes.StateMin(build(faudes, a), minimal)
+    return {
+        "id": problem["id"],
+        "min": to_json(minimal, table, "min"),
+        "min_size": size(minimal),
+    }
+
+
+if __name__ == "__main__":
+    sys.exit(main())

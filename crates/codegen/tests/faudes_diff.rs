@@ -1,0 +1,816 @@
+//! Differential tests against libFAUDES (Python package `faudes`).
+//!
+//! Random synthesis problems (a few small plant and specification
+//! components over a shared event pool) go through our pipeline (`sync`,
+//! `supcon`, `minstate`) and through `tests/faudes/oracle.py` (`Parallel`,
+//! `InvProject`, `SupCon`, `StateMin`); the results must agree:
+//!
+//! - plant composition: same numbers of states and transitions;
+//! - specification extended to the plant alphabet: same sizes;
+//! - supervisor: same closed and marked languages (a shortest
+//!   distinguishing string is printed otherwise), same numbers of states and
+//!   transitions, libFAUDES's result trim;
+//! - minimal supervisor: same sizes, and isomorphic (minimal automata of one
+//!   language are unique up to renaming states).
+//!
+//! A second test minimises random automata on both sides (sizes equal,
+//! results isomorphic, languages kept).
+//!
+//! The generators are tuned for a healthy mix (see the tallies printed at
+//! the end); with 100 cases or more the synthesis test insists on at least
+//! 5% empty supervisors and 20% supervisors that control restricts below
+//! the trim product of plant and specification, and the minimisation test
+//! on at least 25% reducible and 20% blocking inputs, so that the
+//! comparison cannot silently degrade to trivial cases.
+//!
+//! Knobs (environment variables):
+//! - `FAUDES_DIFF_CASES`: number of cases per test (default 200);
+//! - `FAUDES_DIFF_SEED`: the seed (decimal or `0x…`; default below); case
+//!   `i` depends only on the seed and `i`;
+//! - `FAUDES_DIFF_ONLY`: run only this case id (to reproduce a failure);
+//! - `PYTHON`: the interpreter (default `python3`).
+//!
+//! Both tests are ignored by default: they need Python with libFAUDES.
+//! `cargo xtask ci` runs them; by hand:
+//! `cargo test --release -p codegen --test faudes_diff -- --ignored`.
+//! When run without the package they fail: a skipped oracle must not look
+//! like a pass.
+
+use codegen::ops::{
+    accessible, inverse_projection, is_trim, isomorphic, language_difference, minstate, supcon,
+    sync, trim,
+};
+use codegen::{Automaton, AutomatonBuilder, StateId};
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+use std::time::Instant;
+
+const DEFAULT_SEED: u64 = 0x5EED_FA0D_E500_0001;
+const DEFAULT_CASES: usize = 200;
+/// Problems per Python process.
+const BATCH: usize = 400;
+/// Mismatches printed in full (all are counted).
+const SHOWN: usize = 10;
+
+// ---------------------------------------------------------------------
+// Problems and results as exchanged with the oracle
+
+/// An automaton in the oracle's JSON shape.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+struct JsonAutomaton {
+    name: String,
+    /// `(name, controllable)`.
+    events: Vec<(String, bool)>,
+    states: usize,
+    initial: Option<usize>,
+    marked: Vec<usize>,
+    /// `(source, event name, target)`.
+    transitions: Vec<(usize, String, usize)>,
+}
+
+impl JsonAutomaton {
+    fn build(&self) -> Automaton {
+        let mut b = AutomatonBuilder::new(self.name.as_str());
+        for (name, c) in &self.events {
+            b.add_event(name, *c).expect("consistent controllability");
+        }
+        let states: Vec<StateId> = (0..self.states).map(|_| b.add_anonymous_state()).collect();
+        if let Some(i) = self.initial {
+            b.set_initial(states[i]).unwrap();
+        }
+        for &m in &self.marked {
+            b.mark(states[m]);
+        }
+        for (s, e, t) in &self.transitions {
+            let e = b.alphabet().id(e).expect("event in the alphabet");
+            b.add_transition(states[*s], e, states[*t], 0);
+        }
+        b.build().expect("a deterministic automaton")
+    }
+}
+
+#[derive(Debug, Clone, Serialize)]
+#[serde(untagged)]
+enum Problem {
+    Synthesis {
+        id: usize,
+        plant: Vec<JsonAutomaton>,
+        spec: Vec<JsonAutomaton>,
+    },
+    Minimize {
+        id: usize,
+        minimize: JsonAutomaton,
+    },
+}
+
+impl Problem {
+    fn id(&self) -> usize {
+        match self {
+            Problem::Synthesis { id, .. } | Problem::Minimize { id, .. } => *id,
+        }
+    }
+}
+
+/// One answer of the oracle; which fields are set depends on the problem
+/// kind, `error` replaces them all when libFAUDES threw.
+#[derive(Debug, Clone, Deserialize)]
+struct Answer {
+    id: usize,
+    error: Option<String>,
+    plant_size: Option<(usize, usize)>,
+    spec_size: Option<(usize, usize)>,
+    sup: Option<JsonAutomaton>,
+    sup_size: Option<(usize, usize)>,
+    sup_trim: Option<bool>,
+    min: Option<JsonAutomaton>,
+    min_size: Option<(usize, usize)>,
+}
+
+// ---------------------------------------------------------------------
+// Settings and the oracle process
+
+fn env_number(name: &str, default: u64) -> u64 {
+    match std::env::var(name) {
+        Err(_) => default,
+        Ok(v) => {
+            let v = v.trim().replace('_', "");
+            let parsed = match v.strip_prefix("0x").or_else(|| v.strip_prefix("0X")) {
+                Some(hex) => u64::from_str_radix(hex, 16),
+                None => v.parse(),
+            };
+            parsed.unwrap_or_else(|e| panic!("{name}={v:?} is not a number: {e}"))
+        }
+    }
+}
+
+struct Settings {
+    seed: u64,
+    cases: usize,
+    only: Option<usize>,
+}
+
+impl Settings {
+    fn from_env() -> Settings {
+        Settings {
+            seed: env_number("FAUDES_DIFF_SEED", DEFAULT_SEED),
+            cases: env_number("FAUDES_DIFF_CASES", DEFAULT_CASES as u64) as usize,
+            only: std::env::var("FAUDES_DIFF_ONLY")
+                .ok()
+                .map(|_| env_number("FAUDES_DIFF_ONLY", 0) as usize),
+        }
+    }
+
+    fn ids(&self) -> Vec<usize> {
+        match self.only {
+            Some(id) => vec![id],
+            None => (0..self.cases).collect(),
+        }
+    }
+}
+
+fn python() -> String {
+    std::env::var("PYTHON").unwrap_or_else(|_| "python3".into())
+}
+
+fn oracle_script() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/faudes/oracle.py")
+}
+
+/// Fails the test, loudly, when the oracle cannot run.
+fn require_faudes() {
+    let python = python();
+    let probe = Command::new(&python)
+        .args(["-c", "import faudes"])
+        .stdout(Stdio::null())
+        .output();
+    match probe {
+        Ok(out) if out.status.success() => {}
+        Ok(out) => panic!(
+            "libFAUDES is missing: `{python} -c 'import faudes'` failed ({}):\n{}\n\
+             Install it with `{python} -m pip install faudes` (or set PYTHON to an \
+             interpreter that has it); `cargo xtask ci` does this by itself.",
+            out.status,
+            String::from_utf8_lossy(&out.stderr)
+        ),
+        Err(e) => panic!(
+            "cannot run `{python}` ({e}): the differential tests need Python 3 with the \
+             `faudes` package (pip install faudes); set PYTHON to choose the interpreter"
+        ),
+    }
+}
+
+/// Runs the oracle on `problems` (one process per batch, batches on all
+/// cores) and returns the answers in problem order.
+fn ask_oracle(problems: &[Problem]) -> Vec<Answer> {
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let batches: Vec<&[Problem]> = problems.chunks(BATCH).collect();
+    let mut answers: Vec<Vec<Answer>> = Vec::with_capacity(batches.len());
+    for group in batches.chunks(threads) {
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = group
+                .iter()
+                .map(|batch| scope.spawn(move || ask_oracle_once(batch)))
+                .collect();
+            for h in handles {
+                answers.push(h.join().expect("oracle thread panicked"));
+            }
+        });
+    }
+    let answers: Vec<Answer> = answers.into_iter().flatten().collect();
+    assert_eq!(answers.len(), problems.len(), "oracle answer count");
+    for (p, a) in problems.iter().zip(&answers) {
+        assert_eq!(p.id(), a.id, "oracle answers out of order");
+    }
+    answers
+}
+
+fn ask_oracle_once(problems: &[Problem]) -> Vec<Answer> {
+    let input = serde_json::to_vec(problems).unwrap();
+    let script = oracle_script();
+    let mut child = Command::new(python())
+        .arg(&script)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap_or_else(|e| panic!("cannot start {} {}: {e}", python(), script.display()));
+    let mut stdin = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || stdin.write_all(&input));
+    let out = child.wait_with_output().unwrap();
+    writer.join().unwrap().expect("writing the problems");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "{} failed ({}):\n{stderr}",
+        script.display(),
+        out.status
+    );
+    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "oracle output is not JSON ({e}):\n{}\nstderr:\n{stderr}",
+            String::from_utf8_lossy(&out.stdout)
+        )
+    })
+}
+
+// ---------------------------------------------------------------------
+// Random problems
+
+/// SplitMix64: tiny, fast, and the same everywhere.
+struct Rng(u64);
+
+impl Rng {
+    /// The generator of case `id` under `seed`.
+    fn for_case(seed: u64, id: usize) -> Rng {
+        let mut r = Rng(seed ^ (id as u64).wrapping_mul(0xA076_1D64_78BD_642F));
+        r.next();
+        r
+    }
+
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `lo..=hi`.
+    fn range(&mut self, lo: usize, hi: usize) -> usize {
+        lo + (self.next() % (hi - lo + 1) as u64) as usize
+    }
+
+    fn chance(&mut self, p: f64) -> bool {
+        ((self.next() >> 11) as f64 / (1u64 << 53) as f64) < p
+    }
+
+    /// `k` distinct elements of `from`, in random order.
+    fn pick<T: Clone>(&mut self, from: &[T], k: usize) -> Vec<T> {
+        let mut v = from.to_vec();
+        for i in 0..k.min(v.len()) {
+            let j = self.range(i, v.len() - 1);
+            v.swap(i, j);
+        }
+        v.truncate(k);
+        v
+    }
+}
+
+/// How [`random_automaton`] draws an automaton.
+#[derive(Clone, Copy)]
+struct Shape {
+    states: usize,
+    /// Chance that a state has a transition on a controllable event.
+    controllable: f64,
+    /// Chance that a state has a transition on an uncontrollable event.
+    uncontrollable: f64,
+    /// Chance that a state other than the initial one is marked.
+    marking: f64,
+    /// Chance that the initial state is marked.
+    initial_marked: f64,
+    /// Chance that the initial state has no uncontrollable transitions
+    /// (a machine at rest: control has a say before anything happens).
+    resting_start: f64,
+}
+
+/// A random deterministic automaton over `events`, initial state 0,
+/// targets uniform.
+fn random_automaton(
+    rng: &mut Rng,
+    name: &str,
+    events: &[(String, bool)],
+    shape: Shape,
+) -> JsonAutomaton {
+    let mut transitions = Vec::new();
+    let resting = rng.chance(shape.resting_start);
+    for s in 0..shape.states {
+        for (e, c) in events {
+            let p = match (*c, s == 0 && resting) {
+                (true, _) => shape.controllable,
+                (false, true) => 0.0,
+                (false, false) => shape.uncontrollable,
+            };
+            if rng.chance(p) {
+                transitions.push((s, e.clone(), rng.range(0, shape.states - 1)));
+            }
+        }
+    }
+    let marked = (0..shape.states)
+        .filter(|&s| {
+            rng.chance(if s == 0 {
+                shape.initial_marked
+            } else {
+                shape.marking
+            })
+        })
+        .collect();
+    JsonAutomaton {
+        name: name.into(),
+        events: events.to_vec(),
+        states: shape.states,
+        initial: Some(0),
+        marked,
+        transitions,
+    }
+}
+
+/// One of `choices`, uniformly.
+fn one_of(rng: &mut Rng, choices: &[f64]) -> f64 {
+    choices[rng.range(0, choices.len() - 1)]
+}
+
+/// A component's shape: `unmarked` is the chance that it marks nothing at
+/// all (a sure source of blocking, hence of empty supervisors).
+fn random_shape(
+    rng: &mut Rng,
+    density: [&[f64]; 2],
+    marking: &[f64],
+    initial_marked: f64,
+    unmarked: f64,
+) -> Shape {
+    let states = rng.range(1, 6);
+    let controllable = one_of(rng, density[0]);
+    let uncontrollable = one_of(rng, density[1]);
+    let (marking, initial_marked) = if rng.chance(unmarked) {
+        (0.0, 0.0)
+    } else {
+        (one_of(rng, marking), initial_marked)
+    };
+    Shape {
+        states,
+        controllable,
+        uncontrollable,
+        marking,
+        initial_marked,
+        resting_start: 0.0,
+    }
+}
+
+fn synthesis_problem(seed: u64, id: usize) -> Problem {
+    let mut rng = Rng::for_case(seed, id);
+    let k = rng.range(6, 10);
+    // Mixed controllability, at least one event of each kind.
+    let pool: Vec<(String, bool)> = (0..k)
+        .map(|i| {
+            let c = match i {
+                0 => true,
+                1 => false,
+                _ => rng.chance(0.65),
+            };
+            (format!("{}{i}", if c { "c" } else { "u" }), c)
+        })
+        .collect();
+    // Who has which event: an uncontrollable event belongs to one plant
+    // component (a machine's own sensor), a controllable one to one or two
+    // (shared commands synchronise). A component left without events gets
+    // a controllable one.
+    let m = rng.range(2, 4);
+    let mut alphabets: Vec<Vec<(String, bool)>> = vec![Vec::new(); m];
+    for e in &pool {
+        let owners = if !e.1 || rng.chance(0.7) { 1 } else { 2 };
+        for j in rng.pick(&(0..m).collect::<Vec<_>>(), owners) {
+            alphabets[j].push(e.clone());
+        }
+    }
+    let mut plant = Vec::new();
+    for (j, mut events) in alphabets.into_iter().enumerate() {
+        if events.is_empty() {
+            let controllable: Vec<_> = pool.iter().filter(|e| e.1).cloned().collect();
+            events = rng.pick(&controllable, 1);
+        }
+        let shape = Shape {
+            resting_start: 0.8,
+            ..random_shape(
+                &mut rng,
+                [&[0.6, 0.8, 1.0], &[0.5, 0.7, 0.9]],
+                &[0.6, 1.0, 1.0],
+                0.99,
+                0.01,
+            )
+        };
+        plant.push(random_automaton(&mut rng, &format!("G{j}"), &events, shape));
+    }
+    let mut plant_events: Vec<(String, bool)> = Vec::new();
+    for g in &plant {
+        for e in &g.events {
+            if !plant_events.contains(e) {
+                plant_events.push(e.clone());
+            }
+        }
+    }
+    let mut spec = Vec::new();
+    for j in 0..rng.range(1, 3) {
+        let count = rng.range(1, plant_events.len().min(4));
+        let mut events = rng.pick(&plant_events, count);
+        // A specification that says nothing about uncontrollable events
+        // rarely needs control; give most of them one.
+        let uncontrollable: Vec<_> = plant_events.iter().filter(|e| !e.1).cloned().collect();
+        if !uncontrollable.is_empty() && events.iter().all(|e| e.1) && rng.chance(0.8) {
+            events[0] = rng.pick(&uncontrollable, 1).remove(0);
+        }
+        let shape = random_shape(
+            &mut rng,
+            [&[0.6, 0.8, 1.0], &[0.4, 0.6, 0.8]],
+            &[0.7, 0.9, 1.0],
+            0.95,
+            0.02,
+        );
+        spec.push(random_automaton(&mut rng, &format!("E{j}"), &events, shape));
+    }
+    Problem::Synthesis { id, plant, spec }
+}
+
+/// An accessible random automaton for minimisation. Half of them are
+/// unfoldings of a smaller automaton (each state copied, each transition
+/// sent to a random copy of its target), so that equivalent states are
+/// common; with `raw`, unreachable states are kept and the initial state
+/// is sometimes missing.
+fn minimize_problem(seed: u64, id: usize, raw: bool) -> Problem {
+    let mut rng = Rng::for_case(seed ^ 0x4D49_4E53_5441_5445, id);
+    let events: Vec<(String, bool)> = (0..rng.range(1, 4))
+        .map(|i| (format!("e{i}"), rng.chance(0.5)))
+        .collect();
+    let density = one_of(&mut rng, &[0.3, 0.5, 0.7, 0.9]);
+    let marking = one_of(&mut rng, &[0.0, 0.25, 0.5, 0.75]);
+    let mut shape = Shape {
+        states: 1,
+        controllable: density,
+        uncontrollable: density,
+        marking,
+        initial_marked: marking,
+        resting_start: 0.0,
+    };
+    let mut a = if rng.chance(0.4) {
+        shape.states = rng.range(1, 12);
+        random_automaton(&mut rng, "A", &events, shape)
+    } else {
+        let base_states = rng.range(1, 5);
+        shape.states = base_states;
+        let base = random_automaton(&mut rng, "B", &events, shape);
+        let copies = rng.range(2, 3);
+        let mut transitions = Vec::new();
+        for c in 0..copies {
+            for (s, e, t) in &base.transitions {
+                let tc = rng.range(0, copies - 1);
+                transitions.push((s + c * base_states, e.clone(), t + tc * base_states));
+            }
+        }
+        let marked = (0..copies)
+            .flat_map(|c| base.marked.iter().map(move |m| m + c * base_states))
+            .collect();
+        JsonAutomaton {
+            name: "A".into(),
+            events: events.clone(),
+            states: base_states * copies,
+            initial: Some(0),
+            marked,
+            transitions,
+        }
+    };
+    if raw {
+        if rng.chance(0.1) {
+            a.initial = None;
+        } else if a.states > 1 && rng.chance(0.5) {
+            a.initial = Some(rng.range(0, a.states - 1));
+        }
+    } else {
+        a = to_json(&accessible(&a.build()), "A");
+    }
+    Problem::Minimize { id, minimize: a }
+}
+
+fn to_json(a: &Automaton, name: &str) -> JsonAutomaton {
+    let al = a.alphabet();
+    JsonAutomaton {
+        name: name.into(),
+        events: al
+            .iter()
+            .map(|(_, e)| (e.name.clone(), e.controllable))
+            .collect(),
+        states: a.num_states(),
+        initial: a.initial().map(|s| s.index()),
+        marked: a.marked_states().map(|s| s.index()).collect(),
+        transitions: a
+            .iter_transitions()
+            .map(|(s, e, t)| (s.index(), al.name(e).to_owned(), t.index()))
+            .collect(),
+    }
+}
+
+// ---------------------------------------------------------------------
+// Comparison
+
+fn size(a: &Automaton) -> (usize, usize) {
+    (a.num_states(), a.num_transitions())
+}
+
+/// The mismatches found in one case.
+#[derive(Default)]
+struct Issues(Vec<String>);
+
+impl Issues {
+    fn add(&mut self, what: String) {
+        self.0.push(what);
+    }
+
+    fn size(&mut self, what: &str, ours: (usize, usize), theirs: Option<(usize, usize)>) {
+        if Some(ours) != theirs {
+            self.add(format!(
+                "{what} (states, transitions): ours {ours:?}, libFAUDES {theirs:?}"
+            ));
+        }
+    }
+
+    fn language(&mut self, what: &str, ours: &Automaton, theirs: &Automaton) {
+        if let Some(d) = language_difference(ours, theirs) {
+            let side = if d.in_first { "ours" } else { "libFAUDES's" };
+            self.add(format!(
+                "{what}: languages differ, {:?} language has {:?} only in {side}",
+                d.language, d.string
+            ));
+        }
+    }
+}
+
+/// Collects the failing cases with enough context to reproduce them.
+struct Report {
+    seed: u64,
+    test: &'static str,
+    failed: Vec<(usize, String)>,
+}
+
+impl Report {
+    fn new(seed: u64, test: &'static str) -> Report {
+        Report {
+            seed,
+            test,
+            failed: Vec::new(),
+        }
+    }
+
+    fn case(&mut self, problem: &Problem, issues: Issues) {
+        if issues.0.is_empty() {
+            return;
+        }
+        let id = problem.id();
+        let what = issues.0.join("; ");
+        if self.failed.len() < SHOWN {
+            eprintln!(
+                "MISMATCH {test} seed={seed:#x} case={id}: {what}\n  reproduce: \
+                 FAUDES_DIFF_SEED={seed:#x} FAUDES_DIFF_ONLY={id} cargo test -p codegen \
+                 --test faudes_diff -- --ignored {test}\n  problem: {json}",
+                test = self.test,
+                seed = self.seed,
+                json = serde_json::to_string(problem).unwrap()
+            );
+        }
+        self.failed.push((id, what));
+    }
+
+    fn finish(self, cases: usize) {
+        let ids: Vec<usize> = self.failed.iter().map(|m| m.0).collect();
+        assert!(
+            self.failed.is_empty(),
+            "{}: {} of {cases} cases disagree with libFAUDES (seed {:#x}): cases {ids:?}; \
+             first: {}",
+            self.test,
+            self.failed.len(),
+            self.seed,
+            self.failed[0].1
+        );
+    }
+}
+
+/// How the cases turned out, for the distribution check.
+#[derive(Default, Debug)]
+struct Tally {
+    /// Empty supervisor although plant ‖ spec has a nonblocking part:
+    /// control emptied it.
+    empty_by_control: usize,
+    /// Empty supervisor because plant ‖ spec blocks from the start.
+    empty_by_blocking: usize,
+    /// Non-empty and smaller than the trim product: control did something.
+    restricted: usize,
+    /// Equal to the trim product of plant and specification.
+    unrestricted: usize,
+    /// minstate shrank the supervisor.
+    shrunk: usize,
+}
+
+fn percent(part: usize, whole: usize) -> f64 {
+    100.0 * part as f64 / whole.max(1) as f64
+}
+
+#[test]
+#[ignore = "needs python3 with faudes (pip install faudes); run by cargo xtask ci"]
+fn supcon_and_minstate_agree_with_libfaudes() {
+    require_faudes();
+    let settings = Settings::from_env();
+    let start = Instant::now();
+    let problems: Vec<Problem> = settings
+        .ids()
+        .into_iter()
+        .map(|id| synthesis_problem(settings.seed, id))
+        .collect();
+    let answers = ask_oracle(&problems);
+    let oracle_time = start.elapsed();
+
+    let mut report = Report::new(settings.seed, "supcon_and_minstate_agree_with_libfaudes");
+    let mut tally = Tally::default();
+    for (problem, answer) in problems.iter().zip(&answers) {
+        let Problem::Synthesis { plant, spec, .. } = problem else {
+            unreachable!()
+        };
+        let mut issues = Issues::default();
+        if let Some(e) = &answer.error {
+            issues.add(format!("libFAUDES threw: {e}"));
+            report.case(problem, issues);
+            continue;
+        }
+        let plants: Vec<Automaton> = plant.iter().map(JsonAutomaton::build).collect();
+        let specs: Vec<Automaton> = spec.iter().map(JsonAutomaton::build).collect();
+        let g = sync(&plants.iter().collect::<Vec<_>>()).unwrap();
+        let e = sync(&specs.iter().collect::<Vec<_>>()).unwrap();
+        issues.size("plant sync", size(&g), answer.plant_size);
+        let e_ext = inverse_projection(&e, g.alphabet()).unwrap();
+        issues.size(
+            "spec sync + inverse projection",
+            size(&e_ext),
+            answer.spec_size,
+        );
+
+        let sup = supcon(&g, &e).unwrap();
+        let their_sup = answer.sup.as_ref().expect("sup").build();
+        issues.language("supcon", &sup, &their_sup);
+        issues.size("supcon", size(&sup), answer.sup_size);
+        if answer.sup_trim != Some(true) {
+            issues.add("libFAUDES's supervisor is not trim".into());
+        }
+
+        let min = minstate(&sup);
+        let their_min = answer.min.as_ref().expect("min").build();
+        issues.size("minstate(supcon)", size(&min), answer.min_size);
+        if !isomorphic(&min, &their_min) {
+            issues.add("minimal supervisors are not isomorphic".into());
+        }
+        report.case(problem, issues);
+
+        let trim_product = trim(&sync(&[&g, &e]).unwrap());
+        if sup.is_empty() {
+            if trim_product.is_empty() {
+                tally.empty_by_blocking += 1;
+            } else {
+                tally.empty_by_control += 1;
+            }
+        } else if language_difference(&sup, &trim_product).is_some() {
+            tally.restricted += 1;
+        } else {
+            tally.unrestricted += 1;
+        }
+        if min.num_states() < sup.num_states() {
+            tally.shrunk += 1;
+        }
+    }
+    let n = problems.len();
+    let empty = tally.empty_by_blocking + tally.empty_by_control;
+    eprintln!(
+        "faudes_diff supcon: seed {:#x}, {n} cases, {} disagree; supervisors: {:.1}% empty \
+         ({:.1}% by blocking, {:.1}% by control), {:.1}% restricted by control, {:.1}% equal \
+         to the trim product; {:.1}% shrunk by minstate; {:.2?} (oracle {:.2?})",
+        settings.seed,
+        report.failed.len(),
+        percent(empty, n),
+        percent(tally.empty_by_blocking, n),
+        percent(tally.empty_by_control, n),
+        percent(tally.restricted, n),
+        percent(tally.unrestricted, n),
+        percent(tally.shrunk, n),
+        start.elapsed(),
+        oracle_time,
+    );
+    report.finish(n);
+    // The generator must keep producing cases where something happens.
+    if settings.only.is_none() && n >= 100 {
+        assert!(
+            empty * 20 >= n,
+            "fewer than 5% empty supervisors: {tally:?}"
+        );
+        assert!(
+            tally.restricted * 5 >= n,
+            "fewer than 20% supervisors restricted by control: {tally:?}"
+        );
+    }
+}
+
+#[test]
+#[ignore = "needs python3 with faudes (pip install faudes); run by cargo xtask ci"]
+fn minstate_agrees_with_libfaudes_statemin() {
+    require_faudes();
+    let settings = Settings::from_env();
+    let start = Instant::now();
+    // Even ids: accessible automata (often blocking, so not trim). Odd ids:
+    // raw ones (unreachable states kept, initial state anywhere or
+    // missing). libFAUDES's StateMin partitions the accessible part by
+    // marking and by which events lead into which block, absent
+    // transitions staying absent (no completion with a dump state); ours
+    // does the same, so both classes must agree.
+    let problems: Vec<Problem> = settings
+        .ids()
+        .into_iter()
+        .map(|id| minimize_problem(settings.seed, id, id % 2 == 1))
+        .collect();
+    let answers = ask_oracle(&problems);
+    let mut report = Report::new(settings.seed, "minstate_agrees_with_libfaudes_statemin");
+    let (mut shrunk, mut blocking, mut inaccessible) = (0, 0, 0);
+    for (problem, answer) in problems.iter().zip(&answers) {
+        let Problem::Minimize { minimize, .. } = problem else {
+            unreachable!()
+        };
+        let mut issues = Issues::default();
+        if let Some(e) = &answer.error {
+            issues.add(format!("libFAUDES threw: {e}"));
+            report.case(problem, issues);
+            continue;
+        }
+        let a = minimize.build();
+        let ours = minstate(&a);
+        let theirs = answer.min.as_ref().expect("min").build();
+        issues.size("minstate", size(&ours), answer.min_size);
+        if !isomorphic(&ours, &theirs) {
+            issues.add("minimal automata are not isomorphic".into());
+        }
+        issues.language("minstate against its input", &ours, &a);
+        report.case(problem, issues);
+        let acc = accessible(&a);
+        if ours.num_states() < acc.num_states() {
+            shrunk += 1;
+        }
+        if acc.num_states() < a.num_states() {
+            inaccessible += 1;
+        }
+        if !is_trim(&acc) {
+            blocking += 1;
+        }
+    }
+    let n = problems.len();
+    eprintln!(
+        "faudes_diff minstate: seed {:#x}, {n} cases, {} disagree; inputs: {:.1}% not \
+         accessible, {:.1}% blocking; {:.1}% shrunk; {:.2?}",
+        settings.seed,
+        report.failed.len(),
+        percent(inaccessible, n),
+        percent(blocking, n),
+        percent(shrunk, n),
+        start.elapsed(),
+    );
+    report.finish(n);
+    if settings.only.is_none() && n >= 100 {
+        assert!(
+            shrunk * 4 >= n,
+            "fewer than 25% of the automata were reducible"
+        );
+        assert!(blocking * 5 >= n, "fewer than 20% blocking inputs");
+    }
+}

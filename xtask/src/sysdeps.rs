@@ -1,0 +1,105 @@
+//! System packages the build needs beyond the Rust toolchain.
+//!
+//! `codegen` minimises CMSSM logic with the `espresso-logic` crate, whose
+//! build script generates bindings with bindgen and therefore loads libclang
+//! and clang's builtin headers. On Debian and Ubuntu the task installs them
+//! with apt (`libclang1` and the matching `libclang-common-N-dev`) when they
+//! are missing; elsewhere it says what to install.
+
+use std::path::Path;
+use std::process::Command;
+
+use crate::{run, Result};
+
+/// Makes sure libclang and its builtin headers are present, installing them
+/// with apt-get when they are not and apt-get is available.
+pub fn ensure_libclang() -> Result {
+    if std::env::var_os("LIBCLANG_PATH").is_some() || libclang_present() {
+        return Ok(());
+    }
+    eprintln!("xtask: libclang (needed by espresso-logic's bindgen) is missing; installing it");
+    if Command::new("apt-get").arg("--version").output().is_err() {
+        return Err(MISSING.into());
+    }
+    let sudo: &[&str] = if is_root() { &[] } else { &["sudo"] };
+    let apt = |args: &[&str]| {
+        let all: Vec<&str> = sudo
+            .iter()
+            .chain(["apt-get"].iter())
+            .chain(args)
+            .copied()
+            .collect();
+        let mut cmd = Command::new(all[0]);
+        cmd.args(&all[1..]).env("DEBIAN_FRONTEND", "noninteractive");
+        run(&mut cmd)
+    };
+    apt(&["update", "-qq"])?;
+    apt(&[
+        "install",
+        "-y",
+        "-qq",
+        "--no-install-recommends",
+        "libclang1",
+    ])?;
+    // The builtin headers come in a package named after the LLVM major version.
+    let major = llvm_major().ok_or(MISSING)?;
+    let headers = format!("libclang-common-{major}-dev");
+    apt(&["install", "-y", "-qq", "--no-install-recommends", &headers])?;
+    if libclang_present() {
+        Ok(())
+    } else {
+        Err(MISSING.into())
+    }
+}
+
+const MISSING: &str = "libclang is required to build `codegen` (espresso-logic uses bindgen): \
+     install libclang and clang's builtin headers (Debian/Ubuntu: `apt-get install libclang-dev`) \
+     or set LIBCLANG_PATH";
+
+fn is_root() -> bool {
+    Command::new("id")
+        .arg("-u")
+        .output()
+        .is_ok_and(|o| o.stdout.trim_ascii() == b"0")
+}
+
+/// The LLVM major version of the installed `libclang1-N` package.
+fn llvm_major() -> Option<String> {
+    let out = Command::new("dpkg-query")
+        .args(["-W", "-f", "${Package}\\n", "libclang1-*"])
+        .output()
+        .ok()?;
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter_map(|p| p.strip_prefix("libclang1-"))
+        .find(|v| v.chars().all(|c| c.is_ascii_digit()) && !v.is_empty())
+        .map(str::to_owned)
+}
+
+/// True when some LLVM installation has both a libclang shared library and
+/// clang's builtin `stddef.h`.
+fn libclang_present() -> bool {
+    let Ok(entries) = std::fs::read_dir("/usr/lib") else {
+        return false;
+    };
+    entries.flatten().any(|e| {
+        let name = e.file_name();
+        let name = name.to_string_lossy();
+        name.starts_with("llvm-") && has_lib_and_headers(&e.path())
+    })
+}
+
+fn has_lib_and_headers(llvm: &Path) -> bool {
+    let lib = llvm.join("lib");
+    let has_lib = std::fs::read_dir(&lib).is_ok_and(|d| {
+        d.flatten().any(|e| {
+            e.file_name().to_string_lossy().starts_with("libclang")
+                && e.file_name().to_string_lossy().contains(".so")
+        })
+    });
+    let has_headers = std::fs::read_dir(lib.join("clang")).is_ok_and(|d| {
+        d.flatten()
+            .any(|e| e.path().join("include/stddef.h").exists())
+    });
+    has_lib && has_headers
+}
