@@ -3,16 +3,20 @@
 //! - [`automaton`]: the automaton model (dense ids, CSR transitions).
 //! - [`formats`]: native TOML, libFAUDES `.gen`, TCT `.ads`, Waters `.wmod`.
 //! - [`ops`]: the discrete-event operations (sync, supcon, minstate, …).
+//! - [`backend`]: supervisors as bit-packed tables or CMSSM logic.
 //! - [`dot`]: Graphviz output.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod automaton;
+pub mod backend;
 pub mod dot;
 pub mod error;
 pub mod formats;
+pub mod image;
 pub mod ops;
+pub mod project;
 #[cfg(test)]
 mod testing;
 

@@ -28,10 +28,10 @@ impl<P: Program, M: Memory> Controller<P, M> {
     /// A controller in its initial state. The program image is checked
     /// first: a mismatch starts the controller in fault mode (`Corrupt`).
     pub fn new(program: P, mut memory: M) -> Result<Self, SizeMismatch> {
-        if !memory.fits(program.config()) {
+        if !memory.fits(&program.config()) {
             return Err(SizeMismatch);
         }
-        initialise(program.config(), &mut memory.ram());
+        initialise(&program.config(), &mut memory.ram());
         let fault = (!program.image_intact()).then_some(Fault::Corrupt);
         let mut controller = Controller {
             program,
@@ -131,7 +131,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
     /// (one value per input in declaration order) and returns its record.
     pub fn scan(&mut self, now_ms: u32, raw: &[bool]) -> ScanRecord<'_> {
         let first = self.scan == 0;
-        let config = self.program.config();
+        let config = &self.program.config();
         let mut ram = self.memory.ram();
         inputs::sample(config, &mut ram, raw, first);
         self.executed_len = 0;

@@ -203,8 +203,8 @@ pub struct Config<'a> {
 /// Supervisor dynamics plus the static description: what a
 /// [`crate::Controller`] runs.
 pub trait Program {
-    /// The static description.
-    fn config(&self) -> &Config<'_>;
+    /// The static description (a handful of slices, cheap to copy).
+    fn config(&self) -> Config<'_>;
 
     /// δ of supervisor `supervisor` in `state` on its local event `local`,
     /// `None` when undefined. Called only with `state` in range.
@@ -216,7 +216,7 @@ pub trait Program {
 }
 
 impl<P: Program + ?Sized> Program for &P {
-    fn config(&self) -> &Config<'_> {
+    fn config(&self) -> Config<'_> {
         (**self).config()
     }
 

@@ -299,8 +299,8 @@ pub struct TableProgram<'a> {
 }
 
 impl Program for TableProgram<'_> {
-    fn config(&self) -> &Config<'_> {
-        &self.config
+    fn config(&self) -> Config<'_> {
+        self.config
     }
 
     #[inline]

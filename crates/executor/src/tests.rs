@@ -125,8 +125,8 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
 }
 
 impl Program for Conveyor {
-    fn config(&self) -> &Config<'_> {
-        &self.config
+    fn config(&self) -> Config<'_> {
+        self.config
     }
 
     fn next_state(&self, _supervisor: Index, state: u32, local: Index) -> Option<u32> {

@@ -1,0 +1,296 @@
+//! The program image of a project, owned, on the host.
+//!
+//! [`ConfigPools`] lays a [`Project`] out as the executor's [`Config`]:
+//! fixed-size records plus shared pools addressed by spans. The same pools
+//! are emitted as Rust statics for the target, and run here on the host
+//! (replay, tests) through [`TableImage`], which implements the executor's
+//! [`Program`] with the very decoder the target uses.
+
+use crate::backend::table::EncodedTable;
+use crate::error::{Error, Result};
+use crate::project::{Action, Drive, Project, Trigger, Unexpected};
+use executor::program::{self as ex, Config, Index, Program, Span};
+use executor::table::{image_crc, SupervisorTable};
+
+/// The executor's description of a project, in owned vectors.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ConfigPools {
+    /// Project name.
+    pub name: String,
+    /// Nominal scan period.
+    pub scan_period_ms: u32,
+    /// Controllable events per scan (0: no limit).
+    pub max_commands_per_scan: u16,
+    /// Unexpected-event policy.
+    pub unexpected: ex::UnexpectedPolicy,
+    /// Reset input.
+    pub reset: Option<Index>,
+    /// Overrun limit in periods.
+    pub overrun_limit: u16,
+    /// Overruns are faults.
+    pub overrun_fault: bool,
+    /// Lost edges are faults.
+    pub lost_edge_fault: bool,
+    /// Inputs.
+    pub inputs: Vec<ex::InputSpec>,
+    /// Outputs.
+    pub outputs: Vec<ex::OutputSpec>,
+    /// Timers.
+    pub timers: Vec<ex::TimerSpec>,
+    /// Events.
+    pub events: Vec<ex::EventSpec>,
+    /// Supervisors.
+    pub supervisors: Vec<ex::SupervisorSpec>,
+    /// Pool of input lists.
+    pub input_lists: Vec<Index>,
+    /// Pool of actions.
+    pub actions: Vec<ex::Action>,
+    /// Pool of memberships.
+    pub memberships: Vec<ex::Membership>,
+    /// Pool of state-map entries.
+    pub state_map: Vec<ex::StateMapEntry>,
+}
+
+fn index(value: usize, what: &str) -> Result<Index> {
+    Index::try_from(value).map_err(|_| {
+        Error::Incompatible(format!("too many {what} for the executor (at most 65535)"))
+    })
+}
+
+/// Appends `items` to `pool` and returns their span.
+fn push_span<T: Clone>(pool: &mut Vec<T>, items: &[T], what: &str) -> Result<Span> {
+    let start = index(pool.len(), what)?;
+    let len = index(items.len(), what)?;
+    index(pool.len() + items.len(), what)?;
+    pool.extend_from_slice(items);
+    Ok(Span::new(start, len))
+}
+
+impl ConfigPools {
+    /// Lays out `project`.
+    pub fn from_project(project: &Project) -> Result<ConfigPools> {
+        let mut input_lists: Vec<Index> = Vec::new();
+        let mut actions = Vec::new();
+        let mut memberships = Vec::new();
+        let mut state_map = Vec::new();
+        let to_indices = |list: &[usize], what: &str| -> Result<Vec<Index>> {
+            list.iter().map(|&i| index(i, what)).collect()
+        };
+
+        // Which supervisors have each event, with its local index there.
+        let mut members_of: Vec<Vec<ex::Membership>> = vec![Vec::new(); project.events.len()];
+        for (j, sup) in project.supervisors.iter().enumerate() {
+            for (local, &(global, _)) in sup.local_events.iter().enumerate() {
+                members_of[global].push(ex::Membership {
+                    supervisor: index(j, "supervisors")?,
+                    local: index(local, "events")?,
+                });
+            }
+        }
+
+        let mut events = Vec::with_capacity(project.events.len());
+        for (e, ev) in project.events.iter().enumerate() {
+            let trigger = match &ev.trigger {
+                Trigger::Command => ex::Trigger::Command,
+                Trigger::Rising(list) => ex::Trigger::Rising(push_span(
+                    &mut input_lists,
+                    &to_indices(list, "inputs")?,
+                    "input references",
+                )?),
+                Trigger::Falling(list) => ex::Trigger::Falling(push_span(
+                    &mut input_lists,
+                    &to_indices(list, "inputs")?,
+                    "input references",
+                )?),
+                Trigger::Expired(t) => ex::Trigger::Expired(index(*t, "timers")?),
+            };
+            let when = push_span(
+                &mut input_lists,
+                &to_indices(&ev.when, "inputs")?,
+                "input references",
+            )?;
+            let unless = push_span(
+                &mut input_lists,
+                &to_indices(&ev.unless, "inputs")?,
+                "input references",
+            )?;
+            let acts: Vec<ex::Action> = ev
+                .actions
+                .iter()
+                .map(|a| {
+                    Ok(match *a {
+                        Action::Set(o) => ex::Action::Set(index(o, "outputs")?),
+                        Action::Clear(o) => ex::Action::Clear(index(o, "outputs")?),
+                        Action::Start(t) => ex::Action::Start(index(t, "timers")?),
+                        Action::Reset(t) => ex::Action::Reset(index(t, "timers")?),
+                    })
+                })
+                .collect::<Result<_>>()?;
+            events.push(ex::EventSpec {
+                trigger,
+                when,
+                unless,
+                request: ev.request.map(|r| index(r, "inputs")).transpose()?,
+                actions: push_span(&mut actions, &acts, "actions")?,
+                members: push_span(&mut memberships, &members_of[e], "memberships")?,
+            });
+        }
+
+        let mut outputs = Vec::with_capacity(project.outputs.len());
+        for out in &project.outputs {
+            let (initial, map) = match &out.drive {
+                Drive::Actions { initial } => (*initial, Span::EMPTY),
+                Drive::States(entries) => {
+                    let mut list = Vec::new();
+                    for (sup, states) in entries {
+                        for s in states {
+                            list.push(ex::StateMapEntry {
+                                supervisor: index(*sup, "supervisors")?,
+                                state: s.0,
+                            });
+                        }
+                    }
+                    (
+                        false,
+                        push_span(&mut state_map, &list, "state-map entries")?,
+                    )
+                }
+            };
+            outputs.push(ex::OutputSpec {
+                safe: out.safe,
+                initial,
+                state_map: map,
+            });
+        }
+
+        let supervisors = project
+            .supervisors
+            .iter()
+            .map(|s| {
+                let initial = s.automaton.initial().ok_or_else(|| {
+                    Error::Incompatible(format!("supervisor `{}` has no initial state", s.name))
+                })?;
+                Ok(ex::SupervisorSpec {
+                    states: s.automaton.num_states() as u32,
+                    initial: initial.0,
+                })
+            })
+            .collect::<Result<_>>()?;
+
+        index(project.inputs.len(), "inputs")?;
+        index(project.outputs.len(), "outputs")?;
+        index(project.timers.len(), "timers")?;
+        index(project.events.len(), "events")?;
+        index(project.supervisors.len(), "supervisors")?;
+        Ok(ConfigPools {
+            name: project.name.clone(),
+            scan_period_ms: project.scan_period_ms,
+            max_commands_per_scan: project.max_commands_per_scan,
+            unexpected: match project.unexpected {
+                Unexpected::Fault => ex::UnexpectedPolicy::Fault,
+                Unexpected::Ignore => ex::UnexpectedPolicy::Ignore,
+            },
+            reset: project.reset.map(|r| index(r, "inputs")).transpose()?,
+            overrun_limit: project.overrun_limit,
+            overrun_fault: project.overrun_fault,
+            lost_edge_fault: project.lost_edge_fault,
+            inputs: project
+                .inputs
+                .iter()
+                .map(|i| ex::InputSpec {
+                    debounce_scans: i.debounce_scans,
+                })
+                .collect(),
+            outputs,
+            timers: project
+                .timers
+                .iter()
+                .map(|t| ex::TimerSpec {
+                    preset_ms: t.preset_ms,
+                })
+                .collect(),
+            events,
+            supervisors,
+            input_lists,
+            actions,
+            memberships,
+            state_map,
+        })
+    }
+
+    /// The executor's borrowed view.
+    pub fn config(&self) -> Config<'_> {
+        Config {
+            name: &self.name,
+            scan_period_ms: self.scan_period_ms,
+            max_commands_per_scan: self.max_commands_per_scan,
+            unexpected: self.unexpected,
+            reset: self.reset,
+            overrun_limit: self.overrun_limit,
+            overrun_fault: self.overrun_fault,
+            lost_edge_fault: self.lost_edge_fault,
+            inputs: &self.inputs,
+            outputs: &self.outputs,
+            timers: &self.timers,
+            events: &self.events,
+            supervisors: &self.supervisors,
+            input_lists: &self.input_lists,
+            actions: &self.actions,
+            memberships: &self.memberships,
+            state_map: &self.state_map,
+        }
+    }
+}
+
+/// A project as bit-packed tables, runnable on the host.
+#[derive(Debug, Clone)]
+pub struct TableImage {
+    /// The configuration.
+    pub pools: ConfigPools,
+    /// One table per supervisor.
+    pub tables: Vec<EncodedTable>,
+    /// The image CRC recorded at generation.
+    pub crc: u32,
+}
+
+impl TableImage {
+    /// Encodes `project`.
+    pub fn new(project: &Project) -> Result<TableImage> {
+        let pools = ConfigPools::from_project(project)?;
+        let tables: Vec<EncodedTable> = project
+            .supervisors
+            .iter()
+            .map(|s| {
+                let local: Vec<_> = s.local_events.iter().map(|&(_, id)| id).collect();
+                EncodedTable::encode(&s.automaton, &local)
+            })
+            .collect();
+        let views: Vec<SupervisorTable<'_>> = tables.iter().map(EncodedTable::view).collect();
+        let crc = image_crc(&pools.config(), &views);
+        Ok(TableImage { pools, tables, crc })
+    }
+
+    /// Recomputes the CRC of the current contents.
+    pub fn computed_crc(&self) -> u32 {
+        let views: Vec<SupervisorTable<'_>> = self.tables.iter().map(EncodedTable::view).collect();
+        image_crc(&self.pools.config(), &views)
+    }
+}
+
+impl Program for TableImage {
+    fn config(&self) -> Config<'_> {
+        self.pools.config()
+    }
+
+    #[inline]
+    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
+        self.tables
+            .get(supervisor as usize)?
+            .view()
+            .next_state(state, local)
+    }
+
+    fn image_intact(&self) -> bool {
+        self.computed_crc() == self.crc
+    }
+}

@@ -1,0 +1,33 @@
+//! PLC projects (`*.plc.toml`): which supervisors run and how their events
+//! meet inputs, outputs and timers.
+//!
+//! [`load`] reads a project file, [`from_str`] parses one given as text;
+//! both return a validated [`Project`] (see [`validate`] for every rule,
+//! the shared identifier namespace and the order of actions) or the first
+//! error, located at its line and column in the project file. Model files
+//! named by the project are read (and supervisors synthesised) on the way.
+
+pub mod ident;
+mod model;
+mod parse;
+pub mod validate;
+
+pub use model::*;
+
+use crate::error::{Error, Result};
+use std::path::Path;
+
+/// Reads and validates the project file at `path`; model paths in it are
+/// relative to its directory.
+pub fn load(path: &Path) -> Result<Project> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    from_str(&text, path)
+}
+
+/// Parses and validates `text` as the project file at `path`: `path` names
+/// the file in errors and [`Project::files`], and model paths in the text
+/// are relative to its directory (the file itself need not exist).
+pub fn from_str(text: &str, path: &Path) -> Result<Project> {
+    let raw = parse::parse(text, path)?;
+    validate::validate(raw, text, path)
+}
