@@ -4,13 +4,15 @@
 //! fixed-size records plus shared pools addressed by spans. The same pools
 //! are emitted as Rust statics for the target, and run here on the host
 //! (replay, tests) through [`TableImage`], which implements the executor's
-//! [`Program`] with the very decoder the target uses.
+//! [`Program`] with the very decoder the target uses, or through
+//! [`LogicImage`], which evaluates the minimised CMSSM covers.
 
+use crate::backend::logic::{Encoding, LogicSupervisor};
 use crate::backend::table::EncodedTable;
 use crate::error::{Error, Result};
 use crate::project::{Action, Drive, Project, Trigger, Unexpected};
 use executor::program::{self as ex, Config, Index, Program, Span};
-use executor::table::{image_crc, SupervisorTable};
+use executor::table::{config_crc, image_crc, SupervisorTable};
 
 /// The executor's description of a project, in owned vectors.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -292,5 +294,61 @@ impl Program for TableImage {
 
     fn image_intact(&self) -> bool {
         self.computed_crc() == self.crc
+    }
+}
+
+/// A project as CMSSM logic (the minimised covers evaluated directly),
+/// runnable on the host. States are binary codes equal to the state
+/// indices, so traces match [`TableImage`].
+#[derive(Debug, Clone)]
+pub struct LogicImage {
+    /// The configuration.
+    pub pools: ConfigPools,
+    /// One CMSSM per supervisor.
+    pub supervisors: Vec<LogicSupervisor>,
+    /// The configuration CRC recorded at generation.
+    pub crc: u32,
+}
+
+impl LogicImage {
+    /// Synthesises (and verifies) the logic of every supervisor.
+    pub fn new(project: &Project) -> Result<LogicImage> {
+        let pools = ConfigPools::from_project(project)?;
+        let supervisors = project
+            .supervisors
+            .iter()
+            .map(|s| {
+                let local: Vec<_> = s.local_events.iter().map(|&(_, id)| id).collect();
+                LogicSupervisor::synthesize(
+                    &s.automaton,
+                    &local,
+                    Encoding::binary(s.automaton.num_states()),
+                )
+                .map_err(|e| Error::Incompatible(format!("supervisor `{}`: {e}", s.name)))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let crc = config_crc(&pools.config());
+        Ok(LogicImage {
+            pools,
+            supervisors,
+            crc,
+        })
+    }
+}
+
+impl Program for LogicImage {
+    fn config(&self) -> Config<'_> {
+        self.pools.config()
+    }
+
+    #[inline]
+    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
+        self.supervisors
+            .get(supervisor as usize)?
+            .next_state(state, local)
+    }
+
+    fn image_intact(&self) -> bool {
+        config_crc(&self.pools.config()) == self.crc
     }
 }

@@ -5,13 +5,18 @@
 //! - [`ops`]: the discrete-event operations (sync, supcon, minstate, …).
 //! - [`backend`]: supervisors as bit-packed tables or CMSSM logic.
 //! - [`dot`]: Graphviz output.
+//! - [`project`]: PLC project files (`*.plc.toml`), parsed and validated.
+//! - [`image`]: a project laid out as the executor's program image.
+//! - [`emit`]: the generated Rust source; [`build`]: the build-script API.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod automaton;
 pub mod backend;
+pub mod build;
 pub mod dot;
+pub mod emit;
 pub mod error;
 pub mod formats;
 pub mod image;

@@ -6,6 +6,7 @@
 mod check;
 mod condat;
 mod convert;
+mod gen;
 mod info;
 mod progress;
 mod synth;
@@ -69,6 +70,9 @@ enum Command {
         #[arg(long)]
         component: Option<String>,
     },
+    /// Rust source of a PLC project (what the build script writes), or
+    /// its sizes with `--stats`.
+    Gen(gen::GenArgs),
     /// Graphviz text of an automaton on stdout.
     Dot {
         /// Model file.
@@ -101,6 +105,7 @@ pub fn main() -> ExitCode {
             output,
             component,
         } => convert::convert(&input, &output, component.as_deref(), json),
+        Command::Gen(args) => gen::run(&args, json),
         Command::Dot { file, component } => convert::dot(&file, component.as_deref(), json),
     };
     match result {

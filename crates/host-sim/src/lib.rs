@@ -1,0 +1,21 @@
+//! The PLC core on a PC: the same executor as the firmware, a virtual
+//! clock, replay of input files into traces and waveforms, and (later)
+//! plant simulations and scenario suites.
+//!
+//! - [`sim`]: a controller on a virtual clock ([`Sim`]).
+//! - [`inputs`] reads and writes `inputs.csv`.
+//! - [`trace`]: trace rows and `trace.csv`.
+//! - [`vcd`] writes waveforms.
+//! - [`replay`]: a whole input file through a project.
+
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod inputs;
+pub mod replay;
+pub mod sim;
+pub mod trace;
+pub mod vcd;
+
+pub use sim::{RuntimeProgram, Sim, SimError};
+pub use trace::TraceRow;

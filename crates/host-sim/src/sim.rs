@@ -1,0 +1,216 @@
+//! Running a project on the host: a virtual clock, the executor, and the
+//! trace.
+
+use crate::trace::TraceRow;
+use codegen::emit::Backend;
+use codegen::image::TableImage;
+use codegen::project::{self, Project};
+use executor::memory::HeapMemory;
+use executor::program::{Config, Index, Program};
+use executor::Controller;
+use std::path::Path;
+
+/// A problem setting up or driving a simulation.
+#[derive(Debug, thiserror::Error)]
+pub enum SimError {
+    /// The project or a model file is invalid.
+    #[error(transparent)]
+    Model(#[from] codegen::Error),
+    /// A name that is not in the project.
+    #[error("`{0}` is not {1} of the project")]
+    Unknown(String, &'static str),
+    /// The input image does not have one value per input.
+    #[error("expected {expected} input values, got {got}")]
+    InputCount {
+        /// Inputs of the project.
+        expected: usize,
+        /// Values given.
+        got: usize,
+    },
+}
+
+/// The program a host simulation runs, built at run time from a project.
+#[derive(Debug, Clone)]
+pub enum RuntimeProgram {
+    /// Bit-packed tables.
+    Table(TableImage),
+    /// CMSSM logic functions.
+    Logic(codegen::image::LogicImage),
+}
+
+impl RuntimeProgram {
+    /// The program of `project` in `backend`.
+    pub fn new(project: &Project, backend: Backend) -> Result<Self, codegen::Error> {
+        Ok(match backend {
+            Backend::Table => RuntimeProgram::Table(TableImage::new(project)?),
+            Backend::Logic => RuntimeProgram::Logic(codegen::image::LogicImage::new(project)?),
+        })
+    }
+}
+
+impl Program for RuntimeProgram {
+    fn config(&self) -> Config<'_> {
+        match self {
+            RuntimeProgram::Table(t) => t.config(),
+            RuntimeProgram::Logic(l) => l.config(),
+        }
+    }
+
+    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
+        match self {
+            RuntimeProgram::Table(t) => t.next_state(supervisor, state, local),
+            RuntimeProgram::Logic(l) => l.next_state(supervisor, state, local),
+        }
+    }
+
+    fn image_intact(&self) -> bool {
+        match self {
+            RuntimeProgram::Table(t) => t.image_intact(),
+            RuntimeProgram::Logic(l) => l.image_intact(),
+        }
+    }
+}
+
+/// A controller on a virtual clock, with its trace.
+pub struct Sim {
+    project: Project,
+    controller: Controller<RuntimeProgram, HeapMemory>,
+    inputs: Vec<bool>,
+    time_ms: u64,
+    trace: Vec<TraceRow>,
+}
+
+impl Sim {
+    /// Loads the project at `path` and starts a controller for it.
+    pub fn load(path: &Path, backend: Backend) -> Result<Sim, SimError> {
+        Sim::new(project::load(path)?, backend)
+    }
+
+    /// A controller for `project` at time 0 with every input 0.
+    pub fn new(project: Project, backend: Backend) -> Result<Sim, SimError> {
+        let program = RuntimeProgram::new(&project, backend)?;
+        let memory = HeapMemory::for_config(&program.config());
+        let controller = Controller::new(program, memory)
+            .expect("memory is sized from the program's own configuration");
+        Ok(Sim {
+            inputs: vec![false; project.inputs.len()],
+            project,
+            controller,
+            time_ms: 0,
+            trace: Vec::new(),
+        })
+    }
+
+    /// The project.
+    pub fn project(&self) -> &Project {
+        &self.project
+    }
+
+    /// The controller (fault state, counters).
+    pub fn controller(&self) -> &Controller<RuntimeProgram, HeapMemory> {
+        &self.controller
+    }
+
+    /// The controller, mutably (to report overruns or lost edges).
+    pub fn controller_mut(&mut self) -> &mut Controller<RuntimeProgram, HeapMemory> {
+        &mut self.controller
+    }
+
+    /// The virtual time of the next scan.
+    pub fn time_ms(&self) -> u64 {
+        self.time_ms
+    }
+
+    /// Sets the raw value of input `name` for the following scans.
+    pub fn set(&mut self, name: &str, value: bool) -> Result<&mut Self, SimError> {
+        let i = self
+            .project
+            .input(name)
+            .ok_or_else(|| SimError::Unknown(name.to_owned(), "an input"))?;
+        self.inputs[i] = value;
+        Ok(self)
+    }
+
+    /// The raw value of input `name`.
+    pub fn input(&self, name: &str) -> Result<bool, SimError> {
+        let i = self
+            .project
+            .input(name)
+            .ok_or_else(|| SimError::Unknown(name.to_owned(), "an input"))?;
+        Ok(self.inputs[i])
+    }
+
+    /// Runs one scan at the current virtual time with the current inputs,
+    /// then advances the clock by the scan period.
+    pub fn scan(&mut self) -> &TraceRow {
+        let (time, inputs) = (self.time_ms, self.inputs.clone());
+        self.time_ms += u64::from(self.project.scan_period_ms);
+        self.scan_with(time, &inputs)
+            .expect("the input image has one value per input")
+    }
+
+    /// Runs one scan at `time_ms` with the raw image `raw`.
+    pub fn scan_with(&mut self, time_ms: u64, raw: &[bool]) -> Result<&TraceRow, SimError> {
+        if raw.len() != self.project.inputs.len() {
+            return Err(SimError::InputCount {
+                expected: self.project.inputs.len(),
+                got: raw.len(),
+            });
+        }
+        let record = self.controller.scan(time_ms as u32, raw);
+        let row = TraceRow::from_record(&record, time_ms, &self.project);
+        self.trace.push(row);
+        Ok(self.trace.last().expect("just pushed"))
+    }
+
+    /// Runs `scans` scans.
+    pub fn run(&mut self, scans: usize) -> &[TraceRow] {
+        let start = self.trace.len();
+        for _ in 0..scans {
+            self.scan();
+        }
+        &self.trace[start..]
+    }
+
+    /// Runs scans until the virtual clock has advanced by at least `ms`.
+    pub fn run_for(&mut self, ms: u64) -> &[TraceRow] {
+        let start = self.trace.len();
+        let until = self.time_ms + ms;
+        while self.time_ms < until {
+            self.scan();
+        }
+        &self.trace[start..]
+    }
+
+    /// The last scan's row, if any.
+    pub fn last(&self) -> Option<&TraceRow> {
+        self.trace.last()
+    }
+
+    /// The whole trace so far.
+    pub fn trace(&self) -> &[TraceRow] {
+        &self.trace
+    }
+
+    /// The current state (name) of supervisor `name`.
+    pub fn state(&self, name: &str) -> Result<String, SimError> {
+        let j = self
+            .project
+            .supervisor(name)
+            .ok_or_else(|| SimError::Unknown(name.to_owned(), "a supervisor"))?;
+        let x = self.controller.states()[j];
+        Ok(self.project.supervisors[j]
+            .automaton
+            .state_name(codegen::StateId(x))
+            .into_owned())
+    }
+
+    /// The current level of output `name`.
+    pub fn output(&self, name: &str) -> Result<bool, SimError> {
+        let o = self
+            .project
+            .output(name)
+            .ok_or_else(|| SimError::Unknown(name.to_owned(), "an output"))?;
+        Ok(self.controller.outputs()[o])
+    }
+}
