@@ -121,6 +121,23 @@ fn ci() -> Result {
         "warnings",
     ]))?;
     run(cargo().args(["test", "--workspace"]))?;
+    // The executor is no_std: prove it builds for the board's instruction
+    // set (with defmt, as the firmware uses it) and for Cortex-M0+.
+    for (target, features) in [
+        ("thumbv7em-none-eabihf", "defmt"),
+        ("thumbv6m-none-eabi", ""),
+    ] {
+        run(cargo().args([
+            "build",
+            "--release",
+            "-p",
+            "executor",
+            "--target",
+            target,
+            "--features",
+            features,
+        ]))?;
+    }
     let python = python_with_faudes()?;
     run(cargo().env("PYTHON", &python).args([
         "test",

@@ -479,7 +479,7 @@ impl Emitter<'_> {
                 "SupervisorTable {{ events: {}, state_bits: {}, defined: &{id}_DEFINED, targets: &{id}_TARGETS, rows: {rows} }}",
                 table.events, table.state_bits
             ));
-            stats.push(table_stats(&sup.name, table));
+            stats.push(SupervisorStats::of_table(&sup.name, table));
         }
         let _ = writeln!(
             self.out,
@@ -546,16 +546,19 @@ impl Emitter<'_> {
     }
 }
 
-fn table_stats(name: &str, table: &EncodedTable) -> SupervisorStats {
-    SupervisorStats {
-        name: name.to_owned(),
-        states: table.states,
-        events: table.events,
-        layout: Some(table.layout),
-        table_bytes: table.bytes(),
-        naive_bytes: table.naive_bytes(),
-        cubes: 0,
-        literals: 0,
+impl SupervisorStats {
+    /// The figures of a supervisor encoded as `table`.
+    pub fn of_table(name: &str, table: &EncodedTable) -> SupervisorStats {
+        SupervisorStats {
+            name: name.to_owned(),
+            states: table.states,
+            events: table.events,
+            layout: Some(table.layout),
+            table_bytes: table.bytes(),
+            naive_bytes: table.naive_bytes(),
+            cubes: 0,
+            literals: 0,
+        }
     }
 }
 

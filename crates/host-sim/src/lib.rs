@@ -6,16 +6,19 @@
 //! - [`inputs`] reads and writes `inputs.csv`.
 //! - [`trace`]: trace rows and `trace.csv`.
 //! - [`vcd`] writes waveforms.
+//! - [`lockstep`]: both backends side by side, compared every scan.
 //! - [`replay`]: a whole input file through a project.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod inputs;
+pub mod lockstep;
 pub mod replay;
 pub mod sim;
 pub mod trace;
 pub mod vcd;
 
+pub use lockstep::Lockstep;
 pub use sim::{RuntimeProgram, Sim, SimError};
 pub use trace::TraceRow;

@@ -19,6 +19,14 @@ pub enum SimError {
     /// A name that is not in the project.
     #[error("`{0}` is not {1} of the project")]
     Unknown(String, &'static str),
+    /// The two backends produced different rows for the same scan.
+    #[error("backends diverge at scan {}:\n  table: {table:?}\n  logic: {logic:?}", table.scan)]
+    Diverged {
+        /// The table backend's row.
+        table: Box<TraceRow>,
+        /// The logic backend's row.
+        logic: Box<TraceRow>,
+    },
     /// The input image does not have one value per input.
     #[error("expected {expected} input values, got {got}")]
     InputCount {

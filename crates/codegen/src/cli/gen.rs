@@ -1,14 +1,18 @@
 //! `codegen gen`: the generated Rust source of a project, for humans.
 
 use super::{print_json, Outcome};
-use codegen::emit::{generate, Backend};
+use codegen::backend::table::EncodedTable;
+use codegen::emit::{generate, Backend, SupervisorStats};
+use codegen::formats;
 use codegen::{project, Error};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `codegen gen`.
 #[derive(Debug, clap::Args)]
 pub struct GenArgs {
-    /// The project file (`*.plc.toml`).
+    /// The project file (`*.plc.toml`); with `--stats` also any automaton
+    /// file, each of its automata measured as one supervisor over its own
+    /// alphabet.
     project: PathBuf,
     /// How supervisors are represented.
     #[arg(long, value_enum, default_value_t = BackendArg::Table)]
@@ -28,7 +32,17 @@ enum BackendArg {
     Logic,
 }
 
+/// `true` for a PLC project file name (`*.plc.toml`).
+fn is_project(path: &Path) -> bool {
+    path.file_name()
+        .and_then(|n| n.to_str())
+        .is_some_and(|n| n.ends_with(".plc.toml"))
+}
+
 pub fn run(args: &GenArgs, json: bool) -> Result<Outcome, Error> {
+    if !is_project(&args.project) {
+        return automaton_stats(args, json);
+    }
     let project = project::load(&args.project)?;
     for w in &project.warnings {
         eprintln!(
@@ -59,11 +73,36 @@ pub fn run(args: &GenArgs, json: bool) -> Result<Outcome, Error> {
     Ok(Outcome::Holds)
 }
 
+/// `--stats` of a plain automaton file: the table each automaton would
+/// get as a supervisor of a project.
+fn automaton_stats(args: &GenArgs, json: bool) -> Result<Outcome, Error> {
+    if !args.stats || !matches!(args.backend, BackendArg::Table) {
+        return Err(Error::Incompatible(format!(
+            "{}: not a project file (`*.plc.toml`); automaton files only take `--stats` with the table backend",
+            args.project.display()
+        )));
+    }
+    let stats: Vec<SupervisorStats> = formats::read_file(&args.project)?
+        .iter()
+        .map(|c| {
+            let a = &c.automaton;
+            let local: Vec<_> = a.alphabet().ids().collect();
+            SupervisorStats::of_table(a.name(), &EncodedTable::encode(a, &local))
+        })
+        .collect();
+    if json {
+        print_json(&stats);
+    } else {
+        print_stats(&args.project, &stats, Backend::Table);
+    }
+    Ok(Outcome::Holds)
+}
+
 fn write(path: &Path, code: &str) -> Result<(), Error> {
     std::fs::write(path, code).map_err(|e| Error::io(path, e))
 }
 
-fn print_stats(project: &Path, stats: &[codegen::emit::SupervisorStats], backend: Backend) {
+fn print_stats(project: &Path, stats: &[SupervisorStats], backend: Backend) {
     println!("{}:", project.display());
     match backend {
         Backend::Table => {

@@ -1,0 +1,86 @@
+//! `host-sim replay` as a user runs it: an inputs file in, `trace.csv` and
+//! a VCD out, the same trace on both backends, and input errors located
+//! at file and line.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn repo(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(path)
+}
+
+fn replay(inputs: &Path, out: &Path, extra: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .arg("replay")
+        .arg(repo("models/press.plc.toml"))
+        .arg("--inputs")
+        .arg(inputs)
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        .output()
+        .expect("host-sim runs")
+}
+
+#[test]
+fn press_cycle_replays_to_the_reviewed_trace_on_both_backends() {
+    let dir = tempfile::tempdir().unwrap();
+    let inputs = repo("models/press/cycle.inputs.csv");
+    // The reviewed trace: the work cycle 1→2→3→4→6→2 with the lesson's
+    // Moore outputs, the part sensor's 3-scan filter, then at_bottom in
+    // state 2 (fault, safe outputs) and recovery by the reset button.
+    let expected = std::fs::read_to_string(repo("models/press/cycle.trace.csv")).unwrap();
+    for backend in ["table", "logic"] {
+        let out = dir.path().join(format!("{backend}.csv"));
+        let vcd = dir.path().join(format!("{backend}.vcd"));
+        let result = replay(
+            &inputs,
+            &out,
+            &["--backend", backend, "--vcd", vcd.to_str().unwrap()],
+        );
+        assert!(result.status.success(), "{result:?}");
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(
+            stderr.contains("replayed 25 scans: 5 events executed, 4 scans in fault mode"),
+            "{stderr}"
+        );
+        assert_eq!(
+            std::fs::read_to_string(&out).unwrap(),
+            expected,
+            "{backend}"
+        );
+        let vcd = std::fs::read_to_string(&vcd).unwrap();
+        assert!(vcd.contains("$timescale 1 ms $end"));
+        for signal in ["auto_pb", "down_sol", "press", "part_in", "fault"] {
+            assert!(
+                vcd.contains(&format!(" {signal} $end")),
+                "{signal} in the VCD"
+            );
+        }
+        assert!(vcd.contains("#160"), "a change at the fault's time");
+    }
+}
+
+#[test]
+fn a_bad_inputs_file_is_an_error_at_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let inputs = dir.path().join("bad.csv");
+    let text = std::fs::read_to_string(repo("models/press/cycle.inputs.csv"))
+        .unwrap()
+        .replace("\n4,40,0,0,0,1,1,0\n", "\n4,40,0,0,0,2,1,0\n");
+    std::fs::write(&inputs, text).unwrap();
+    let result = replay(&inputs, &dir.path().join("t.csv"), &[]);
+    assert_eq!(result.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(stderr.contains("bad.csv:6"), "{stderr}");
+    assert!(
+        stderr.contains("`2` for input `part`: expected 0 or 1"),
+        "{stderr}"
+    );
+    assert!(
+        !dir.path().join("t.csv").exists(),
+        "no trace from bad input"
+    );
+}
