@@ -370,3 +370,185 @@ fn nothing_but_results_reaches_a_pipe() {
         run.stdout
     );
 }
+
+/// The seed projects `codegen gen` must handle with both backends.
+const SEED_PROJECTS: [&str; 4] = [
+    "models/motivating.plc.toml",
+    "models/press.plc.toml",
+    "models/press7.plc.toml",
+    "models/conveyor.plc.toml",
+];
+
+#[test]
+fn gen_prints_rust_that_parses_and_defines_the_program() {
+    let dir = tempfile::tempdir().unwrap();
+    for project in SEED_PROJECTS {
+        for backend in ["table", "logic"] {
+            let what = format!("{project} --backend {backend}");
+            let run = run_codegen(["gen", project, "--backend", backend]);
+            assert_eq!(run.code, 0, "{what}: {}", run.stderr);
+            assert_eq!(run.stderr, "", "{what}: warnings on a seed project");
+            if let Err(e) = syn::parse_file(&run.stdout) {
+                panic!("{what}: output is not Rust: {e}\n{}", run.stdout);
+            }
+            for item in [
+                "pub static PROGRAM",
+                "pub type Memory",
+                "pub const CONFIG",
+                "pub const IMAGE_CRC",
+            ] {
+                assert!(run.stdout.contains(item), "{what}: no `{item}`");
+            }
+            assert!(
+                run.stdout.contains(&format!("({backend} backend)")),
+                "{what}: header does not name the backend"
+            );
+
+            // `-o FILE` writes the same text and prints nothing.
+            let out = dir.path().join("out.rs");
+            let out_str = out.to_str().unwrap();
+            let written = run_codegen(["gen", project, "--backend", backend, "-o", out_str]);
+            assert_eq!(written.code, 0, "{what} -o: {}", written.stderr);
+            assert_eq!(written.stdout, "", "{what} -o");
+            assert_eq!(
+                std::fs::read_to_string(&out).unwrap(),
+                run.stdout,
+                "{what} -o"
+            );
+        }
+    }
+}
+
+#[test]
+fn gen_stats_print_every_supervisor_with_bytes_naive_bytes_and_ratio() {
+    for project in SEED_PROJECTS {
+        let (code, stats) = run_json(["gen", project, "--stats"]);
+        assert_eq!(code, 0, "{project}: {stats}");
+        let run = run_codegen(["gen", project, "--stats"]);
+        assert_eq!(run.code, 0, "{project}: {}", run.stderr);
+        let lines: Vec<&str> = run.stdout.lines().collect();
+        let header = lines
+            .iter()
+            .find(|l| l.split_whitespace().next() == Some("supervisor"))
+            .unwrap_or_else(|| panic!("{project}: no header\n{}", run.stdout));
+        for column in ["bytes", "naive", "ratio"] {
+            assert!(header.contains(column), "{project}: {header}");
+        }
+        let stats = stats.as_array().unwrap();
+        assert!(!stats.is_empty(), "{project}");
+        for s in stats {
+            let name = s["name"].as_str().unwrap();
+            let bytes = s["table_bytes"].as_u64().unwrap();
+            let naive = s["naive_bytes"].as_u64().unwrap();
+            let row: Vec<&str> = lines
+                .iter()
+                .map(|l| l.split_whitespace().collect::<Vec<_>>())
+                .find(|cells| cells.first() == Some(&name))
+                .unwrap_or_else(|| panic!("{project}: no row for `{name}`\n{}", run.stdout));
+            let ratio = format!("{:.2}x", naive as f64 / bytes as f64);
+            for cell in [bytes.to_string(), naive.to_string(), ratio] {
+                assert!(
+                    row.contains(&cell.as_str()),
+                    "{project}: row of `{name}` lacks `{cell}`: {row:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn gen_json_stats_show_the_press_table_smaller_than_the_naive_one() {
+    let (code, stats) = run_json(["gen", "models/press.plc.toml", "--stats"]);
+    assert_eq!(code, 0, "{stats}");
+    let stats = stats.as_array().expect("a list of supervisors");
+    assert_eq!(stats.len(), 1, "{stats:?}");
+    let press = &stats[0];
+    assert_eq!(press["name"], "press");
+    assert_eq!(press["states"], 6);
+    assert_eq!(press["events"], 7);
+    let bytes = press["table_bytes"].as_u64().unwrap();
+    let naive = press["naive_bytes"].as_u64().unwrap();
+    assert!(0 < bytes && bytes < naive, "{press}");
+    // Naive: one u16 per state × event pair.
+    assert_eq!(naive, 2 * 6 * 7);
+}
+
+/// `models/press.plc.toml` as a temporary project (its supervisor file
+/// named by absolute path), with `edit` applied to its text.
+fn press_variant(dir: &Path, edit: impl Fn(&str) -> String) -> (String, String) {
+    let text = std::fs::read_to_string(model("models/press.plc.toml")).unwrap();
+    let supervisor = model("models/press/press.toml");
+    let text = text.replace(
+        "file = \"press/press.toml\"",
+        &format!("file = {:?}", supervisor.display().to_string()),
+    );
+    let edited = edit(&text);
+    assert_ne!(edited, text, "the edit changes nothing");
+    let path = write(dir, "bad.plc.toml", &edited);
+    (path, edited)
+}
+
+/// The 1-based line of `text` that contains `needle`.
+fn line_of(text: &str, needle: &str) -> usize {
+    text.lines()
+        .position(|l| l.contains(needle))
+        .unwrap_or_else(|| panic!("no `{needle}` in\n{text}"))
+        + 1
+}
+
+#[test]
+fn gen_reports_project_errors_with_file_and_line_and_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+
+    // The unmodified copy generates: the errors below are the edits'.
+    let (good, _) = press_variant(dir.path(), |t| t.replace("# The stamping", "# A stamping"));
+    let run = run_codegen(["gen", &good]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+
+    // A binding that names an unknown input.
+    let (bad, text) = press_variant(dir.path(), |t| {
+        t.replace("rising = \"part\"", "rising = \"parts\"")
+    });
+    let line = line_of(&text, "\"parts\"");
+    for backend in ["table", "logic"] {
+        let run = run_codegen(["gen", &bad, "--backend", backend]);
+        assert_eq!(run.code, 2, "{}", run.stderr);
+        assert!(
+            run.stderr.contains(&format!("bad.plc.toml:{line}:")),
+            "{}",
+            run.stderr
+        );
+        assert!(
+            run.stderr.contains("unknown input `parts`"),
+            "{}",
+            run.stderr
+        );
+        assert_eq!(run.stdout, "", "no code on error");
+    }
+    let (code, err) = run_json(["gen", &bad, "--stats"]);
+    assert_eq!(code, 2);
+    let message = err["error"].as_str().unwrap();
+    assert!(
+        message.contains(&format!("bad.plc.toml:{line}:")),
+        "{message}"
+    );
+
+    // An event of the supervisor that the project does not declare: the
+    // error points at the `[[supervisor]]` that needs it.
+    let (bad, text) = press_variant(dir.path(), |t| {
+        t.replace("at_top = { rising = \"top_ls\" }\n", "")
+    });
+    let line = line_of(&text, "[[supervisor]]");
+    let run = run_codegen(["gen", &bad]);
+    assert_eq!(run.code, 2, "{}", run.stderr);
+    assert!(
+        run.stderr.contains(&format!("bad.plc.toml:{line}:")),
+        "{}",
+        run.stderr
+    );
+    assert!(
+        run.stderr.contains("event `at_top`") && run.stderr.contains("not declared in [events]"),
+        "{}",
+        run.stderr
+    );
+}

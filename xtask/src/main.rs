@@ -4,11 +4,18 @@
 //!   command).
 //! - `bench-faudes [--runs N] [MODEL…]`: our compose + supcon against
 //!   libFAUDES on the benchmark models, in one run, as ratios.
+//! - `qemu [PROJECT] [SCENARIO]`: the firmware replay harness in QEMU for
+//!   every model (zero mismatches against host-sim, instructions per scan,
+//!   budgets, ratios to a `match` baseline).
+//! - `size [MODEL…]`: flash and static RAM of the board firmware.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
 mod bench;
+mod budgets;
+mod qemu;
+mod size;
 mod sysdeps;
 
 fn main() -> ExitCode {
@@ -16,12 +23,16 @@ fn main() -> ExitCode {
     let result = match args.first().map(String::as_str) {
         Some("ci") => ci(),
         Some("bench-faudes") => bench::run(&args[1..]),
+        Some("qemu") => qemu::run_task(&args[1..]),
+        Some("size") => size::run_task(&args[1..]),
         _ => {
             eprintln!(
                 "usage: cargo xtask <task>\n\
                  tasks:\n  \
                  ci                         fmt, clippy, all tests, differential tests vs libFAUDES\n  \
-                 bench-faudes [--runs N] [MODEL…]  compose + supcon timings and memory vs libFAUDES"
+                 bench-faudes [--runs N] [MODEL…]  compose + supcon timings and memory vs libFAUDES\n  \
+                 qemu [PROJECT] [SCENARIO]  replay in QEMU: zero mismatches, instructions per scan, budgets\n  \
+                 size [MODEL…]              flash and static RAM of the board firmware, budgets"
             );
             Err("no task given".into())
         }
@@ -112,15 +123,18 @@ fn ci() -> Result {
         .current_dir(root()))?;
     sysdeps::ensure_libclang()?;
     run(cargo().args(["fmt", "--all", "--", "--check"]))?;
+    // Host crates; the firmware is checked for its own targets below.
     run(cargo().args([
         "clippy",
         "--workspace",
+        "--exclude",
+        "firmware",
         "--all-targets",
         "--",
         "-D",
         "warnings",
     ]))?;
-    run(cargo().args(["test", "--workspace"]))?;
+    run(cargo().args(["test", "--workspace", "--exclude", "firmware"]))?;
     // The executor is no_std: prove it builds for the board's instruction
     // set (with defmt, as the firmware uses it) and for Cortex-M0+.
     for (target, features) in [
@@ -149,6 +163,38 @@ fn ci() -> Result {
         "--",
         "--ignored",
     ]))?;
+    // The firmware: QEMU replay of every model against host-sim (zero
+    // mismatches, instruction budgets), then the board build's sizes, then
+    // clippy on both firmware builds for the target.
+    qemu::run_task(&[])?;
+    size::run_task(&[])?;
+    run(cargo().args([
+        "clippy",
+        "--release",
+        "-p",
+        "firmware",
+        "--target",
+        "thumbv7em-none-eabihf",
+        "--",
+        "-D",
+        "warnings",
+    ]))?;
+    run(cargo()
+        .args([
+            "clippy",
+            "--release",
+            "-p",
+            "firmware",
+            "--no-default-features",
+            "--features",
+            "qemu",
+            "--target",
+            "thumbv7em-none-eabihf",
+            "--",
+            "-D",
+            "warnings",
+        ])
+        .env("PLC_SCENARIO", "target/qemu/press.scenario"))?;
     eprintln!("xtask: ci passed");
     Ok(())
 }

@@ -21,35 +21,66 @@ pub fn ensure_libclang() -> Result {
     if Command::new("apt-get").arg("--version").output().is_err() {
         return Err(MISSING.into());
     }
-    let sudo: &[&str] = if is_root() { &[] } else { &["sudo"] };
-    let apt = |args: &[&str]| {
-        let all: Vec<&str> = sudo
-            .iter()
-            .chain(["apt-get"].iter())
-            .chain(args)
-            .copied()
-            .collect();
-        let mut cmd = Command::new(all[0]);
-        cmd.args(&all[1..]).env("DEBIAN_FRONTEND", "noninteractive");
-        run(&mut cmd)
-    };
-    apt(&["update", "-qq"])?;
-    apt(&[
-        "install",
-        "-y",
-        "-qq",
-        "--no-install-recommends",
-        "libclang1",
-    ])?;
+    apt_install(&["libclang1"])?;
     // The builtin headers come in a package named after the LLVM major version.
     let major = llvm_major().ok_or(MISSING)?;
-    let headers = format!("libclang-common-{major}-dev");
-    apt(&["install", "-y", "-qq", "--no-install-recommends", &headers])?;
+    apt_install(&[&format!("libclang-common-{major}-dev")])?;
     if libclang_present() {
         Ok(())
     } else {
         Err(MISSING.into())
     }
+}
+
+/// `apt-get update` (once per process) and `apt-get install
+/// --no-install-recommends` of `packages`, through sudo when not root.
+pub fn apt_install(packages: &[&str]) -> Result {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static UPDATED: AtomicBool = AtomicBool::new(false);
+    if Command::new("apt-get").arg("--version").output().is_err() {
+        return Err(format!(
+            "apt-get is not available: install {} by hand",
+            packages.join(", ")
+        ));
+    }
+    let apt = |args: &[&str]| {
+        let mut cmd = if is_root() {
+            Command::new("apt-get")
+        } else {
+            let mut c = Command::new("sudo");
+            c.arg("apt-get");
+            c
+        };
+        cmd.args(args).env("DEBIAN_FRONTEND", "noninteractive");
+        run(&mut cmd)
+    };
+    if !UPDATED.swap(true, Ordering::SeqCst) {
+        apt(&["update", "-qq"])?;
+    }
+    let mut args = vec!["install", "-y", "-qq", "--no-install-recommends"];
+    args.extend_from_slice(packages);
+    apt(&args)
+}
+
+/// Makes sure `qemu-system-arm` is on the PATH, installing Debian's
+/// package when it is not.
+pub fn ensure_qemu() -> Result<String> {
+    let present = || {
+        Command::new("qemu-system-arm")
+            .arg("--version")
+            .output()
+            .is_ok_and(|o| o.status.success())
+    };
+    if !present() {
+        eprintln!("xtask: qemu-system-arm is missing; installing it");
+        apt_install(&["qemu-system-arm"]).map_err(|e| {
+            format!("{e}\nqemu-system-arm is needed to run the firmware in QEMU (Debian/Ubuntu: `apt-get install --no-install-recommends qemu-system-arm`)")
+        })?;
+        if !present() {
+            return Err("qemu-system-arm still missing after installing it".into());
+        }
+    }
+    Ok("qemu-system-arm".into())
 }
 
 const MISSING: &str = "libclang is required to build `codegen` (espresso-logic uses bindgen): \

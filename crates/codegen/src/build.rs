@@ -102,10 +102,7 @@ impl Build {
                 w.message.replace('\n', " ")
             );
         }
-        let backend = match self.backend {
-            Backend::Table => "table",
-            Backend::Logic => "logic",
-        };
+        let backend = self.backend.name();
         let regenerate = format!(
             "cargo build (build script), or: codegen gen {} --backend {backend}",
             self.project.display()

@@ -25,6 +25,34 @@ pub enum Backend {
     Table,
     /// CMSSM next-state and output functions (Espresso-minimised).
     Logic,
+    /// Baseline for measurements: one plain `match` on (state, event) per
+    /// supervisor, what a hand-written state machine does.
+    Match,
+}
+
+impl Backend {
+    /// Every backend.
+    pub const ALL: [Backend; 3] = [Backend::Table, Backend::Logic, Backend::Match];
+
+    /// The name used on command lines and in file headers.
+    pub fn name(self) -> &'static str {
+        match self {
+            Backend::Table => "table",
+            Backend::Logic => "logic",
+            Backend::Match => "match",
+        }
+    }
+}
+
+impl std::str::FromStr for Backend {
+    type Err = String;
+
+    fn from_str(s: &str) -> std::result::Result<Backend, String> {
+        Backend::ALL
+            .into_iter()
+            .find(|b| b.name() == s)
+            .ok_or_else(|| format!("unknown backend `{s}` (expected table, logic or match)"))
+    }
 }
 
 /// Size figures of one supervisor in the generated program.
@@ -111,10 +139,14 @@ impl Emitter<'_> {
     }
 
     fn names(&mut self, module: &str, doc: &str, names: &[&str]) {
+        // Names are for reference: a crate uses some of them, never all.
         let _ = writeln!(
             self.out,
-            "/// {doc}\npub mod {module} {{\n    use super::Index;"
+            "/// {doc}\n#[allow(dead_code)]\npub mod {module} {{"
         );
+        if !names.is_empty() {
+            let _ = writeln!(self.out, "    use super::Index;");
+        }
         for (i, n) in names.iter().enumerate() {
             let _ = writeln!(self.out, "    /// `{}`", doc_line(n).replace('`', "'"));
             let _ = writeln!(self.out, "    pub const {}: Index = {i};", ident(n));
@@ -142,7 +174,7 @@ impl Emitter<'_> {
         self.names("supervisor", "Supervisors, in declaration order.", &sups);
         let _ = writeln!(
             self.out,
-            "/// State names of each supervisor, by state index.\npub mod states {{"
+            "/// State names of each supervisor, by state index.\n#[allow(dead_code)]\npub mod states {{"
         );
         for s in &p.supervisors {
             let names: Vec<String> = s
@@ -483,10 +515,59 @@ impl Emitter<'_> {
         }
         let _ = writeln!(
             self.out,
-            "/// One table per supervisor.\nconst TABLES: [SupervisorTable<'static>; {}] = [{}];\n/// CRC-32 of the program image (configuration and tables), checked at start.\npub const IMAGE_CRC: u32 = {:#010x};\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: TableProgram<'static> = TableProgram {{ config: CONFIG, tables: &TABLES, crc: IMAGE_CRC }};",
+            "/// One table per supervisor.\nconst TABLES: [SupervisorTable<'static>; {}] = [{}];\n/// CRC-32 of the program image (configuration and tables), checked at start.\npub const IMAGE_CRC: u32 = {:#010x};\n/// The program: the configuration and the tables above, as constants the\n/// compiler can see through (a zero-sized type rather than a `static` holding them).\npub struct Tables;\nimpl Program for Tables {{\n    fn config(&self) -> Config<'_> {{ CONFIG }}\n    #[inline]\n    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        TABLES.get(supervisor as usize)?.next_state(state, local)\n    }}\n    fn image_intact(&self) -> bool {{ executor::table::image_crc(&CONFIG, &TABLES) == IMAGE_CRC }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Tables = Tables;",
             views.len(),
             views.join(", "),
             image.crc
+        );
+        stats
+    }
+
+    /// The baseline: each supervisor as one `match` on (state, local event).
+    fn matches(&mut self, crc: u32) -> Vec<SupervisorStats> {
+        let mut stats = Vec::new();
+        let mut arms = Vec::new();
+        let _ = writeln!(
+            self.out,
+            "/// The supervisors as plain `match` statements on (state, local event): the\n/// baseline a hand-written state machine would be.\npub mod matches {{"
+        );
+        for (j, sup) in self.project.supervisors.iter().enumerate() {
+            let a = &sup.automaton;
+            let fn_name = snake_ident(&sup.name);
+            let mut cases = String::new();
+            for s in a.states() {
+                for (local, &(_, id)) in sup.local_events.iter().enumerate() {
+                    if let Some(t) = a.successor(s, id) {
+                        let _ = write!(cases, "({}, {local}) => Some({}),", s.0, t.0);
+                    }
+                }
+            }
+            let _ = writeln!(
+                self.out,
+                "/// Supervisor `{}` ({}).\npub fn {fn_name}(state: u32, event: u16) -> Option<u32> {{ match (state, event) {{ {cases} _ => None }} }}",
+                doc_line(&sup.name).replace('`', "'"),
+                self.source_line(j),
+            );
+            arms.push(format!(
+                "{} => matches::{fn_name}(state, local),",
+                self.supervisor(j as ex::Index)
+            ));
+            stats.push(SupervisorStats {
+                name: sup.name.clone(),
+                states: a.num_states() as u32,
+                events: sup.local_events.len() as u16,
+                layout: None,
+                table_bytes: 0,
+                naive_bytes: 2 * a.num_states() * sup.local_events.len(),
+                cubes: 0,
+                literals: 0,
+            });
+        }
+        let _ = writeln!(self.out, "}}");
+        let _ = writeln!(
+            self.out,
+            "/// CRC-32 of the configuration (the supervisors are code), checked at start.\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program: supervisors as `match` statements.\npub struct Match;\nimpl Program for Match {{\n    fn config(&self) -> Config<'_> {{ CONFIG }}\n    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n    fn image_intact(&self) -> bool {{ executor::table::config_crc(&CONFIG) == IMAGE_CRC }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Match = Match;",
+            arms.join("\n")
         );
         stats
     }
@@ -596,8 +677,10 @@ pub fn generate(project: &Project, backend: Backend, regenerate: &str) -> Result
         out: String::new(),
     };
     let uses = match backend {
-        Backend::Table => "use executor::table::{Rows, SupervisorTable, TableProgram};",
-        Backend::Logic => "use executor::program::Program;",
+        Backend::Table => {
+            "use executor::program::Program;\nuse executor::table::{Rows, SupervisorTable};"
+        }
+        Backend::Logic | Backend::Match => "use executor::program::Program;",
     };
     let _ = writeln!(
         e.out,
@@ -605,6 +688,7 @@ pub fn generate(project: &Project, backend: Backend, regenerate: &str) -> Result
     );
     e.constants();
     e.pools();
+    e.out.push_str(&crate::board::board_module(project));
     let (stats, crc) = match backend {
         Backend::Table => {
             let image = TableImage::new(project)?;
@@ -614,6 +698,10 @@ pub fn generate(project: &Project, backend: Backend, regenerate: &str) -> Result
             let image = LogicImage::new(project)?;
             (e.logic(&image.supervisors, image.crc), image.crc)
         }
+        Backend::Match => {
+            let crc = executor::table::config_crc(&pools.config());
+            (e.matches(crc), crc)
+        }
     };
     let file = syn::parse_file(&e.out).map_err(|err| {
         Error::Incompatible(format!(
@@ -621,10 +709,7 @@ pub fn generate(project: &Project, backend: Backend, regenerate: &str) -> Result
         ))
     })?;
     let body = separate_items(&prettyplease::unparse(&file));
-    let backend_name = match backend {
-        Backend::Table => "table",
-        Backend::Logic => "logic",
-    };
+    let backend_name = backend.name();
     let header = format!(
         "// Generated by codegen {} from `{}` ({backend_name} backend). Do not edit.\n// Regenerate: {}\n// Include it in a module: `include!(concat!(env!(\"OUT_DIR\"), \"/<name>.rs\"));`\n\n",
         env!("CARGO_PKG_VERSION"),

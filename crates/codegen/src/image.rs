@@ -59,8 +59,13 @@ fn index(value: usize, what: &str) -> Result<Index> {
     })
 }
 
-/// Appends `items` to `pool` and returns their span.
+/// Appends `items` to `pool` and returns their span; an empty list is
+/// always [`Span::EMPTY`], so every empty span has one form (the generated
+/// code writes it that way, and the image CRC covers span starts).
 fn push_span<T: Clone>(pool: &mut Vec<T>, items: &[T], what: &str) -> Result<Span> {
+    if items.is_empty() {
+        return Ok(Span::EMPTY);
+    }
     let start = index(pool.len(), what)?;
     let len = index(items.len(), what)?;
     index(pool.len() + items.len(), what)?;

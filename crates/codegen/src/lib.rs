@@ -8,12 +8,15 @@
 //! - [`project`]: PLC project files (`*.plc.toml`), parsed and validated.
 //! - [`image`]: a project laid out as the executor's program image.
 //! - [`emit`]: the generated Rust source; [`build`]: the build-script API.
+//! - [`board`]: the `[board]` pin map as generated Rust and as a wiring
+//!   table.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod automaton;
 pub mod backend;
+pub mod board;
 pub mod build;
 pub mod dot;
 pub mod emit;

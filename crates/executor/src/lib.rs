@@ -12,7 +12,10 @@
 //! 1. **Samples** the inputs and debounces them (an input with
 //!    `debounce_scans = d > 1` follows its raw value only after `d`
 //!    consecutive differing scans, this one included); edges compare the
-//!    filtered image with the previous scan's. Scan 0 has no edges.
+//!    filtered image with the previous scan's. Scan 0 has no edges, and
+//!    its filtered value of every input, debounced or not, is the raw
+//!    sample (a filter has no history to hold against at power-on).
+//!    Filtering goes on in fault mode and is not reset by a fault reset.
 //! 2. **In fault mode** writes the safe output image, unless the `reset`
 //!    input rises: then everything is re-initialised and the initial image
 //!    written; either way the scan ends there.
@@ -54,6 +57,7 @@
 //!
 //! - `alloc`: [`memory::HeapMemory`], sized at run time (hosts).
 //! - `defmt`: `defmt::Format` for [`Fault`] and [`Counters`].
+//! - `replay`: recorded scans for replay harnesses (`replay` module).
 
 #![no_std]
 #![forbid(unsafe_code)]
@@ -67,6 +71,8 @@ mod inputs;
 pub mod memory;
 pub mod program;
 mod record;
+#[cfg(feature = "replay")]
+pub mod replay;
 pub mod table;
 mod timers;
 

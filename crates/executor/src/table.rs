@@ -151,17 +151,17 @@ impl SupervisorTable<'_> {
     }
 
     fn digest(&self, d: &mut Digest<'_, u32>) {
-        d.update(&self.events.to_le_bytes());
-        d.update(&[self.state_bits]);
+        feed(d, &self.events.to_le_bytes());
+        feed(d, &[self.state_bits]);
         words(d, self.defined);
         words(d, self.targets);
         match self.rows {
-            Rows::Dense => d.update(&[0]),
+            Rows::Dense => feed(d, &[0]),
             Rows::Sparse {
                 row_starts,
                 start_bits,
             } => {
-                d.update(&[1, start_bits]);
+                feed(d, &[1, start_bits]);
                 words(d, row_starts);
             }
         }
@@ -169,10 +169,18 @@ impl SupervisorTable<'_> {
 }
 
 fn words(d: &mut Digest<'_, u32>, words: &[u32]) {
-    d.update(&(words.len() as u32).to_le_bytes());
+    feed(d, &(words.len() as u32).to_le_bytes());
     for w in words {
-        d.update(&w.to_le_bytes());
+        feed(d, &w.to_le_bytes());
     }
+}
+
+/// Feeds `bytes` into `d`. Kept out of line: the digest of a
+/// configuration makes a few hundred calls, and inlining the CRC loop into
+/// each of them costs kilobytes of flash for a check that runs at start-up.
+#[inline(never)]
+fn feed(d: &mut Digest<'_, u32>, bytes: &[u8]) {
+    d.update(bytes);
 }
 
 /// The CRC-32 algorithm of program images.
@@ -182,69 +190,75 @@ pub const IMAGE_CRC: Crc<u32> = Crc::<u32>::new(&CRC_32_ISO_HDLC);
 pub fn digest_config(d: &mut Digest<'_, u32>, config: &Config<'_>) {
     use crate::program::{Action, Trigger, UnexpectedPolicy};
     let u16s = |d: &mut Digest<'_, u32>, v: &[u16]| {
-        d.update(&(v.len() as u32).to_le_bytes());
+        feed(d, &(v.len() as u32).to_le_bytes());
         for x in v {
-            d.update(&x.to_le_bytes());
+            feed(d, &x.to_le_bytes());
         }
     };
     let span = |d: &mut Digest<'_, u32>, s: crate::program::Span| {
-        d.update(&s.start.to_le_bytes());
-        d.update(&s.len.to_le_bytes());
+        feed(d, &s.start.to_le_bytes());
+        feed(d, &s.len.to_le_bytes());
     };
-    d.update(&(config.name.len() as u32).to_le_bytes());
-    d.update(config.name.as_bytes());
-    d.update(&config.scan_period_ms.to_le_bytes());
-    d.update(&config.max_commands_per_scan.to_le_bytes());
-    d.update(&[match config.unexpected {
-        UnexpectedPolicy::Fault => 0,
-        UnexpectedPolicy::Ignore => 1,
-    }]);
-    d.update(&config.reset.map_or(u32::MAX, u32::from).to_le_bytes());
-    d.update(&config.overrun_limit.to_le_bytes());
-    d.update(&[config.overrun_fault as u8, config.lost_edge_fault as u8]);
-    d.update(&(config.inputs.len() as u32).to_le_bytes());
+    feed(d, &(config.name.len() as u32).to_le_bytes());
+    feed(d, config.name.as_bytes());
+    feed(d, &config.scan_period_ms.to_le_bytes());
+    feed(d, &config.max_commands_per_scan.to_le_bytes());
+    feed(
+        d,
+        &[match config.unexpected {
+            UnexpectedPolicy::Fault => 0,
+            UnexpectedPolicy::Ignore => 1,
+        }],
+    );
+    feed(d, &config.reset.map_or(u32::MAX, u32::from).to_le_bytes());
+    feed(d, &config.overrun_limit.to_le_bytes());
+    feed(
+        d,
+        &[config.overrun_fault as u8, config.lost_edge_fault as u8],
+    );
+    feed(d, &(config.inputs.len() as u32).to_le_bytes());
     for i in config.inputs {
-        d.update(&[i.debounce_scans]);
+        feed(d, &[i.debounce_scans]);
     }
-    d.update(&(config.outputs.len() as u32).to_le_bytes());
+    feed(d, &(config.outputs.len() as u32).to_le_bytes());
     for o in config.outputs {
-        d.update(&[o.safe as u8, o.initial as u8]);
+        feed(d, &[o.safe as u8, o.initial as u8]);
         span(d, o.state_map);
     }
-    d.update(&(config.timers.len() as u32).to_le_bytes());
+    feed(d, &(config.timers.len() as u32).to_le_bytes());
     for t in config.timers {
-        d.update(&t.preset_ms.to_le_bytes());
+        feed(d, &t.preset_ms.to_le_bytes());
     }
-    d.update(&(config.events.len() as u32).to_le_bytes());
+    feed(d, &(config.events.len() as u32).to_le_bytes());
     for e in config.events {
         match e.trigger {
-            Trigger::Command => d.update(&[0]),
+            Trigger::Command => feed(d, &[0]),
             Trigger::Rising(s) => {
-                d.update(&[1]);
+                feed(d, &[1]);
                 span(d, s);
             }
             Trigger::Falling(s) => {
-                d.update(&[2]);
+                feed(d, &[2]);
                 span(d, s);
             }
             Trigger::Expired(t) => {
-                d.update(&[3]);
-                d.update(&t.to_le_bytes());
+                feed(d, &[3]);
+                feed(d, &t.to_le_bytes());
             }
         }
         span(d, e.when);
         span(d, e.unless);
-        d.update(&e.request.map_or(u32::MAX, u32::from).to_le_bytes());
+        feed(d, &e.request.map_or(u32::MAX, u32::from).to_le_bytes());
         span(d, e.actions);
         span(d, e.members);
     }
-    d.update(&(config.supervisors.len() as u32).to_le_bytes());
+    feed(d, &(config.supervisors.len() as u32).to_le_bytes());
     for s in config.supervisors {
-        d.update(&s.states.to_le_bytes());
-        d.update(&s.initial.to_le_bytes());
+        feed(d, &s.states.to_le_bytes());
+        feed(d, &s.initial.to_le_bytes());
     }
     u16s(d, config.input_lists);
-    d.update(&(config.actions.len() as u32).to_le_bytes());
+    feed(d, &(config.actions.len() as u32).to_le_bytes());
     for a in config.actions {
         let (tag, x) = match *a {
             Action::Set(o) => (0u8, o),
@@ -252,18 +266,18 @@ pub fn digest_config(d: &mut Digest<'_, u32>, config: &Config<'_>) {
             Action::Start(t) => (2, t),
             Action::Reset(t) => (3, t),
         };
-        d.update(&[tag]);
-        d.update(&x.to_le_bytes());
+        feed(d, &[tag]);
+        feed(d, &x.to_le_bytes());
     }
-    d.update(&(config.memberships.len() as u32).to_le_bytes());
+    feed(d, &(config.memberships.len() as u32).to_le_bytes());
     for m in config.memberships {
-        d.update(&m.supervisor.to_le_bytes());
-        d.update(&m.local.to_le_bytes());
+        feed(d, &m.supervisor.to_le_bytes());
+        feed(d, &m.local.to_le_bytes());
     }
-    d.update(&(config.state_map.len() as u32).to_le_bytes());
+    feed(d, &(config.state_map.len() as u32).to_le_bytes());
     for s in config.state_map {
-        d.update(&s.supervisor.to_le_bytes());
-        d.update(&s.state.to_le_bytes());
+        feed(d, &s.supervisor.to_le_bytes());
+        feed(d, &s.state.to_le_bytes());
     }
 }
 
@@ -271,7 +285,7 @@ pub fn digest_config(d: &mut Digest<'_, u32>, config: &Config<'_>) {
 pub fn image_crc(config: &Config<'_>, tables: &[SupervisorTable<'_>]) -> u32 {
     let mut d = IMAGE_CRC.digest();
     digest_config(&mut d, config);
-    d.update(&(tables.len() as u32).to_le_bytes());
+    feed(&mut d, &(tables.len() as u32).to_le_bytes());
     for t in tables {
         t.digest(&mut d);
     }

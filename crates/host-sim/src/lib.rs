@@ -8,6 +8,7 @@
 //! - [`vcd`] writes waveforms.
 //! - [`lockstep`]: both backends side by side, compared every scan.
 //! - [`replay`]: a whole input file through a project.
+//! - [`scenario`]: postcard scenarios for the QEMU harness, random inputs.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -15,6 +16,7 @@
 pub mod inputs;
 pub mod lockstep;
 pub mod replay;
+pub mod scenario;
 pub mod sim;
 pub mod trace;
 pub mod vcd;

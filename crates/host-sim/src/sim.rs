@@ -50,7 +50,9 @@ impl RuntimeProgram {
     /// The program of `project` in `backend`.
     pub fn new(project: &Project, backend: Backend) -> Result<Self, codegen::Error> {
         Ok(match backend {
-            Backend::Table => RuntimeProgram::Table(TableImage::new(project)?),
+            // The match baseline only exists as generated code; at run time
+            // it is the same automaton as the table.
+            Backend::Table | Backend::Match => RuntimeProgram::Table(TableImage::new(project)?),
             Backend::Logic => RuntimeProgram::Logic(codegen::image::LogicImage::new(project)?),
         })
     }

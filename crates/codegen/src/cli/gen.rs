@@ -30,6 +30,8 @@ pub struct GenArgs {
 enum BackendArg {
     Table,
     Logic,
+    /// Baseline: plain `match` statements (for measurements).
+    Match,
 }
 
 /// `true` for a PLC project file name (`*.plc.toml`).
@@ -55,6 +57,7 @@ pub fn run(args: &GenArgs, json: bool) -> Result<Outcome, Error> {
     let (backend, name) = match args.backend {
         BackendArg::Table => (Backend::Table, "table"),
         BackendArg::Logic => (Backend::Logic, "logic"),
+        BackendArg::Match => (Backend::Match, "match"),
     };
     let regenerate = format!("codegen gen {} --backend {name}", args.project.display());
     let generated = generate(&project, backend, &regenerate)?;
@@ -140,7 +143,7 @@ fn print_stats(project: &Path, stats: &[SupervisorStats], backend: Backend) {
             );
             println!("  (naive: one u16 per state × event pair)");
         }
-        Backend::Logic => {
+        Backend::Logic | Backend::Match => {
             println!(
                 "  {:<24} {:>7} {:>7} {:>7} {:>9}",
                 "supervisor", "states", "events", "cubes", "literals"

@@ -10,6 +10,7 @@ mod gen;
 mod info;
 mod progress;
 mod synth;
+mod wiring;
 
 use clap::{Parser, Subcommand};
 use codegen::formats::{self, Component, Kind};
@@ -73,6 +74,12 @@ enum Command {
     /// Rust source of a PLC project (what the build script writes), or
     /// its sizes with `--stats`.
     Gen(gen::GenArgs),
+    /// The board wiring of a PLC project (its `[board]` section) as a
+    /// Markdown table: signal, direction, pin, pull, active level, notes.
+    Wiring {
+        /// The project file (`*.plc.toml`).
+        project: PathBuf,
+    },
     /// Graphviz text of an automaton on stdout.
     Dot {
         /// Model file.
@@ -107,6 +114,7 @@ pub fn main() -> ExitCode {
         } => convert::convert(&input, &output, component.as_deref(), json),
         Command::Gen(args) => gen::run(&args, json),
         Command::Dot { file, component } => convert::dot(&file, component.as_deref(), json),
+        Command::Wiring { project } => wiring::run(&project, json),
     };
     match result {
         Ok(Outcome::Holds) => ExitCode::SUCCESS,

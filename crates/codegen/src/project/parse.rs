@@ -12,6 +12,10 @@
 //!
 //! Leniency beyond FORMATS.md §2: every list of names (`rising`, `when`,
 //! `set`, `plants`, …) also accepts a single name (`set = "lamp"`).
+//!
+//! `[board]` (not in FORMATS.md §2 yet; see [`super::validate`], "Board")
+//! maps each signal to a pin given as a table (`{ pin = "PA0", pull =
+//! "up", active_low = true }`) or as a bare pin name (`"PA0"`).
 
 use crate::error::{Error, Location, Result};
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
@@ -115,6 +119,8 @@ pub(crate) struct RawProject {
     pub events: Entries<RawEvent>,
     #[serde(default)]
     pub supervisor: Vec<Spanned<RawSupervisor>>,
+    #[serde(default)]
+    pub board: Option<Spanned<RawBoard>>,
 }
 
 /// `[plc]`.
@@ -224,8 +230,69 @@ pub(crate) struct RawSynthesize {
     pub minimize: bool,
 }
 
+/// `[board]`: the chip and the pin of each signal.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawBoard {
+    #[serde(default)]
+    pub chip: Option<Name>,
+    #[serde(default)]
+    pub inputs: Entries<RawPin<RawInputPin>>,
+    #[serde(default)]
+    pub outputs: Entries<RawPin<RawOutputPin>>,
+}
+
+/// A pin mapping: a bare pin name (`part = "PA1"`, every option at its
+/// default) or a table of options.
+#[derive(Debug)]
+pub(crate) enum RawPin<T> {
+    /// `signal = "PA1"`: its span is the span of the whole value.
+    Bare(String),
+    /// `signal = { pin = "PA1", … }`.
+    Table(T),
+}
+
+/// `{ pin, pull, active_low }` of `[board.inputs]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawInputPin {
+    pub pin: Name,
+    #[serde(default)]
+    pub pull: Option<Name>,
+    #[serde(default)]
+    pub active_low: bool,
+}
+
+/// `{ pin, active_low }` of `[board.outputs]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawOutputPin {
+    pub pin: Name,
+    #[serde(default)]
+    pub active_low: bool,
+}
+
+impl<'de, T: Deserialize<'de>> Deserialize<'de> for RawPin<T> {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct PinVisitor<T>(PhantomData<T>);
+        impl<'de, T: Deserialize<'de>> Visitor<'de> for PinVisitor<T> {
+            type Value = RawPin<T>;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a pin name such as \"PA0\" or a table such as `{ pin = \"PA0\", active_low = true }`")
+            }
+            fn visit_str<E: de::Error>(self, s: &str) -> Result<RawPin<T>, E> {
+                Ok(RawPin::Bare(s.to_owned()))
+            }
+            fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<RawPin<T>, A::Error> {
+                T::deserialize(de::value::MapAccessDeserializer::new(map)).map(RawPin::Table)
+            }
+        }
+        deserializer.deserialize_any(PinVisitor(PhantomData))
+    }
+}
+
 /// What serde calls our structs, and what a user should read instead.
-const STRUCT_NAMES: [(&str, &str); 8] = [
+const STRUCT_NAMES: [(&str, &str); 11] = [
     ("struct RawProject", "a project file"),
     ("struct RawPlc", "the `[plc]` table"),
     (
@@ -248,6 +315,15 @@ const STRUCT_NAMES: [(&str, &str); 8] = [
     (
         "struct RawSynthesize",
         "a table such as `{ plants = [...], specs = [...] }`",
+    ),
+    ("struct RawBoard", "the `[board]` table"),
+    (
+        "struct RawInputPin",
+        "an input pin such as `{ pin = \"PA0\", pull = \"up\", active_low = true }`",
+    ),
+    (
+        "struct RawOutputPin",
+        "an output pin such as `{ pin = \"PB0\", active_low = false }`",
     ),
 ];
 

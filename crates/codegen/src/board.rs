@@ -1,0 +1,358 @@
+//! A project's `[board]` section as generated Rust for the board firmware
+//! ([`board_module`]) and as a wiring table for whoever wires the cabinet
+//! ([`wiring_table`], `codegen wiring`).
+//!
+//! The generated module is plain data (no HAL types), so the firmware
+//! decides how to configure pins and the data stays testable on a PC:
+//!
+//! - `CHIP`: the chip the pins belong to, as probe-rs names it;
+//! - `Pin` and `Pull`: a GPIO pin and how a signal maps onto its level;
+//! - `INPUT_PINS` / `OUTPUT_PINS`: the pin of each signal by index
+//!   (`None`: an input reads 0, an output drives nothing);
+//! - `EDGE_LATCHED`: the inputs whose changes between two samples an
+//!   interrupt on both edges counts (lost-edge detection), see
+//!   [`EdgeLatch`].
+
+use crate::project::{EdgeLatch, InputPin, OutputPin, PinId, Project, Pull};
+use std::fmt::Write;
+
+/// One line of text safe inside a doc comment or a Markdown cell.
+fn doc_text(text: &str) -> String {
+    text.replace(['\n', '\r'], " ").replace('`', "'")
+}
+
+fn pull_variant(pull: Pull) -> &'static str {
+    match pull {
+        Pull::None => "Pull::None",
+        Pull::Up => "Pull::Up",
+        Pull::Down => "Pull::Down",
+    }
+}
+
+/// `Some(Pin { … })` for the generated tables.
+fn pin_literal(pin: PinId, pull: Pull, active_low: bool) -> String {
+    format!(
+        "Some(Pin {{ port: b'{}', pin: {}, pull: {}, active_low: {active_low} }})",
+        pin.port,
+        pin.number,
+        pull_variant(pull)
+    )
+}
+
+fn pull_words(pull: Pull) -> &'static str {
+    match pull {
+        Pull::None => "no pull",
+        Pull::Up => "pull-up",
+        Pull::Down => "pull-down",
+    }
+}
+
+fn level_words(active_low: bool) -> &'static str {
+    if active_low {
+        "active low"
+    } else {
+        "active high"
+    }
+}
+
+/// Why an input is (not) edge-latched, in words.
+fn latch_words(project: &Project, pin: &InputPin) -> String {
+    match pin.edge_latch {
+        EdgeLatch::Latched => format!("edge-latched on EXTI{}", pin.pin.number),
+        EdgeLatch::Debounced => "not edge-latched: debounced".to_owned(),
+        EdgeLatch::LineTaken(owner) => format!(
+            "not edge-latched: EXTI{} belongs to `{}`",
+            pin.pin.number,
+            doc_text(&project.inputs[owner].name)
+        ),
+    }
+}
+
+/// The Rust source of `pub mod board { … }` for `project`, or an empty
+/// string when it has no `[board]` section. Names and the chip appear only
+/// in doc comments (sanitised) and escaped string literals. The text is
+/// laid out by [`crate::emit::generate`] with the rest of the program; it
+/// refers to the program's `input::COUNT` and `output::COUNT` as
+/// `super::…`.
+pub fn board_module(project: &Project) -> String {
+    let Some(board) = &project.board else {
+        return String::new();
+    };
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "/// Board wiring of `{}` (the project's `[board]` section): which pin of\n/// the {} carries each signal. Plain data; the board firmware\n/// configures the pins from it.\npub mod board {{",
+        doc_text(&project.name),
+        doc_text(&board.chip)
+    );
+    let _ = writeln!(
+        out,
+        "/// The chip the pins belong to, as probe-rs names it.\npub const CHIP: &str = {:?};",
+        board.chip
+    );
+    out.push_str(
+        "/// Internal bias resistor of an input pin.\n\
+         #[derive(Debug, Clone, Copy, PartialEq, Eq)]\n\
+         pub enum Pull {\n\
+         /// Floating: the wiring sets the level.\nNone,\n\
+         /// Pulled up to VDD.\nUp,\n\
+         /// Pulled down to ground.\nDown,\n\
+         }\n\
+         /// A GPIO pin and how a signal maps onto its level.\n\
+         #[derive(Debug, Clone, Copy, PartialEq, Eq)]\n\
+         pub struct Pin {\n\
+         /// Port letter as ASCII, `b'A'`..=`b'E'` or `b'H'`.\npub port: u8,\n\
+         /// Pin number in the port, 0-15; also its EXTI line.\npub pin: u8,\n\
+         /// Internal pull resistor (`Pull::None` for outputs, which are push-pull).\npub pull: Pull,\n\
+         /// The signal is 1 while the pin is low.\npub active_low: bool,\n\
+         }\n",
+    );
+
+    // Inputs.
+    let mut doc = String::new();
+    let mut items = Vec::new();
+    for (i, (input, pin)) in project.inputs.iter().zip(&board.inputs).enumerate() {
+        let name = doc_text(&input.name);
+        match pin {
+            Some(p) => {
+                let _ = writeln!(
+                    doc,
+                    "/// - {i} `{name}`: {}, {}, {}",
+                    p.pin,
+                    pull_words(p.pull),
+                    level_words(p.active_low)
+                );
+                items.push(pin_literal(p.pin, p.pull, p.active_low));
+            }
+            None => {
+                let _ = writeln!(doc, "/// - {i} `{name}`: not wired, reads 0");
+                items.push("None".to_owned());
+            }
+        }
+    }
+    let _ = writeln!(
+        out,
+        "/// Pin of each input, by input index (`None`: not wired, the firmware\n/// reads 0):\n{doc}pub const INPUT_PINS: [Option<Pin>; super::input::COUNT] = [{}];",
+        items.join(", ")
+    );
+
+    // Outputs.
+    let mut doc = String::new();
+    let mut items = Vec::new();
+    for (o, (output, pin)) in project.outputs.iter().zip(&board.outputs).enumerate() {
+        let name = doc_text(&output.name);
+        match pin {
+            Some(OutputPin {
+                pin, active_low, ..
+            }) => {
+                let _ = writeln!(
+                    doc,
+                    "/// - {o} `{name}`: {pin}, push-pull, {}",
+                    level_words(*active_low)
+                );
+                items.push(pin_literal(*pin, Pull::None, *active_low));
+            }
+            None => {
+                let _ = writeln!(doc, "/// - {o} `{name}`: not driven");
+                items.push("None".to_owned());
+            }
+        }
+    }
+    let _ = writeln!(
+        out,
+        "/// Pin of each output, by output index (`None`: computed, not driven):\n{doc}pub const OUTPUT_PINS: [Option<Pin>; super::output::COUNT] = [{}];",
+        items.join(", ")
+    );
+
+    // Edge latching.
+    let mut doc = String::new();
+    let mut items = Vec::new();
+    for (i, (input, pin)) in project.inputs.iter().zip(&board.inputs).enumerate() {
+        let latched = pin
+            .as_ref()
+            .is_some_and(|p| p.edge_latch == EdgeLatch::Latched);
+        if let Some(p) = pin {
+            let _ = writeln!(
+                doc,
+                "/// - {i} `{}`: {}",
+                doc_text(&input.name),
+                latch_words(project, p)
+            );
+        }
+        items.push(latched.to_string());
+    }
+    let _ = writeln!(
+        out,
+        "/// Inputs whose changes an interrupt on both edges of EXTI line `pin`\n/// counts between two samples, by input index; more than one change is a\n/// lost edge. One input per line; debounced inputs are not latched:\n{doc}pub const EDGE_LATCHED: [bool; super::input::COUNT] = [{}];",
+        items.join(", ")
+    );
+    out.push_str("}\n");
+    out
+}
+
+/// Signal direction in the wiring table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Direction {
+    /// Read by the PLC.
+    Input,
+    /// Driven by the PLC.
+    Output,
+}
+
+/// One row of the wiring table.
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+pub struct WiringRow {
+    /// Signal name.
+    pub signal: String,
+    /// Input or output.
+    pub direction: Direction,
+    /// Pin (`PA0`), `None` when not wired.
+    pub pin: Option<String>,
+    /// Internal pull (`up`, `down`, `none`; outputs: `none`).
+    pub pull: &'static str,
+    /// Pin level while the signal is 1: `high` or `low`.
+    pub active_level: &'static str,
+    /// Whether lost edges of the input are detected.
+    pub edge_latched: bool,
+    /// What else to know (Nucleo header, edge latching, not wired).
+    pub note: String,
+}
+
+/// Where a pin is on a Nucleo-F411RE: its Arduino header name, the user
+/// button or LED (UM1724); `None` for pins only on the morpho headers.
+fn nucleo_place(pin: PinId) -> Option<&'static str> {
+    Some(match (pin.port, pin.number) {
+        ('A', 0) => "Arduino A0",
+        ('A', 1) => "Arduino A1",
+        ('A', 4) => "Arduino A2",
+        ('B', 0) => "Arduino A3",
+        ('C', 1) => "Arduino A4",
+        ('C', 0) => "Arduino A5",
+        ('A', 3) => "Arduino D0 (ST-LINK VCP RX by default)",
+        ('A', 2) => "Arduino D1 (ST-LINK VCP TX by default)",
+        ('A', 10) => "Arduino D2",
+        ('B', 3) => "Arduino D3",
+        ('B', 5) => "Arduino D4",
+        ('B', 4) => "Arduino D5",
+        ('B', 10) => "Arduino D6",
+        ('A', 8) => "Arduino D7",
+        ('A', 9) => "Arduino D8",
+        ('C', 7) => "Arduino D9",
+        ('B', 6) => "Arduino D10",
+        ('A', 7) => "Arduino D11",
+        ('A', 6) => "Arduino D12",
+        ('A', 5) => "Arduino D13, user LED LD2",
+        ('B', 9) => "Arduino D14",
+        ('B', 8) => "Arduino D15",
+        ('C', 13) => "user button B1 (low while pressed)",
+        _ => return None,
+    })
+}
+
+/// The rows of the wiring table, inputs then outputs in declaration
+/// order; `None` when the project has no `[board]` section.
+pub fn wiring_rows(project: &Project) -> Option<Vec<WiringRow>> {
+    let board = project.board.as_ref()?;
+    let nucleo = board.chip.to_ascii_uppercase().starts_with("STM32F411R");
+    let place = |pin: PinId| {
+        if nucleo {
+            nucleo_place(pin).map(|p| format!("Nucleo: {p}"))
+        } else {
+            None
+        }
+    };
+    let mut rows = Vec::new();
+    for (input, pin) in project.inputs.iter().zip(&board.inputs) {
+        rows.push(match pin {
+            Some(p) => WiringRow {
+                signal: input.name.clone(),
+                direction: Direction::Input,
+                pin: Some(p.pin.to_string()),
+                pull: p.pull.name(),
+                active_level: if p.active_low { "low" } else { "high" },
+                edge_latched: p.edge_latch == EdgeLatch::Latched,
+                note: place(p.pin)
+                    .into_iter()
+                    .chain([latch_words(project, p)])
+                    .collect::<Vec<_>>()
+                    .join("; "),
+            },
+            None => WiringRow {
+                signal: input.name.clone(),
+                direction: Direction::Input,
+                pin: None,
+                pull: Pull::None.name(),
+                active_level: "high",
+                edge_latched: false,
+                note: "not wired: reads 0".to_owned(),
+            },
+        });
+    }
+    for (output, pin) in project.outputs.iter().zip(&board.outputs) {
+        rows.push(WiringRow {
+            signal: output.name.clone(),
+            direction: Direction::Output,
+            pin: pin.as_ref().map(|p| p.pin.to_string()),
+            pull: Pull::None.name(),
+            active_level: if pin.as_ref().is_some_and(|p| p.active_low) {
+                "low"
+            } else {
+                "high"
+            },
+            edge_latched: false,
+            note: match pin {
+                Some(p) => {
+                    let pin_level = if output.safe != p.active_low {
+                        "high"
+                    } else {
+                        "low"
+                    };
+                    place(p.pin)
+                        .into_iter()
+                        .chain([format!(
+                            "fault mode: {} (pin {pin_level})",
+                            u8::from(output.safe)
+                        )])
+                        .collect::<Vec<_>>()
+                        .join("; ")
+                }
+                None => "not driven".to_owned(),
+            },
+        });
+    }
+    Some(rows)
+}
+
+/// The wiring as a Markdown table (signal, direction, pin, pull, active
+/// level, notes), inputs then outputs in declaration order; an empty
+/// string when the project has no `[board]` section. "Active level" is
+/// the pin level while the signal is 1.
+pub fn wiring_table(project: &Project) -> String {
+    let Some(rows) = wiring_rows(project) else {
+        return String::new();
+    };
+    let mut out = String::from(
+        "| signal | direction | pin | pull | active level | notes |\n|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        let direction = match r.direction {
+            Direction::Input => "input",
+            Direction::Output => "output",
+        };
+        let pull = if r.direction == Direction::Output {
+            "-"
+        } else {
+            r.pull
+        };
+        let _ = writeln!(
+            out,
+            "| `{}` | {direction} | {} | {pull} | {} | {} |",
+            doc_text(&r.signal).replace('|', "\\|"),
+            r.pin.as_deref().unwrap_or("-"),
+            if r.pin.is_some() { r.active_level } else { "-" },
+            doc_text(&r.note).replace('|', "\\|"),
+        );
+    }
+    out
+}

@@ -1,0 +1,30 @@
+//! `codegen wiring`: which pin carries each signal of a project's
+//! `[board]` section, as a Markdown table (or JSON rows).
+
+use super::{print_json, Outcome};
+use codegen::board::{wiring_rows, wiring_table};
+use codegen::{project, Error};
+use std::path::Path;
+
+pub fn run(path: &Path, json: bool) -> Result<Outcome, Error> {
+    let project = project::load(path)?;
+    for w in &project.warnings {
+        eprintln!("warning: {}:{}: {}", path.display(), w.line, w.message);
+    }
+    let (Some(board), Some(rows)) = (&project.board, wiring_rows(&project)) else {
+        return Err(Error::Incompatible(format!(
+            "{}: the project has no [board] section (see docs/board.md)",
+            path.display()
+        )));
+    };
+    if json {
+        print_json(&serde_json::json!({
+            "project": project.name,
+            "chip": board.chip,
+            "signals": rows,
+        }));
+    } else {
+        print!("{}", wiring_table(&project));
+    }
+    Ok(Outcome::Holds)
+}

@@ -1,0 +1,95 @@
+//! Generates the PLC program and picks the memory layout.
+//!
+//! - `PLC_PROJECT`: the project file, relative to the workspace root
+//!   (default `models/press.plc.toml`).
+//! - `PLC_BACKEND`: `table` (default), `logic`, or `match` (the baseline).
+//! - `PLC_SCENARIO` (feature `qemu`): the recorded scenario to replay
+//!   (`host-sim record`); `cargo xtask qemu` sets it.
+//!
+//! The program goes to `OUT_DIR/program.rs`. The memory layout (the
+//! board's or QEMU's, from `layout/`) is copied to `OUT_DIR/plc-layout.x`,
+//! which the workspace root's `memory.x` includes.
+//!
+//! Feature `board` (the default): the board binary links defmt's linker
+//! script (`-Tdefmt.x`, for that binary only), and for a bare-metal target
+//! the project must have a `[board]` section (its pin map).
+
+use std::path::{Path, PathBuf};
+
+fn env(name: &str) -> Option<String> {
+    println!("cargo:rerun-if-env-changed={name}");
+    std::env::var(name).ok().filter(|v| !v.is_empty())
+}
+
+fn copy(from: &Path, to: &Path) {
+    println!("cargo:rerun-if-changed={}", from.display());
+    if let Err(e) = std::fs::copy(from, to) {
+        eprintln!("error: copying {} to {}: {e}", from.display(), to.display());
+        std::process::exit(1);
+    }
+}
+
+fn main() {
+    let manifest = PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("set by cargo"));
+    let root = manifest.join("../..");
+    let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("set by cargo"));
+    let qemu = std::env::var_os("CARGO_FEATURE_QEMU").is_some();
+    let board = std::env::var_os("CARGO_FEATURE_BOARD").is_some();
+    // Linker scripts only mean something on the bare-metal target; on a
+    // host the binaries are stubs (`cargo clippy --workspace`).
+    let bare_metal = std::env::var("CARGO_CFG_TARGET_OS").is_ok_and(|os| os == "none");
+
+    let project = env("PLC_PROJECT").unwrap_or_else(|| "models/press.plc.toml".to_owned());
+    let backend = match env("PLC_BACKEND").as_deref().unwrap_or("table").parse() {
+        Ok(b) => b,
+        Err(e) => {
+            eprintln!("error: PLC_BACKEND: {e}");
+            std::process::exit(1);
+        }
+    };
+    if board && bare_metal {
+        require_board(&root.join(&project), &project);
+    }
+    codegen::build::Build::new(root.join(&project))
+        .backend(backend)
+        .file_name("program")
+        .generate_or_exit();
+
+    // The root memory.x (found first by the linker) includes plc-layout.x.
+    let layout = manifest.join(if qemu {
+        "layout/mps2-an386.x"
+    } else {
+        "layout/stm32f411re.x"
+    });
+    copy(&layout, &out.join("plc-layout.x"));
+    println!("cargo:rerun-if-changed={}", root.join("memory.x").display());
+    println!("cargo:rustc-link-search={}", out.display());
+    if bare_metal {
+        println!("cargo:rustc-link-arg-bins=-Tlink.x");
+        if board {
+            println!("cargo:rustc-link-arg-bin=firmware=-Tdefmt.x");
+        }
+    }
+
+    if qemu {
+        let Some(scenario) = env("PLC_SCENARIO") else {
+            eprintln!("error: the qemu harness needs PLC_SCENARIO (a file from `host-sim record`); `cargo xtask qemu` sets it");
+            std::process::exit(1);
+        };
+        copy(&root.join(scenario), &out.join("scenario.bin"));
+    }
+}
+
+/// Exits with a readable error when the project at `path` (named `name`
+/// on the command line) has no `[board]` section: the board firmware
+/// needs its pin map (validation errors are left to the generation).
+fn require_board(path: &Path, name: &str) {
+    if let Ok(project) = codegen::project::load(path) {
+        if project.board.is_none() {
+            eprintln!(
+                "error: {name} has no [board] section: the board firmware needs the pin of each signal (see docs/board.md); the QEMU harness builds with --no-default-features --features qemu"
+            );
+            std::process::exit(1);
+        }
+    }
+}

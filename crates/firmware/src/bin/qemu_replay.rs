@@ -1,0 +1,183 @@
+//! QEMU replay harness (mps2-an386, Cortex-M4): replays a scenario recorded
+//! by host-sim through the same executor and generated program the board
+//! runs, compares every trace record, and counts instructions per scan.
+//!
+//! Run under `qemu-system-arm -M mps2-an386 -icount shift=9
+//! -semihosting-config enable=on,target=native -nographic -kernel …`
+//! (`cargo xtask qemu` does it). With `-icount shift=9` SysTick (25 MHz)
+//! advances exactly 12.8 ticks per executed instruction, so
+//! `instructions = ticks × 5 / 64`. The last line printed is
+//!
+//! `scans=N mismatches=M instr_median=X instr_p99=Y instr_max=Z flash=F ram=R`
+//!
+//! where `flash` is the image without the embedded scenario and `ram` the
+//! static RAM (`.data` + `.bss`). The exit code is 0 only when M = 0 and
+//! the budgets given at build time (`PLC_BUDGET_FLASH`, `PLC_BUDGET_RAM`,
+//! `PLC_BUDGET_INSTR_MEDIAN`, `PLC_BUDGET_INSTR_MAX`) hold. A HardFault
+//! exits with failure.
+
+#![no_std]
+#![no_main]
+
+use cortex_m::peripheral::syst::SystClkSource;
+use cortex_m::peripheral::SYST;
+use cortex_m_rt::{entry, exception, ExceptionFrame};
+use cortex_m_semihosting::{debug, hprintln};
+use executor::replay::{unpack, RecordedScan, ScenarioHeader};
+use executor::{Controller, Program};
+use firmware::program;
+use panic_semihosting as _;
+
+/// The scenario, recorded by `host-sim record`.
+static SCENARIO: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/scenario.bin"));
+
+/// Most scans a run measures (instruction counts are kept to sort them).
+const MAX_SCANS: usize = 8192;
+
+/// Instructions for `ticks` SysTick ticks under `-icount shift=9`: one
+/// instruction every 512 ns, SysTick at 25 MHz, so 12.8 ticks each
+/// (× 5 / 64), rounded to nearest.
+fn instructions(ticks: u32) -> u32 {
+    (ticks * 5 + 32) / 64
+}
+
+/// A budget given at build time, `u32::MAX` when absent.
+fn budget(value: Option<&str>) -> u32 {
+    value.and_then(|v| v.parse().ok()).unwrap_or(u32::MAX)
+}
+
+extern "C" {
+    static __sdata: u8;
+    static __edata: u8;
+    static __ebss: u8;
+    static __erodata: u8;
+    static __stext: u8;
+    static __vector_table: u8;
+}
+
+/// Flash used (vector table to the end of `.rodata`, plus `.data`'s load
+/// image) and static RAM (`.data` + `.bss`), from the linker's symbols.
+fn image_sizes() -> (u32, u32) {
+    let addr = |p: *const u8| p as u32;
+    let start = addr(&raw const __vector_table);
+    let rodata_end = addr(&raw const __erodata);
+    let data = addr(&raw const __edata) - addr(&raw const __sdata);
+    let ram = addr(&raw const __ebss) - addr(&raw const __sdata);
+    let _ = addr(&raw const __stext);
+    (rodata_end - start + data, ram)
+}
+
+/// Ticks elapsed between two readings of the 24-bit down-counter.
+fn elapsed(before: u32, after: u32) -> u32 {
+    before.wrapping_sub(after) & 0x00ff_ffff
+}
+
+fn fail(message: &str) -> ! {
+    hprintln!("error: {}", message);
+    debug::exit(debug::EXIT_FAILURE);
+    loop {}
+}
+
+#[entry]
+fn main() -> ! {
+    let Some(mut core) = cortex_m::Peripherals::take() else {
+        fail("core peripherals taken twice");
+    };
+    core.SYST.set_clock_source(SystClkSource::Core);
+    core.SYST.set_reload(0x00ff_ffff);
+    core.SYST.clear_current();
+    core.SYST.enable_counter();
+
+    let Ok((header, mut rest)) = postcard::take_from_bytes::<ScenarioHeader>(SCENARIO) else {
+        fail("the scenario has no valid header");
+    };
+    let config = program::PROGRAM.config();
+    if header.config_crc != executor::table::config_crc(&config)
+        || usize::from(header.inputs) != config.inputs.len()
+    {
+        hprintln!(
+            "scenario configuration CRC {:#010x}, program {:#010x}",
+            header.config_crc,
+            executor::table::config_crc(&config)
+        );
+        fail("the scenario was recorded for another project (configuration CRC differs)");
+    }
+    let Ok(mut controller) = Controller::new(&program::PROGRAM, program::Memory::new()) else {
+        fail("generated memory does not fit the program");
+    };
+
+    // The cost of reading the counter twice, subtracted from every sample.
+    let overhead = {
+        let a = SYST::get_current();
+        let b = SYST::get_current();
+        elapsed(a, b)
+    };
+
+    let mut raw = [false; program::input::COUNT];
+    let mut samples = [0u32; MAX_SCANS];
+    let (mut scans, mut mismatches) = (0usize, 0u32);
+    while !rest.is_empty() {
+        let Ok((expected, tail)) = postcard::take_from_bytes::<RecordedScan>(rest) else {
+            fail("a scan record does not decode");
+        };
+        rest = tail;
+        unpack(&expected.inputs, &mut raw);
+
+        let before = SYST::get_current();
+        let record = controller.scan(expected.time_ms, &raw);
+        let after = SYST::get_current();
+
+        if let Some(field) = expected.mismatch(&record) {
+            if mismatches < 10 {
+                hprintln!("mismatch at scan {}: {:?}", record.scan, field);
+            }
+            mismatches += 1;
+        }
+        if scans < MAX_SCANS {
+            samples[scans] = instructions(elapsed(before, after).saturating_sub(overhead));
+        }
+        scans += 1;
+    }
+    if scans as u32 != header.scans {
+        fail("the scenario's scan count does not match its header");
+    }
+
+    let measured = &mut samples[..scans.min(MAX_SCANS)];
+    measured.sort_unstable();
+    let at = |q: usize| {
+        measured
+            .get((measured.len().max(1) - 1) * q / 100)
+            .copied()
+            .unwrap_or(0)
+    };
+    let (median, p99, max) = (at(50), at(99), at(100));
+    let (flash, ram) = image_sizes();
+    let flash = flash - SCENARIO.len() as u32;
+    hprintln!(
+        "scans={} mismatches={} instr_median={} instr_p99={} instr_max={} flash={} ram={}",
+        scans,
+        mismatches,
+        median,
+        p99,
+        max,
+        flash,
+        ram
+    );
+    let within = flash <= budget(option_env!("PLC_BUDGET_FLASH"))
+        && ram <= budget(option_env!("PLC_BUDGET_RAM"))
+        && median <= budget(option_env!("PLC_BUDGET_INSTR_MEDIAN"))
+        && max <= budget(option_env!("PLC_BUDGET_INSTR_MAX"));
+    debug::exit(if mismatches == 0 && within {
+        debug::EXIT_SUCCESS
+    } else {
+        debug::EXIT_FAILURE
+    });
+    loop {}
+}
+
+#[exception]
+unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
+    hprintln!("HardFault at pc={:#010x}", frame.pc());
+    debug::exit(debug::EXIT_FAILURE);
+    loop {}
+}

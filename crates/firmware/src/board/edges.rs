@@ -1,0 +1,157 @@
+//! Edge latching: EXTI interrupts on both edges of every edge-latched
+//! input (`program::board::EDGE_LATCHED`) count its changes; a sample
+//! reads the pins and takes the counts in one critical section, so each
+//! change belongs to exactly one interval between samples.
+//!
+//! A change that is still pending in the EXTI (its interrupt not yet
+//! taken) when a sample starts is counted first, so only a change in the
+//! few bus cycles between that and the pin read can land in the next
+//! interval. While interrupts are masked (a critical section, a defmt log
+//! frame), two edges of one line merge into one pending bit: a lost edge
+//! can then go unreported, never be reported falsely.
+
+use super::pins::Io;
+use core::cell::{Cell, RefCell};
+use cortex_m::peripheral::NVIC;
+use critical_section::{CriticalSection, Mutex};
+use firmware::edges::{ChangeCounts, LineMap};
+use firmware::program::board::{EDGE_LATCHED, INPUT_PINS};
+use firmware::program::input;
+use stm32f4xx_hal::interrupt;
+use stm32f4xx_hal::pac::{Interrupt, EXTI};
+
+/// Changes per input since the last sample.
+pub type Changes = ChangeCounts<{ input::COUNT }>;
+
+/// The EXTI line of each edge-latched input.
+const fn latched_lines() -> [Option<u8>; input::COUNT] {
+    let mut lines = [None; input::COUNT];
+    let mut i = 0;
+    while i < input::COUNT {
+        if let (Some(pin), true) = (INPUT_PINS[i], EDGE_LATCHED[i]) {
+            lines[i] = Some(pin.pin);
+        }
+        i += 1;
+    }
+    lines
+}
+
+/// Which input each EXTI line counts for (fails to build when two
+/// latched inputs share a line).
+const LINES: LineMap = LineMap::new(&latched_lines());
+
+/// Change counts, written by the EXTI handlers, taken by [`sample`].
+static CHANGES: Mutex<Cell<Changes>> = Mutex::new(Cell::new(ChangeCounts::new()));
+
+/// The EXTI peripheral, owned by the handlers once [`start`] ran.
+static EXTI_PERIPHERAL: Mutex<RefCell<Option<EXTI>>> = Mutex::new(RefCell::new(None));
+
+/// The NVIC interrupts of the lines in use.
+fn interrupts(mask: u32) -> impl Iterator<Item = Interrupt> {
+    [
+        (1 << 0, Interrupt::EXTI0),
+        (1 << 1, Interrupt::EXTI1),
+        (1 << 2, Interrupt::EXTI2),
+        (1 << 3, Interrupt::EXTI3),
+        (1 << 4, Interrupt::EXTI4),
+        (0x03e0, Interrupt::EXTI9_5),
+        (0xfc00, Interrupt::EXTI15_10),
+    ]
+    .into_iter()
+    .filter(move |&(lines, _)| mask & lines != 0)
+    .map(|(_, irq)| irq)
+}
+
+/// Hands the EXTI (configured by [`Io::latch_edges`]) to the handlers and
+/// unmasks the interrupts of the lines in use.
+pub fn start(exti: EXTI) {
+    critical_section::with(|cs| {
+        EXTI_PERIPHERAL.borrow_ref_mut(cs).replace(exti);
+    });
+    for irq in interrupts(LINES.mask()) {
+        NVIC::unpend(irq);
+        // SAFETY: the handlers below only touch state behind
+        // `critical_section::Mutex`es, so unmasking them cannot break a
+        // critical section in progress.
+        #[allow(unsafe_code)]
+        unsafe {
+            NVIC::unmask(irq)
+        };
+    }
+}
+
+/// Clears the pending changes of the lines in `mask` and counts them for
+/// their inputs.
+fn service(cs: CriticalSection<'_>, mask: u32) {
+    let exti = EXTI_PERIPHERAL.borrow_ref(cs);
+    let Some(exti) = exti.as_ref() else {
+        return;
+    };
+    let pending = exti.pr().read().bits() & mask & 0xffff;
+    if pending == 0 {
+        return;
+    }
+    exti.pr().write(|w| {
+        for line in 0..16 {
+            if pending & (1 << line) != 0 {
+                w.pr(line).clear();
+            }
+        }
+        w
+    });
+    let cell = CHANGES.borrow(cs);
+    let mut counts = cell.get();
+    for i in LINES.inputs_of(pending) {
+        counts.record(i);
+    }
+    cell.set(counts);
+}
+
+/// The raw input image and the changes since the previous sample, taken
+/// together.
+pub fn sample(io: &Io) -> ([bool; input::COUNT], Changes) {
+    critical_section::with(|cs| {
+        service(cs, LINES.mask());
+        let raw = io.read();
+        (raw, CHANGES.borrow(cs).take())
+    })
+}
+
+fn on_lines(mask: u32) {
+    critical_section::with(|cs| service(cs, mask));
+}
+
+#[interrupt]
+fn EXTI0() {
+    on_lines(1 << 0);
+}
+
+#[interrupt]
+fn EXTI1() {
+    on_lines(1 << 1);
+}
+
+#[interrupt]
+fn EXTI2() {
+    on_lines(1 << 2);
+}
+
+#[interrupt]
+fn EXTI3() {
+    on_lines(1 << 3);
+}
+
+#[interrupt]
+fn EXTI4() {
+    on_lines(1 << 4);
+}
+
+#[interrupt]
+fn EXTI9_5() {
+    on_lines(0x03e0);
+}
+
+#[interrupt]
+fn EXTI15_10() {
+    on_lines(0xfc00);
+}

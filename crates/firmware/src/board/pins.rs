@@ -1,0 +1,241 @@
+//! GPIO: the pins of the generated pin map (`program::board`), configured
+//! once and kept as type-erased HAL pins indexed like the input and output
+//! images.
+//!
+//! Every pin of every port goes through [`Io::claim`]; which input or
+//! output (if any) it carries is looked up at compile time (`Slot`), so an
+//! unused pin costs nothing and stays in its reset state. The debug pins
+//! PA13/PA14 (SWD) and PH0 (HSE input) are never offered: validation
+//! refuses them too, and a const assertion below makes a hand-edited pin
+//! map fail to build.
+
+use firmware::levels;
+use firmware::program::board::{self, INPUT_PINS, OUTPUT_PINS};
+use firmware::program::{input, output};
+use stm32f4xx_hal::gpio::{
+    self, gpioa, gpiob, gpioc, gpiod, gpioe, gpioh, Edge, ErasedPin, ExtiPin, Input, Output,
+    PinMode, PinState, PushPull,
+};
+use stm32f4xx_hal::pac::EXTI;
+use stm32f4xx_hal::syscfg::SysCfg;
+
+/// The index of the signal wired to port `port`, pin `n` in `pins`.
+const fn find(pins: &[Option<board::Pin>], port: char, n: u8) -> Option<usize> {
+    let mut i = 0;
+    while i < pins.len() {
+        if let Some(p) = pins[i] {
+            if p.port == port as u8 && p.pin == n {
+                return Some(i);
+            }
+        }
+        i += 1;
+    }
+    None
+}
+
+/// Whether the pin map uses port `port`, pin `n`.
+const fn used(port: char, n: u8) -> bool {
+    find(&INPUT_PINS, port, n).is_some() || find(&OUTPUT_PINS, port, n).is_some()
+}
+
+const _: () = assert!(
+    !used('A', 13) && !used('A', 14),
+    "PA13/PA14 carry SWD (flashing and the defmt log): the pin map may not use them"
+);
+const _: () = assert!(
+    !used('H', 0),
+    "PH0 is the HSE clock input: the pin map may not use it"
+);
+
+/// Whether some pin carries two signals.
+const fn a_pin_twice() -> bool {
+    let mut port = b'A';
+    while port <= b'H' {
+        let mut n = 0;
+        while n < 16 {
+            let mut uses = 0;
+            let mut i = 0;
+            while i < INPUT_PINS.len() {
+                if let Some(p) = INPUT_PINS[i] {
+                    if p.port == port && p.pin == n {
+                        uses += 1;
+                    }
+                }
+                i += 1;
+            }
+            let mut o = 0;
+            while o < OUTPUT_PINS.len() {
+                if let Some(p) = OUTPUT_PINS[o] {
+                    if p.port == port && p.pin == n {
+                        uses += 1;
+                    }
+                }
+                o += 1;
+            }
+            if uses > 1 {
+                return true;
+            }
+            n += 1;
+        }
+        port += 1;
+    }
+    false
+}
+
+const _: () = assert!(!a_pin_twice(), "a pin carries two signals in the pin map");
+
+/// What pin (P, N) carries, evaluated at compile time per pin.
+struct Slot<const P: char, const N: u8>;
+
+impl<const P: char, const N: u8> Slot<P, N> {
+    const INPUT: Option<usize> = find(&INPUT_PINS, P, N);
+    const OUTPUT: Option<usize> = find(&OUTPUT_PINS, P, N);
+}
+
+fn hal_pull(pull: board::Pull) -> gpio::Pull {
+    match pull {
+        board::Pull::None => gpio::Pull::None,
+        board::Pull::Up => gpio::Pull::Up,
+        board::Pull::Down => gpio::Pull::Down,
+    }
+}
+
+fn pin_state(high: bool) -> PinState {
+    if high {
+        PinState::High
+    } else {
+        PinState::Low
+    }
+}
+
+/// The GPIO ports, split by the HAL (which enables their clocks).
+pub struct Ports {
+    /// Port A.
+    pub a: gpioa::Parts,
+    /// Port B.
+    pub b: gpiob::Parts,
+    /// Port C.
+    pub c: gpioc::Parts,
+    /// Port D.
+    pub d: gpiod::Parts,
+    /// Port E.
+    pub e: gpioe::Parts,
+    /// Port H.
+    pub h: gpioh::Parts,
+}
+
+/// Offers every listed pin of a port to [`Io::claim`].
+macro_rules! claim_pins {
+    ($io:ident, $port:expr, [$($pin:ident),* $(,)?]) => {
+        $( $io.claim($port.$pin); )*
+    };
+}
+
+/// The configured pins: one slot per input and per output.
+pub struct Io {
+    inputs: [Option<ErasedPin<Input>>; input::COUNT],
+    outputs: [Option<ErasedPin<Output<PushPull>>>; output::COUNT],
+}
+
+impl Io {
+    /// Configures the pins of the pin map: inputs with their pull
+    /// resistor, outputs push-pull at the level of signal 0 (the output
+    /// image before the first scan).
+    pub fn new(ports: Ports) -> Io {
+        let mut io = Io {
+            inputs: [const { None }; input::COUNT],
+            outputs: [const { None }; output::COUNT],
+        };
+        let Ports { a, b, c, d, e, h } = ports;
+        // PA13/PA14 (SWD) are not offered.
+        claim_pins!(
+            io,
+            a,
+            [pa0, pa1, pa2, pa3, pa4, pa5, pa6, pa7, pa8, pa9, pa10, pa11, pa12, pa15]
+        );
+        claim_pins!(
+            io,
+            b,
+            [
+                pb0, pb1, pb2, pb3, pb4, pb5, pb6, pb7, pb8, pb9, pb10, pb11, pb12, pb13, pb14,
+                pb15
+            ]
+        );
+        claim_pins!(
+            io,
+            c,
+            [
+                pc0, pc1, pc2, pc3, pc4, pc5, pc6, pc7, pc8, pc9, pc10, pc11, pc12, pc13, pc14,
+                pc15
+            ]
+        );
+        claim_pins!(
+            io,
+            d,
+            [
+                pd0, pd1, pd2, pd3, pd4, pd5, pd6, pd7, pd8, pd9, pd10, pd11, pd12, pd13, pd14,
+                pd15
+            ]
+        );
+        claim_pins!(
+            io,
+            e,
+            [
+                pe0, pe1, pe2, pe3, pe4, pe5, pe6, pe7, pe8, pe9, pe10, pe11, pe12, pe13, pe14,
+                pe15
+            ]
+        );
+        // PH0 (HSE input) is not offered.
+        claim_pins!(io, h, [ph1]);
+        io
+    }
+
+    /// Configures `pin` for the signal it carries, if any.
+    fn claim<const P: char, const N: u8, MODE: PinMode>(&mut self, pin: gpio::Pin<P, N, MODE>) {
+        if let Some(i) = Slot::<P, N>::INPUT {
+            if let Some(spec) = INPUT_PINS[i] {
+                self.inputs[i] = Some(Input::new(pin, hal_pull(spec.pull)).erase());
+            }
+        } else if let Some(o) = Slot::<P, N>::OUTPUT {
+            if let Some(spec) = OUTPUT_PINS[o] {
+                let idle = pin_state(levels::pin_high(false, spec.active_low));
+                self.outputs[o] = Some(Output::<PushPull>::new(pin, idle).erase());
+            }
+        }
+    }
+
+    /// Makes every edge-latched input (`board::EDGE_LATCHED`) interrupt on
+    /// both edges of its EXTI line; the caller unmasks the lines in the
+    /// NVIC.
+    pub fn latch_edges(&mut self, syscfg: &mut SysCfg, exti: &mut EXTI) {
+        for (pin, latched) in self.inputs.iter_mut().zip(board::EDGE_LATCHED) {
+            if let (Some(pin), true) = (pin, latched) {
+                pin.make_interrupt_source(syscfg);
+                pin.trigger_on_edge(exti, Edge::RisingFalling);
+                pin.enable_interrupt(exti);
+                pin.clear_interrupt_pending_bit();
+            }
+        }
+    }
+
+    /// The raw input image: each wired input's signal (active-low pins
+    /// inverted), 0 for inputs without a pin.
+    pub fn read(&self) -> [bool; input::COUNT] {
+        let mut raw = [false; input::COUNT];
+        for ((value, pin), spec) in raw.iter_mut().zip(&self.inputs).zip(&INPUT_PINS) {
+            if let (Some(pin), Some(spec)) = (pin, spec) {
+                *value = levels::signal(pin.is_high(), spec.active_low);
+            }
+        }
+        raw
+    }
+
+    /// Drives every wired output to the level of its signal in `image`.
+    pub fn write(&mut self, image: &[bool]) {
+        for ((pin, spec), &value) in self.outputs.iter_mut().zip(&OUTPUT_PINS).zip(image) {
+            if let (Some(pin), Some(spec)) = (pin, spec) {
+                pin.set_state(pin_state(levels::pin_high(value, spec.active_low)));
+            }
+        }
+    }
+}

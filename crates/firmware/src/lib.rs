@@ -1,0 +1,30 @@
+//! The PLC on a Cortex-M: the generated program of the project chosen at
+//! build time (`PLC_PROJECT`, `PLC_BACKEND`; see `build.rs`), shared by
+//! the board firmware (`src/main.rs`) and the QEMU replay harness, and
+//! the board's timing and edge bookkeeping as plain logic that the host
+//! tests (`cargo test -p firmware --lib`):
+//!
+//! - [`pacing`]: the fixed-rate scan schedule, overruns, the watchdog
+//!   timeout;
+//! - [`edges`]: change counts of edge-latched inputs, lost edges, the EXTI
+//!   line map;
+//! - [`levels`]: active-low pins.
+//!
+//! No control logic lives here or in the binaries: every decision is the
+//! executor's.
+
+#![cfg_attr(not(test), no_std)]
+#![warn(missing_docs)]
+#![forbid(unsafe_code)]
+
+pub mod edges;
+pub mod levels;
+pub mod pacing;
+
+/// The generated program: `PROGRAM`, `Memory`, `CONFIG`, the name
+/// modules (`input`, `output`, `event`, `supervisor`, `states`) and, for a
+/// project with a `[board]` section, the pin map (`board`).
+#[allow(missing_docs, clippy::all)]
+pub mod program {
+    include!(concat!(env!("OUT_DIR"), "/program.rs"));
+}

@@ -1,0 +1,27 @@
+//! Generates every seed project of `models/` with every backend (table, logic
+//! and the `match` baseline) into
+//! `OUT_DIR`, through `codegen::build::Build` exactly as the build script of
+//! a firmware crate would; `generated.rs` includes and runs the results.
+//!
+//! Output names are `<model>_<backend>.rs` (`press_table.rs`,
+//! `press_logic.rs`, `press_match.rs`, …). A project that fails to load or generate fails
+//! the build with its `file:line` message.
+
+use codegen::build::Build;
+use codegen::emit::Backend;
+
+/// The seed projects (`models/<name>.plc.toml`), listed rather than globbed
+/// so that a project added later does not silently join these tests.
+const MODELS: [&str; 5] = ["motivating", "press", "press7", "conveyor", "crane"];
+
+fn main() {
+    for model in MODELS {
+        for backend in Backend::ALL {
+            let suffix = backend.name();
+            Build::new(format!("../models/{model}.plc.toml"))
+                .backend(backend)
+                .file_name(format!("{model}_{suffix}"))
+                .generate_or_exit();
+        }
+    }
+}

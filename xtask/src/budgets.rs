@@ -1,0 +1,151 @@
+//! `budgets.toml`: per model, the flash, static RAM and instructions per
+//! scan CI allows. Start from measured values with a small margin; raising
+//! a budget needs its reason in the commit message.
+
+use crate::qemu::Figures;
+use crate::{root, Result};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// The whole file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Budgets {
+    /// By model name.
+    pub models: BTreeMap<String, ModelBudget>,
+}
+
+/// One model's limits; an absent limit is not checked.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelBudget {
+    /// The project file, relative to the workspace root.
+    pub project: String,
+    /// Median instructions per scan (QEMU harness, table backend).
+    pub instr_median: Option<u64>,
+    /// Largest instructions per scan (QEMU harness, table backend).
+    pub instr_max: Option<u64>,
+    /// Flash of the QEMU harness without its scenario.
+    pub qemu_flash: Option<u64>,
+    /// Static RAM of the QEMU harness.
+    pub qemu_ram: Option<u64>,
+    /// Flash of the board firmware (`cargo xtask size`).
+    pub board_flash: Option<u64>,
+    /// Static RAM of the board firmware.
+    pub board_ram: Option<u64>,
+}
+
+impl Budgets {
+    /// Reads `budgets.toml` at the workspace root.
+    pub fn load() -> Result<Budgets> {
+        let path = root().join("budgets.toml");
+        let text =
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+    }
+}
+
+fn check(failures: &mut Vec<String>, model: &str, what: &str, got: u64, limit: Option<u64>) {
+    if let Some(limit) = limit {
+        if got > limit {
+            failures.push(format!("{model}: {what} {got} over its budget {limit}"));
+        }
+    }
+}
+
+impl ModelBudget {
+    /// Environment variables the harness checks budgets from.
+    pub const HARNESS_VARS: [&'static str; 4] = [
+        "PLC_BUDGET_FLASH",
+        "PLC_BUDGET_RAM",
+        "PLC_BUDGET_INSTR_MEDIAN",
+        "PLC_BUDGET_INSTR_MAX",
+    ];
+
+    /// A model without limits.
+    pub fn unbounded(project: &str) -> ModelBudget {
+        ModelBudget {
+            project: project.to_owned(),
+            instr_median: None,
+            instr_max: None,
+            qemu_flash: None,
+            qemu_ram: None,
+            board_flash: None,
+            board_ram: None,
+        }
+    }
+
+    /// The harness's budget variables that are set.
+    pub fn harness_env(&self) -> Vec<(&'static str, u64)> {
+        [
+            self.qemu_flash,
+            self.qemu_ram,
+            self.instr_median,
+            self.instr_max,
+        ]
+        .into_iter()
+        .zip(Self::HARNESS_VARS)
+        .filter_map(|(v, k)| v.map(|v| (k, v)))
+        .collect()
+    }
+
+    /// Violations of the QEMU budgets by `f`.
+    pub fn check_qemu(&self, model: &str, f: &Figures) -> Vec<String> {
+        let mut failures = Vec::new();
+        check(
+            &mut failures,
+            model,
+            "instructions per scan (median)",
+            f.median,
+            self.instr_median,
+        );
+        check(
+            &mut failures,
+            model,
+            "instructions per scan (max)",
+            f.max,
+            self.instr_max,
+        );
+        check(
+            &mut failures,
+            model,
+            "harness flash",
+            f.flash,
+            self.qemu_flash,
+        );
+        check(
+            &mut failures,
+            model,
+            "harness static RAM",
+            f.ram,
+            self.qemu_ram,
+        );
+        failures
+    }
+
+    /// Violations of the board budgets.
+    pub fn check_board(&self, model: &str, flash: u64, ram: u64) -> Vec<String> {
+        let mut failures = Vec::new();
+        check(&mut failures, model, "board flash", flash, self.board_flash);
+        check(
+            &mut failures,
+            model,
+            "board static RAM",
+            ram,
+            self.board_ram,
+        );
+        failures
+    }
+
+    /// The QEMU budgets as text.
+    pub fn describe_qemu(&self) -> String {
+        let show = |v: Option<u64>| v.map_or("-".to_owned(), |v| v.to_string());
+        format!(
+            "instr median ≤ {}, max ≤ {}, flash ≤ {}, ram ≤ {}",
+            show(self.instr_median),
+            show(self.instr_max),
+            show(self.qemu_flash),
+            show(self.qemu_ram)
+        )
+    }
+}

@@ -1,0 +1,364 @@
+//! `cargo xtask qemu [PROJECT] [SCENARIO]`: the firmware's replay harness
+//! under QEMU (mps2-an386, Cortex-M4), for every model of `budgets.toml`
+//! or just PROJECT.
+//!
+//! Per model: record a scenario with host-sim (guided random inputs, or
+//! SCENARIO: an `inputs.csv` or a recorded `.scenario`), build the harness
+//! for each backend (table and logic: ours; match: the baseline a
+//! hand-written state machine would be), run it under `-icount shift=9`,
+//! and read its last line. Fails unless every run has zero mismatches and
+//! the table backend stays within the model's budgets. Prints our figures
+//! as ratios to the baseline measured in the same run.
+
+use crate::budgets::{Budgets, ModelBudget};
+use crate::size::llvm_size;
+use crate::{cargo, root, run, sysdeps, Result};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Longest a QEMU run may take.
+const TIMEOUT: Duration = Duration::from_secs(180);
+
+/// Scans of the default scenario.
+const SCANS: &str = "3000";
+
+/// What the harness printed last.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Figures {
+    /// Scans replayed.
+    pub scans: u64,
+    /// Records that differ from host-sim.
+    pub mismatches: u64,
+    /// Instructions per scan.
+    pub median: u64,
+    /// 99th percentile.
+    pub p99: u64,
+    /// Largest.
+    pub max: u64,
+    /// Flash of the image without the scenario.
+    pub flash: u64,
+    /// Static RAM.
+    pub ram: u64,
+}
+
+impl Figures {
+    fn parse(line: &str) -> Option<Figures> {
+        let mut f = Figures::default();
+        let mut seen = 0;
+        for pair in line.split_whitespace() {
+            let (key, value) = pair.split_once('=')?;
+            let value: u64 = value.parse().ok()?;
+            let slot = match key {
+                "scans" => &mut f.scans,
+                "mismatches" => &mut f.mismatches,
+                "instr_median" => &mut f.median,
+                "instr_p99" => &mut f.p99,
+                "instr_max" => &mut f.max,
+                "flash" => &mut f.flash,
+                "ram" => &mut f.ram,
+                _ => continue,
+            };
+            *slot = value;
+            seen += 1;
+        }
+        (seen == 7).then_some(f)
+    }
+}
+
+/// Models to run, by name, with their budgets.
+type Models = Vec<(String, ModelBudget)>;
+
+/// The backends run per model: ours, then the baseline.
+const BACKENDS: [&str; 3] = ["table", "logic", "match"];
+
+pub fn run_task(args: &[String]) -> Result {
+    let qemu = sysdeps::ensure_qemu()?;
+    let budgets = Budgets::load()?;
+    let (models, scenario) = select(&budgets, args)?;
+    let dir = root().join("target/qemu");
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+
+    let mut failures = Vec::new();
+    let mut rows = Vec::new();
+    for (name, model) in &models {
+        let scenario = match &scenario {
+            Some(s) if is_recorded(s) => s.clone(),
+            other => record(name, &model.project, other.as_deref(), &dir)?,
+        };
+        let mut per_backend = Vec::new();
+        for backend in BACKENDS {
+            let elf = build(
+                &model.project,
+                backend,
+                &scenario,
+                model,
+                "thumbv7em-none-eabihf",
+            )?;
+            let copy = dir.join(format!("{name}-{backend}.elf"));
+            std::fs::copy(&elf, &copy).map_err(|e| format!("{}: {e}", copy.display()))?;
+            let figures = run_qemu(&qemu, &copy)?;
+            if figures.mismatches > 0 {
+                failures.push(format!(
+                    "{name} ({backend}): {} mismatches",
+                    figures.mismatches
+                ));
+            }
+            per_backend.push((backend, figures));
+        }
+        let table = per_backend[0].1;
+        failures.extend(model.check_qemu(name, &table));
+        rows.push((name.clone(), per_backend));
+    }
+    if let Some(v6m) = thumbv6m_size(&models, &scenario, &dir)? {
+        eprintln!("{v6m}");
+    }
+    print_report(&rows, &budgets);
+    if failures.is_empty() {
+        eprintln!("xtask: qemu passed");
+        Ok(())
+    } else {
+        Err(format!("qemu: {}", failures.join("; ")))
+    }
+}
+
+/// The models to run and the scenario given, from the arguments.
+fn select(budgets: &Budgets, args: &[String]) -> Result<(Models, Option<PathBuf>)> {
+    let scenario = args.get(1).map(|s| root().join(s));
+    let Some(project) = args.first() else {
+        return Ok((budgets.models.clone().into_iter().collect(), None));
+    };
+    let found: Vec<_> = budgets
+        .models
+        .iter()
+        .filter(|(name, m)| *name == project || m.project == *project)
+        .map(|(n, m)| (n.clone(), m.clone()))
+        .collect();
+    if found.is_empty() {
+        // A project without budgets: run it, check mismatches only.
+        let name = Path::new(project)
+            .file_name()
+            .and_then(|n| n.to_str())
+            .and_then(|n| n.split('.').next())
+            .unwrap_or("project")
+            .to_owned();
+        return Ok((vec![(name, ModelBudget::unbounded(project))], scenario));
+    }
+    Ok((found, scenario))
+}
+
+fn is_recorded(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e == "scenario")
+}
+
+/// Records the scenario of `project` with host-sim.
+fn record(name: &str, project: &str, inputs: Option<&Path>, dir: &Path) -> Result<PathBuf> {
+    let out = dir.join(format!("{name}.scenario"));
+    let mut cmd = cargo();
+    cmd.args([
+        "run",
+        "-q",
+        "--release",
+        "-p",
+        "host-sim",
+        "--",
+        "record",
+        project,
+        "--out",
+    ])
+    .arg(&out);
+    match inputs {
+        Some(csv) => {
+            cmd.arg("--inputs").arg(csv);
+        }
+        None => {
+            cmd.args(["--random", SCANS, "--seed", "1"]);
+        }
+    }
+    run(&mut cmd)?;
+    Ok(out)
+}
+
+/// Builds the harness for `project` and `backend`; the ELF's path.
+fn build(
+    project: &str,
+    backend: &str,
+    scenario: &Path,
+    budget: &ModelBudget,
+    target: &str,
+) -> Result<PathBuf> {
+    let mut cmd = cargo();
+    cmd.args([
+        "build",
+        "--release",
+        "-p",
+        "firmware",
+        "--no-default-features",
+        "--features",
+        "qemu",
+        "--bin",
+        "qemu-replay",
+        "--target",
+        target,
+    ])
+    .env("PLC_PROJECT", project)
+    .env("PLC_BACKEND", backend)
+    .env("PLC_SCENARIO", scenario);
+    // Budgets are checked by the harness itself for our table backend.
+    if backend == "table" && target.starts_with("thumbv7em") {
+        for (var, value) in budget.harness_env() {
+            cmd.env(var, value.to_string());
+        }
+    } else {
+        for var in ModelBudget::HARNESS_VARS {
+            cmd.env_remove(var);
+        }
+    }
+    run(&mut cmd)?;
+    Ok(root().join(format!("target/{target}/release/qemu-replay")))
+}
+
+/// Runs `elf` in QEMU with a timeout; the harness's figures.
+fn run_qemu(qemu: &str, elf: &Path) -> Result<Figures> {
+    let mut cmd = Command::new(qemu);
+    cmd.args([
+        "-M",
+        "mps2-an386",
+        "-cpu",
+        "cortex-m4",
+        "-icount",
+        "shift=9",
+        "-semihosting-config",
+        "enable=on,target=native",
+        "-nographic",
+        "-monitor",
+        "none",
+        "-serial",
+        "none",
+        "-kernel",
+    ])
+    .arg(elf)
+    .stdin(Stdio::null())
+    .stdout(Stdio::piped())
+    .stderr(Stdio::piped());
+    eprintln!("$ {} … -kernel {}", qemu, elf.display());
+    let mut child = cmd
+        .spawn()
+        .map_err(|e| format!("cannot start {qemu}: {e}"))?;
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().map_err(|e| e.to_string())? {
+            break status;
+        }
+        if start.elapsed() > TIMEOUT {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(format!(
+                "{}: QEMU timed out after {TIMEOUT:?}",
+                elf.display()
+            ));
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let out = child.wait_with_output().map_err(|e| e.to_string())?;
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    for line in stdout.lines() {
+        eprintln!("  {line}");
+    }
+    let figures = stdout
+        .lines()
+        .rev()
+        .find_map(Figures::parse)
+        .ok_or_else(|| {
+            format!(
+                "{}: no result line (exit {status}); stderr: {}",
+                elf.display(),
+                stderr.trim()
+            )
+        })?;
+    if !status.success() && figures.mismatches == 0 {
+        eprintln!("  (harness exit {status}: a budget does not hold)");
+    }
+    Ok(figures)
+}
+
+/// Builds the harness of the first model for Cortex-M0+ (size only: QEMU
+/// has no M0+ board with this memory map).
+fn thumbv6m_size(
+    models: &[(String, ModelBudget)],
+    scenario: &Option<PathBuf>,
+    dir: &Path,
+) -> Result<Option<String>> {
+    let Some((name, model)) = models.first() else {
+        return Ok(None);
+    };
+    let recorded = match scenario {
+        Some(s) if is_recorded(s) => s.clone(),
+        _ => dir.join(format!("{name}.scenario")),
+    };
+    let elf = build(
+        &model.project,
+        "table",
+        &recorded,
+        model,
+        "thumbv6m-none-eabi",
+    )?;
+    let (flash, ram) = llvm_size(&elf)?;
+    let scenario_bytes = std::fs::metadata(&recorded).map(|m| m.len()).unwrap_or(0);
+    Ok(Some(format!(
+        "thumbv6m-none-eabi (Cortex-M0+) harness of {name}: flash {} bytes without the scenario, static RAM {ram} bytes",
+        flash.saturating_sub(scenario_bytes)
+    )))
+}
+
+fn ratio(ours: u64, base: u64) -> String {
+    if base == 0 {
+        "-".into()
+    } else {
+        format!("{:.2}x", ours as f64 / base as f64)
+    }
+}
+
+fn print_report(rows: &[(String, Vec<(&str, Figures)>)], budgets: &Budgets) {
+    println!(
+        "\n{:<12} {:<6} {:>6} {:>5} {:>8} {:>8} {:>8} {:>8} {:>6}  {:>13} {:>13}",
+        "model",
+        "backend",
+        "scans",
+        "mism",
+        "instr_md",
+        "instr_99",
+        "instr_mx",
+        "flash",
+        "ram",
+        "instr vs match",
+        "flash vs match"
+    );
+    for (name, per) in rows {
+        let base = per
+            .iter()
+            .find(|(b, _)| *b == "match")
+            .map(|(_, f)| *f)
+            .unwrap_or_default();
+        for (backend, f) in per {
+            println!(
+                "{:<12} {:<6} {:>6} {:>5} {:>8} {:>8} {:>8} {:>8} {:>6}  {:>13} {:>13}",
+                name,
+                backend,
+                f.scans,
+                f.mismatches,
+                f.median,
+                f.p99,
+                f.max,
+                f.flash,
+                f.ram,
+                ratio(f.median, base.median),
+                ratio(f.flash, base.flash)
+            );
+        }
+        if let Some(b) = budgets.models.get(name) {
+            println!("{:<12} budget {}", "", b.describe_qemu());
+        }
+    }
+}
