@@ -71,7 +71,7 @@ fn number(v: &Value, path: &[&str]) -> Result<f64> {
 
 /// Ours: milliseconds (median compose + supcon), peak KiB, sup size.
 fn ours(m: &Model, runs: usize, names: bool) -> Result<(f64, f64, (f64, f64))> {
-    let exe = root().join("target/release/codegen");
+    let exe = crate::target_dir().join("release/codegen");
     let out = std::env::temp_dir().join(format!("xtask-bench-{}.gen", m.name));
     let mut totals = Vec::new();
     let mut peak: f64 = 0.0;

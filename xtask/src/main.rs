@@ -57,6 +57,15 @@ pub fn root() -> PathBuf {
         .to_path_buf()
 }
 
+/// Cargo's target directory (`CARGO_TARGET_DIR`, else `target/` at the
+/// root).
+pub fn target_dir() -> PathBuf {
+    match std::env::var_os("CARGO_TARGET_DIR") {
+        Some(dir) => root().join(dir),
+        None => root().join("target"),
+    }
+}
+
 /// The `cargo` that runs us.
 pub fn cargo() -> Command {
     let mut cmd = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
@@ -194,7 +203,7 @@ fn ci() -> Result {
             "-D",
             "warnings",
         ])
-        .env("PLC_SCENARIO", "target/qemu/press.scenario"))?;
+        .env("PLC_SCENARIO", target_dir().join("qemu/press.scenario")))?;
     eprintln!("xtask: ci passed");
     Ok(())
 }

@@ -76,7 +76,7 @@ pub fn run_task(args: &[String]) -> Result {
     let qemu = sysdeps::ensure_qemu()?;
     let budgets = Budgets::load()?;
     let (models, scenario) = select(&budgets, args)?;
-    let dir = root().join("target/qemu");
+    let dir = crate::target_dir().join("qemu");
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
 
     let mut failures = Vec::new();
@@ -215,7 +215,7 @@ fn build(
         }
     }
     run(&mut cmd)?;
-    Ok(root().join(format!("target/{target}/release/qemu-replay")))
+    Ok(crate::target_dir().join(format!("{target}/release/qemu-replay")))
 }
 
 /// Runs `elf` in QEMU with a timeout; the harness's figures.

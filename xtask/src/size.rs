@@ -78,7 +78,7 @@ pub fn run_task(args: &[String]) -> Result {
             ])
             .env("PLC_PROJECT", &model.project)
             .env("PLC_BACKEND", "table"))?;
-        let elf = root().join("target/thumbv7em-none-eabihf/release/firmware");
+        let elf = crate::target_dir().join("thumbv7em-none-eabihf/release/firmware");
         let (flash, ram) = llvm_size(&elf)?;
         failures.extend(model.check_board(name, flash, ram));
         rows.push((name.clone(), flash, ram, model.board_flash, model.board_ram));
