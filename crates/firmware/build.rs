@@ -1,7 +1,7 @@
 //! Generates the PLC program and picks the memory layout.
 //!
 //! - `PLC_PROJECT`: the project file, relative to the workspace root
-//!   (default `models/press.plc.toml`).
+//!   (default `models/boiler/boiler.plc.toml`, the boiler).
 //! - `PLC_BACKEND`: `table` (default), `logic`, or `match` (the baseline).
 //! - `PLC_SCENARIO` (feature `qemu`): the recorded scenario to replay
 //!   (`host-sim record`); `cargo xtask qemu` sets it.
@@ -39,7 +39,7 @@ fn main() {
     // host the binaries are stubs (`cargo clippy --workspace`).
     let bare_metal = std::env::var("CARGO_CFG_TARGET_OS").is_ok_and(|os| os == "none");
 
-    let project = env("PLC_PROJECT").unwrap_or_else(|| "models/press.plc.toml".to_owned());
+    let project = env("PLC_PROJECT").unwrap_or_else(|| "models/boiler/boiler.plc.toml".to_owned());
     let backend = match env("PLC_BACKEND").as_deref().unwrap_or("table").parse() {
         Ok(b) => b,
         Err(e) => {

@@ -21,6 +21,11 @@ pub struct Budgets {
 pub struct ModelBudget {
     /// The project file, relative to the workspace root.
     pub project: String,
+    /// Backends the QEMU replay builds besides the `match` baseline
+    /// (default: table and logic). The logic backend is for small
+    /// supervisors; a model whose CMSSM would not fit leaves it out.
+    #[serde(default = "default_backends")]
+    pub backends: Vec<String>,
     /// Median instructions per scan (QEMU harness, table backend).
     pub instr_median: Option<u64>,
     /// Largest instructions per scan (QEMU harness, table backend).
@@ -33,6 +38,10 @@ pub struct ModelBudget {
     pub board_flash: Option<u64>,
     /// Static RAM of the board firmware.
     pub board_ram: Option<u64>,
+}
+
+fn default_backends() -> Vec<String> {
+    vec!["table".into(), "logic".into()]
 }
 
 impl Budgets {
@@ -66,6 +75,7 @@ impl ModelBudget {
     pub fn unbounded(project: &str) -> ModelBudget {
         ModelBudget {
             project: project.to_owned(),
+            backends: default_backends(),
             instr_median: None,
             instr_max: None,
             qemu_flash: None,

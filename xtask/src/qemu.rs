@@ -69,9 +69,6 @@ impl Figures {
 /// Models to run, by name, with their budgets.
 type Models = Vec<(String, ModelBudget)>;
 
-/// The backends run per model: ours, then the baseline.
-const BACKENDS: [&str; 3] = ["table", "logic", "match"];
-
 pub fn run_task(args: &[String]) -> Result {
     let qemu = sysdeps::ensure_qemu()?;
     let budgets = Budgets::load()?;
@@ -87,7 +84,13 @@ pub fn run_task(args: &[String]) -> Result {
             other => record(name, &model.project, other.as_deref(), &dir)?,
         };
         let mut per_backend = Vec::new();
-        for backend in BACKENDS {
+        let backends = model
+            .backends
+            .iter()
+            .map(String::as_str)
+            .filter(|b| *b != "match")
+            .chain(["match"]);
+        for backend in backends {
             let elf = build(
                 &model.project,
                 backend,
@@ -106,8 +109,10 @@ pub fn run_task(args: &[String]) -> Result {
             }
             per_backend.push((backend, figures));
         }
-        let table = per_backend[0].1;
-        failures.extend(model.check_qemu(name, &table));
+        match per_backend.iter().find(|(b, _)| *b == "table") {
+            Some((_, table)) => failures.extend(model.check_qemu(name, table)),
+            None => failures.push(format!("{name}: budgets need the table backend")),
+        }
         rows.push((name.clone(), per_backend));
     }
     if let Some(v6m) = thumbv6m_size(&models, &scenario, &dir)? {

@@ -9,12 +9,14 @@
 //! - [`lockstep`]: both backends side by side, compared every scan.
 //! - [`replay`]: a whole input file through a project.
 //! - [`scenario`]: postcard scenarios for the QEMU harness, random inputs.
+//! - [`plant`]: the boiler as a physical plant in closed loop, and its safety invariants.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod inputs;
 pub mod lockstep;
+pub mod plant;
 pub mod replay;
 pub mod scenario;
 pub mod sim;

@@ -1,0 +1,139 @@
+//! Plant simulations in closed loop with a controller: the gas-fired
+//! water-bath boiler of SEEDS.md A, and its safety invariants.
+//!
+//! - [`boiler`]: the physics ([`BoilerPlant`], [`BoilerParams`]) with the
+//!   operator panel and the sensor wiring.
+//! - [`signals`]: the boiler's PLC inputs and outputs by name, typed images.
+//! - [`wiring`]: sensor faults (bounce, stuck-at, dropout).
+//! - [`script`]: operator actions and fault injections at times
+//!   ([`Script`]), by hand or from a seed.
+//! - [`controller`]: what runs against the plant ([`BoilerController`]; a
+//!   project on the executor is a [`Plc`]).
+//! - [`record`]: the per-scan record of a run ([`Run`]).
+//! - [`invariants`]: the safety checker ([`Checker`]).
+//!
+//! One scan of [`run`] / [`run_with`]:
+//!
+//! 1. script actions due at the plant's time (`at <= now`) are applied;
+//! 2. the controller scans the input image the plant shows (sensor faults
+//!    applied);
+//! 3. the plant advances one scan period under the controller's outputs.
+//!
+//! ```no_run
+//! use codegen::emit::Backend;
+//! use host_sim::plant::{self, BoilerParams, BoilerPlant, Invariants, Script, Selector};
+//! use host_sim::Sim;
+//!
+//! let mut sim = Sim::load("models/boiler/boiler.plc.toml".as_ref(), Backend::Table)?;
+//! let mut plant = BoilerPlant::new(BoilerParams::default(), 1);
+//! let script = Script::new().at(1_000, Selector::Low).at(120_000, Selector::Off);
+//! let run = plant::run(&mut sim, &mut plant, &script, 180_000)?;
+//! assert!(run.violations(&Invariants::default()).is_empty());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+pub mod boiler;
+pub mod controller;
+pub mod invariants;
+pub mod record;
+pub mod script;
+pub mod signals;
+pub mod wiring;
+
+pub use boiler::{BoilerParams, BoilerPlant, Disturbance, PlantState};
+pub use controller::{BoilerController, ControllerScan, Plc};
+pub use invariants::{
+    check_replay, check_rows, Checker, Invariants, ProjectChecker, Rule, Violation,
+};
+pub use record::{Run, RunRow};
+pub use script::{Action, Script};
+pub use signals::{Input, Inputs, IoMap, Output, Outputs, Selector};
+pub use wiring::SensorFault;
+
+use crate::sim::{Sim, SimError};
+
+/// A problem running a plant against a controller or checking a record.
+#[derive(Debug, thiserror::Error)]
+pub enum PlantError {
+    /// The project lacks some of the boiler's signals.
+    #[error("project `{project}` lacks the boiler's {}", missing.join(", "))]
+    MissingSignals {
+        /// The project's name.
+        project: String,
+        /// `input `name`` or `output `name`` for each one missing.
+        missing: Vec<String>,
+    },
+    /// Driving the simulation failed (backends diverged, say).
+    #[error(transparent)]
+    Sim(#[from] SimError),
+    /// A raw image of the wrong width.
+    #[error("expected {expected} {what} values, got {got}")]
+    ImageWidth {
+        /// `input` or `output`.
+        what: &'static str,
+        /// Signals of the project.
+        expected: usize,
+        /// Values given.
+        got: usize,
+    },
+    /// A replay with more input rows than trace rows or the reverse.
+    #[error("{inputs} input rows but {trace} trace rows")]
+    RowCount {
+        /// Input rows.
+        inputs: usize,
+        /// Trace rows.
+        trace: usize,
+    },
+}
+
+/// Runs the project in `sim` against `plant` for `duration_ms` of plant
+/// time with `script`; every boiler signal is looked up by name first.
+pub fn run(
+    sim: &mut Sim,
+    plant: &mut BoilerPlant,
+    script: &Script,
+    duration_ms: u64,
+) -> Result<Run, PlantError> {
+    run_with(&mut Plc::new(sim)?, plant, script, duration_ms)
+}
+
+/// Runs `controller` against `plant` from the plant's current time for
+/// `duration_ms`, one scan per scan period; script actions are at plant
+/// times, and those due before the start are applied at once.
+pub fn run_with<C: BoilerController + ?Sized>(
+    controller: &mut C,
+    plant: &mut BoilerPlant,
+    script: &Script,
+    duration_ms: u64,
+) -> Result<Run, PlantError> {
+    let period = u64::from(controller.scan_period_ms().max(1));
+    let end = plant.time_ms() + duration_ms;
+    let actions = script.actions();
+    let mut next = 0;
+    let mut rows = Vec::with_capacity((duration_ms / period) as usize + 1);
+    while plant.time_ms() < end {
+        while let Some((_, action)) = actions.get(next).filter(|(at, _)| *at <= plant.time_ms()) {
+            plant.apply(action);
+            next += 1;
+        }
+        let state = plant.state();
+        let inputs = plant.inputs();
+        let scan = controller.scan(&inputs)?;
+        plant.step(period, &scan.outputs);
+        rows.push(RunRow {
+            scan: rows.len() as u64,
+            time_ms: scan.time_ms,
+            inputs,
+            outputs: scan.outputs,
+            events: scan.events,
+            states: scan.states,
+            fault: scan.fault,
+            plant: state,
+        });
+    }
+    Ok(Run {
+        scan_period_ms: period as u32,
+        debounce: controller.debounce(),
+        rows,
+    })
+}
