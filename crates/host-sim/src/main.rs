@@ -48,6 +48,29 @@ enum Command {
         #[arg(long, value_enum, default_value_t = BackendArg::Table)]
         backend: BackendArg,
     },
+    /// The boiler in closed loop with its plant simulation: a timeline on
+    /// stdout, a VCD, optionally an SVG picture; fails on a safety
+    /// violation.
+    Boiler {
+        /// A named scenario (`--list`), or `random-<seed>`.
+        #[arg(long, default_value = "cold-start-high")]
+        scenario: String,
+        /// The project.
+        #[arg(long, default_value = "models/boiler/boiler.plc.toml")]
+        project: PathBuf,
+        /// Where to write the waveform.
+        #[arg(long, default_value = "boiler.vcd")]
+        vcd: PathBuf,
+        /// Also draw the run as an SVG picture.
+        #[arg(long)]
+        svg: Option<PathBuf>,
+        /// Seed of the plant's random ignition failures.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// List the scenarios and exit.
+        #[arg(long)]
+        list: bool,
+    },
     /// Record a scenario for the QEMU harness: inputs per scan and the
     /// expected trace, as postcard records.
     Record {
@@ -116,6 +139,14 @@ fn run(cli: Cli) -> Result<(), String> {
             );
             Ok(())
         }
+        Command::Boiler {
+            scenario,
+            project,
+            vcd: vcd_path,
+            svg,
+            seed,
+            list,
+        } => boiler(&scenario, &project, &vcd_path, svg.as_deref(), seed, list),
         Command::Record {
             project,
             inputs: inputs_path,
@@ -155,6 +186,122 @@ fn run(cli: Cli) -> Result<(), String> {
             );
             Ok(())
         }
+    }
+}
+
+/// `host-sim boiler`: runs a scenario, prints the timeline, writes the
+/// waveforms, checks the safety invariants.
+fn boiler(
+    name: &str,
+    project_path: &Path,
+    vcd_path: &Path,
+    svg: Option<&Path>,
+    seed: u64,
+    list: bool,
+) -> Result<(), String> {
+    use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Input, Invariants, Output};
+    if list {
+        for n in scenarios::NAMES {
+            println!("{n}");
+        }
+        println!("random-<seed>");
+        return Ok(());
+    }
+    let (script, duration) = scenarios::named(name).ok_or_else(|| {
+        format!(
+            "unknown scenario `{name}` (one of: {}, random-<seed>)",
+            scenarios::NAMES.join(", ")
+        )
+    })?;
+    let mut sim = Sim::load(project_path, Backend::Table).map_err(|e| e.to_string())?;
+    let mut plant = BoilerPlant::new(BoilerParams::default(), seed);
+    let run = plant::run(&mut sim, &mut plant, &script, duration).map_err(|e| e.to_string())?;
+
+    println!(
+        "boiler, scenario {name} ({} s), project {}",
+        duration / 1000,
+        project_path.display()
+    );
+    println!(
+        "{:>9}  {:<48} {:<40} {:>7} {:>7}",
+        "time", "events", "outputs on", "bath", "flue"
+    );
+    let mut last_states: Vec<(String, String)> = Vec::new();
+    let mut last_fault = None;
+    for row in &run.rows {
+        if row.events.is_empty() && row.fault == last_fault {
+            continue;
+        }
+        let on: Vec<&str> = Output::ALL
+            .iter()
+            .filter(|o| row.outputs.get(**o))
+            .map(|o| o.name())
+            .collect();
+        println!(
+            "{:>8.2}s  {:<48} {:<40} {:>5.1}°C {:>5.0}°C",
+            row.time_ms as f64 / 1000.0,
+            row.events.join(" "),
+            on.join(" "),
+            row.plant.bath_c,
+            row.plant.flue_c
+        );
+        let changed: Vec<String> = row
+            .states
+            .iter()
+            .filter(|s| !last_states.contains(s))
+            .map(|(sup, state)| format!("{sup}={state}"))
+            .collect();
+        if !changed.is_empty() {
+            println!("{:>11}{}", "", changed.join("  "));
+        }
+        if row.fault != last_fault {
+            println!(
+                "{:>11}fault: {}",
+                "",
+                row.fault.as_deref().unwrap_or("cleared")
+            );
+        }
+        last_states = row.states.clone();
+        last_fault = row.fault.clone();
+    }
+
+    let input_rows: Vec<inputs::InputRow> = run
+        .rows
+        .iter()
+        .map(|r| inputs::InputRow {
+            time_ms: r.time_ms,
+            values: sim
+                .project()
+                .inputs
+                .iter()
+                .map(|i| {
+                    Input::ALL
+                        .iter()
+                        .any(|x| x.name() == i.name && r.inputs.get(*x))
+                })
+                .collect(),
+        })
+        .collect();
+    let mut buf = Vec::new();
+    vcd::write(&mut buf, sim.project(), &input_rows, sim.trace()).map_err(|e| e.to_string())?;
+    write(vcd_path, &buf)?;
+    eprintln!("wrote {}", vcd_path.display());
+    if let Some(path) = svg {
+        write(
+            path,
+            plant::svg::render(&run, &format!("boiler: {name}")).as_bytes(),
+        )?;
+        eprintln!("wrote {}", path.display());
+    }
+    let violations = run.violations(&Invariants::default());
+    for v in &violations {
+        println!("SAFETY VIOLATION {v}");
+    }
+    if violations.is_empty() {
+        println!("safety invariants: held on all {} scans", run.rows.len());
+        Ok(())
+    } else {
+        Err(format!("{} safety violations", violations.len()))
     }
 }
 

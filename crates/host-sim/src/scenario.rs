@@ -62,7 +62,12 @@ pub struct Rng(u64);
 impl Rng {
     /// A generator from `seed` (any value, 0 included).
     pub fn new(seed: u64) -> Rng {
-        Rng(seed ^ 0x9e37_79b9_7f4a_7c15 | 1)
+        // SplitMix64 of the seed: distinct seeds give unrelated, non-zero
+        // states (xorshift must not start at 0).
+        let mut z = seed.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        Rng((z ^ (z >> 31)) | 1)
     }
 
     /// The next 64 random bits.

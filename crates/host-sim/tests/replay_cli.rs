@@ -84,3 +84,42 @@ fn a_bad_inputs_file_is_an_error_at_its_line() {
         "no trace from bad input"
     );
 }
+
+#[test]
+fn boiler_main_job_prints_a_timeline_and_writes_waveforms() {
+    let dir = tempfile::tempdir().unwrap();
+    let vcd = dir.path().join("boiler.vcd");
+    let svg = dir.path().join("boiler.svg");
+    let result = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["boiler", "--scenario", "main-flame-failure", "--project"])
+        .arg(repo("models/boiler/boiler.plc.toml"))
+        .arg("--vcd")
+        .arg(&vcd)
+        .arg("--svg")
+        .arg(&svg)
+        .output()
+        .expect("host-sim runs");
+    assert!(result.status.success(), "{result:?}");
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    assert!(
+        stdout.contains("purge_done pv_open trial_start ign_on"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("mf_off sd2 mv_off pv_close"), "{stdout}");
+    assert!(
+        stdout.contains("safety invariants: held on all 6000 scans"),
+        "{stdout}"
+    );
+    assert!(std::fs::read_to_string(&vcd)
+        .unwrap()
+        .contains(" main_flame $end"));
+    let picture = std::fs::read_to_string(&svg).unwrap();
+    assert!(picture.starts_with("<svg") && picture.contains("main flame"));
+
+    let unknown = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["boiler", "--scenario", "nope"])
+        .output()
+        .unwrap();
+    assert_eq!(unknown.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&unknown.stderr).contains("unknown scenario `nope`"));
+}

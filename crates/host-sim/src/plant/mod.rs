@@ -11,6 +11,8 @@
 //!   project on the executor is a [`Plc`]).
 //! - [`record`]: the per-scan record of a run ([`Run`]).
 //! - [`invariants`]: the safety checker ([`Checker`]).
+//! - [`scenarios`]: the named scenarios of `host-sim boiler`.
+//! - [`svg`]: a picture of a run.
 //!
 //! One scan of [`run`] / [`run_with`]:
 //!
@@ -36,8 +38,10 @@ pub mod boiler;
 pub mod controller;
 pub mod invariants;
 pub mod record;
+pub mod scenarios;
 pub mod script;
 pub mod signals;
+pub mod svg;
 pub mod wiring;
 
 pub use boiler::{BoilerParams, BoilerPlant, Disturbance, PlantState};
