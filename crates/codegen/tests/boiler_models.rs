@@ -707,20 +707,23 @@ fn ignition_timeout_shuts_down_until_bms_and_a_new_selection() {
 }
 
 #[test]
-fn two_pilot_flame_losses_shut_down_and_a_hot_bath_holds_the_main_burner() {
+fn two_pilot_flame_losses_shut_down() {
+    // A main flame signal before the main stage holds it (mf_init needs
+    // the main sensor dark), so the pilot's second trial can be seen; then
+    // a pilot loss during the main stage is a flame failure (sd2).
     run_boiler(&[
-        (&["bath_over"], false, NONE),
         (&["op_high"], false, &["pf_init", "purge_start"]),
         (
             &["purge_done"],
             false,
             &["pv_open", "trial_start", "ign_on"],
         ),
+        (&["mf_on"], false, NONE),
         (&["pf_on"], false, &["ign_off", "trial_reset"]),
         (&["pf_off"], false, &["trial_start", "ign_on"]),
         (&["pf_on"], false, &["ign_off", "trial_reset"]),
         (
-            &["bath_ok"],
+            &["mf_off"],
             false,
             &["mf_init", "dmp_hi", "blow_on", "mtrial_start", "mv_hi"],
         ),
@@ -737,16 +740,92 @@ fn two_pilot_flame_losses_shut_down_and_a_hot_bath_holds_the_main_burner() {
             ],
         ),
         (NONE, true, &["bms"]),
-        (&["bath_over", "op_low"], false, &["pf_init", "purge_start"]),
+        (&["op_low"], false, &["pf_init", "purge_start"]),
         (
             &["purge_done"],
             false,
             &["pv_open", "trial_start", "ign_on"],
         ),
+        (&["mf_on"], false, NONE),
         (&["pf_on"], false, &["ign_off", "trial_reset"]),
         (&["pf_off"], false, &["trial_start", "ign_on"]),
         (&["pf_on"], false, &["ign_off", "trial_reset"]),
         (&["pf_off"], false, &["sd1", "pv_close"]),
+        (NONE, true, &["bms"]),
+    ]);
+}
+
+#[test]
+fn a_hot_limit_holds_the_start_and_a_rising_one_shuts_down_in_every_stage() {
+    run_boiler(&[
+        // Selector off: a limit edge is only remembered.
+        (&["bath_over"], false, NONE),
+        // Start interlock: the start waits with nothing open ...
+        (&["op_high"], false, NONE),
+        // ... and purges in full once the limit clears.
+        (&["bath_ok"], false, &["pf_init", "purge_start"]),
+        // Pre-purge.
+        (&["flue_over"], false, &["sd1", "purge_reset"]),
+        (&["op_off"], false, NONE),
+        (&["flue_ok"], true, &["bms"]),
+        // Pilot stage, sparking (pilot gas open).
+        (&["op_low"], false, &["pf_init", "purge_start"]),
+        (
+            &["purge_done"],
+            false,
+            &["pv_open", "trial_start", "ign_on"],
+        ),
+        (
+            &["bath_over"],
+            false,
+            &["sd1", "ign_off", "pv_close", "trial_reset"],
+        ),
+        // Reset with the selector on: idle, and a limit edge shuts down
+        // again; a new selection while hot waits.
+        (NONE, true, &["bms"]),
+        (&["bath_ok"], false, NONE),
+        (&["bath_over"], false, &["sd1"]),
+        (NONE, true, &["bms"]),
+        (&["op_high"], false, NONE),
+        (&["bath_ok"], false, &["pf_init", "purge_start"]),
+        (&["op_off"], false, &["purge_reset"]),
+        // The limit rising in the scan the selector comes on (op_high is
+        // declared before the limit edges): the selector is on, shutdown.
+        (&["op_high", "bath_over"], false, &["sd1"]),
+        (&["bath_ok"], true, &["bms"]),
+        // Pilot established, main stage light-off.
+        (&["op_low"], false, &["pf_init", "purge_start"]),
+        (
+            &["purge_done"],
+            false,
+            &["pv_open", "trial_start", "ign_on"],
+        ),
+        (
+            &["pf_on"],
+            false,
+            &[
+                "ign_off",
+                "trial_reset",
+                "mf_init",
+                "dmp_lo",
+                "blow_on",
+                "mtrial_start",
+                "mv_lo",
+            ],
+        ),
+        (
+            &["flue_over"],
+            false,
+            &[
+                "sd2",
+                "mv_off",
+                "pv_close",
+                "blow_off",
+                "dmp_off",
+                "mtrial_reset",
+            ],
+        ),
+        (&["op_off"], true, &["bms"]),
     ]);
 }
 
@@ -837,7 +916,7 @@ fn signals_the_models_must_tolerate_are_never_unexpected() {
         (
             &["op_high", "op_high", "bath_over", "bath_over"],
             false,
-            NONE,
+            &["sd1", "purge_reset"],
         ),
     ]);
 }
