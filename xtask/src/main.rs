@@ -172,6 +172,19 @@ fn ci() -> Result {
         "--",
         "--ignored",
     ]))?;
+    // The boiler's randomized campaign: 1000 runs of ten simulated minutes,
+    // every scan checked by the safety invariants.
+    run(cargo().args([
+        "test",
+        "--release",
+        "-p",
+        "host-sim",
+        "--test",
+        "boiler_campaign",
+        "--",
+        "--ignored",
+        "random_campaign",
+    ]))?;
     // The firmware: QEMU replay of every model against host-sim (zero
     // mismatches, instruction budgets), then the board build's sizes, then
     // clippy on both firmware builds for the target.

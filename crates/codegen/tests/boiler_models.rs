@@ -99,6 +99,7 @@ const BOILER_PLANT: &[&str] = &[
     "sd1",
     "sd2",
     "bms",
+    "reset_button",
 ];
 
 /// The modular set for the complete boiler: supervisor name and its
@@ -139,6 +140,7 @@ const MODULES: &[(&str, &[&str])] = &[
         "sup_main_start",
         &["main_permit", "limit_bath", "limit_flue"],
     ),
+    ("sup_bms", &["bms_after_reset"]),
 ];
 
 fn boiler_specs() -> Vec<&'static str> {
@@ -551,12 +553,18 @@ const COMMAND_ORDER: &[&str] = &[
 struct Plc<'a> {
     sups: Vec<&'a Automaton>,
     state: Vec<StateId>,
+    /// `reset` in the previous scan (for `rst`, its rising edge).
+    reset: bool,
 }
 
 impl<'a> Plc<'a> {
     fn new(sups: Vec<&'a Automaton>) -> Plc<'a> {
         let state = sups.iter().map(|s| s.initial().unwrap()).collect();
-        Plc { sups, state }
+        Plc {
+            sups,
+            state,
+            reset: false,
+        }
     }
 
     fn step(&self, e: &str) -> Option<Vec<StateId>> {
@@ -574,15 +582,20 @@ impl<'a> Plc<'a> {
     }
 
     /// One scan: the uncontrollable `inputs` in order (each must be
-    /// feasible), then every command that becomes feasible, first in
-    /// [`COMMAND_ORDER`], each at most once; `bms` only while `reset` is
-    /// held. Returns the commands.
+    /// feasible), then `rst` if `reset` rose and the supervisors know it
+    /// (last of the inputs, as in the PLC projects), then every command
+    /// that becomes feasible, first in [`COMMAND_ORDER`], each at most
+    /// once; `bms` only while `reset` is held. Returns the commands.
     fn scan(&mut self, inputs: &[&str], reset: bool) -> Vec<&'static str> {
         for e in inputs {
             self.state = self
                 .step(e)
                 .unwrap_or_else(|| panic!("unexpected event `{e}`"));
         }
+        if reset && !self.reset && self.sups.iter().any(|s| s.alphabet().contains("rst")) {
+            self.state = self.step("rst").expect("`rst` is always possible");
+        }
+        self.reset = reset;
         let mut done = Vec::new();
         while let Some((e, next)) = COMMAND_ORDER
             .iter()

@@ -1,5 +1,5 @@
 //! The boiler's scenario suite (SEEDS.md A, issue "The boiler"): the PLC
-//! project `models/boiler/boiler.plc.toml` (six modular supervisors) in
+//! project `models/boiler/boiler.plc.toml` (seven modular supervisors) in
 //! closed loop with the plant simulation, every scan checked by the safety
 //! invariants, and every scenario run again on the monolithic variant
 //! (`boiler_mono.plc.toml`) with the same executed events and outputs on
