@@ -648,18 +648,12 @@ fn boiler_starts_runs_changes_fire_and_stops() {
             false,
             &["pv_open", "trial_start", "ign_on"],
         ),
+        (&["pf_on"], false, &["ign_off"]),
+        // Pilot proving: the trial window expires with the flame.
         (
-            &["pf_on"],
+            &["trial_done"],
             false,
-            &[
-                "ign_off",
-                "trial_reset",
-                "mf_init",
-                "dmp_hi",
-                "blow_on",
-                "mtrial_start",
-                "mv_hi",
-            ],
+            &["mf_init", "dmp_hi", "blow_on", "mtrial_start", "mv_hi"],
         ),
         (&["mf_on"], false, &["mtrial_reset"]),
         (&["op_low"], false, &["mv_lo", "dmp_lo"]),
@@ -682,18 +676,12 @@ fn selection_changes_during_light_off_wait_for_the_main_flame() {
             false,
             &["pv_open", "trial_start", "ign_on"],
         ),
+        (&["pf_on"], false, &["ign_off"]),
+        // Pilot proving: the trial window expires with the flame.
         (
-            &["pf_on"],
+            &["trial_done"],
             false,
-            &[
-                "ign_off",
-                "trial_reset",
-                "mf_init",
-                "dmp_lo",
-                "blow_on",
-                "mtrial_start",
-                "mv_lo",
-            ],
+            &["mf_init", "dmp_lo", "blow_on", "mtrial_start", "mv_lo"],
         ),
         (&["op_high"], false, NONE),
         (&["mf_on"], false, &["mtrial_reset", "dmp_hi", "mv_hi"]),
@@ -720,23 +708,22 @@ fn ignition_timeout_shuts_down_until_bms_and_a_new_selection() {
 }
 
 #[test]
-fn two_pilot_flame_losses_shut_down() {
-    // A main flame signal before the main stage holds it (mf_init needs
-    // the main sensor dark), so the pilot's second trial can be seen; then
-    // a pilot loss during the main stage is a flame failure (sd2).
+fn pilot_flame_losses_in_the_trial_window() {
     run_boiler(&[
+        // One loss while the pilot is being proven: trial 2 sparks again
+        // in the same window, and the pilot proven when the window expires
+        // starts the main stage; a pilot loss then is a flame failure (sd2).
         (&["op_high"], false, &["pf_init", "purge_start"]),
         (
             &["purge_done"],
             false,
             &["pv_open", "trial_start", "ign_on"],
         ),
-        (&["mf_on"], false, NONE),
-        (&["pf_on"], false, &["ign_off", "trial_reset"]),
-        (&["pf_off"], false, &["trial_start", "ign_on"]),
-        (&["pf_on"], false, &["ign_off", "trial_reset"]),
+        (&["pf_on"], false, &["ign_off"]),
+        (&["pf_off"], false, &["ign_on"]),
+        (&["pf_on"], false, &["ign_off"]),
         (
-            &["mf_off"],
+            &["trial_done"],
             false,
             &["mf_init", "dmp_hi", "blow_on", "mtrial_start", "mv_hi"],
         ),
@@ -753,18 +740,20 @@ fn two_pilot_flame_losses_shut_down() {
             ],
         ),
         (NONE, true, &["bms"]),
+        // Two losses in one window: shutdown (sd1), burner management
+        // after reset, and a new selection starts again.
         (&["op_low"], false, &["pf_init", "purge_start"]),
         (
             &["purge_done"],
             false,
             &["pv_open", "trial_start", "ign_on"],
         ),
-        (&["mf_on"], false, NONE),
-        (&["pf_on"], false, &["ign_off", "trial_reset"]),
-        (&["pf_off"], false, &["trial_start", "ign_on"]),
-        (&["pf_on"], false, &["ign_off", "trial_reset"]),
-        (&["pf_off"], false, &["sd1", "pv_close"]),
+        (&["pf_on"], false, &["ign_off"]),
+        (&["pf_off"], false, &["ign_on"]),
+        (&["pf_on"], false, &["ign_off"]),
+        (&["pf_off"], false, &["sd1", "pv_close", "trial_reset"]),
         (NONE, true, &["bms"]),
+        (&["op_high"], false, &["pf_init", "purge_start"]),
     ]);
 }
 
@@ -813,18 +802,12 @@ fn a_hot_limit_holds_the_start_and_a_rising_one_shuts_down_in_every_stage() {
             false,
             &["pv_open", "trial_start", "ign_on"],
         ),
+        (&["pf_on"], false, &["ign_off"]),
+        // Pilot proving: the trial window expires with the flame.
         (
-            &["pf_on"],
+            &["trial_done"],
             false,
-            &[
-                "ign_off",
-                "trial_reset",
-                "mf_init",
-                "dmp_lo",
-                "blow_on",
-                "mtrial_start",
-                "mv_lo",
-            ],
+            &["mf_init", "dmp_lo", "blow_on", "mtrial_start", "mv_lo"],
         ),
         (
             &["flue_over"],
@@ -851,18 +834,12 @@ fn main_flame_faults_and_over_temperature_shut_down() {
             false,
             &["pv_open", "trial_start", "ign_on"],
         ),
+        (&["pf_on"], false, &["ign_off"]),
+        // Pilot proving: the trial window expires with the flame.
         (
-            &["pf_on"],
+            &["trial_done"],
             false,
-            &[
-                "ign_off",
-                "trial_reset",
-                "mf_init",
-                "dmp_lo",
-                "blow_on",
-                "mtrial_start",
-                "mv_lo",
-            ],
+            &["mf_init", "dmp_lo", "blow_on", "mtrial_start", "mv_lo"],
         ),
     ];
     let shutdown: &[&str] = &["sd2", "mv_off", "pv_close", "blow_off", "dmp_off"];
@@ -902,7 +879,8 @@ fn main_flame_faults_and_over_temperature_shut_down() {
             &["pv_open", "trial_start", "ign_on"],
         ),
         (&["mf_on"], false, NONE),
-        (&["pf_on"], false, &["ign_off", "trial_reset"]),
+        (&["pf_on"], false, &["ign_off"]),
+        (&["trial_done"], false, NONE),
         (
             &["mf_off"],
             false,
@@ -945,10 +923,10 @@ fn pilot_and_main_controllers_alone() {
                 false,
                 &["pv_open", "trial_start", "ign_on"],
             ),
-            (&["pf_on"], false, &["ign_off", "trial_reset"]),
-            (&["pf_off"], false, &["trial_start", "ign_on"]),
-            (&["pf_on"], false, &["ign_off", "trial_reset"]),
-            (&["pf_off"], false, &["sd1", "pv_close"]),
+            (&["pf_on"], false, &["ign_off"]),
+            (&["pf_off"], false, &["ign_on"]),
+            (&["pf_on"], false, &["ign_off"]),
+            (&["pf_off"], false, &["sd1", "pv_close", "trial_reset"]),
             (NONE, true, &["bms"]),
         ],
     );

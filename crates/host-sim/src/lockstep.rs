@@ -61,6 +61,12 @@ impl Lockstep {
         Ok(row)
     }
 
+    /// [`Sim::stall`] on both; whether it was an overrun.
+    pub fn stall(&mut self, ms: u64) -> bool {
+        self.logic.stall(ms);
+        self.table.stall(ms)
+    }
+
     /// `scans` scans; their rows.
     pub fn run(&mut self, scans: usize) -> Result<Vec<TraceRow>, SimError> {
         (0..scans).map(|_| self.scan()).collect()

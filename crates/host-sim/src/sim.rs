@@ -159,6 +159,21 @@ impl Sim {
             .expect("the input image has one value per input")
     }
 
+    /// The controller hangs for `ms`: no scan runs and the virtual clock
+    /// jumps, so the next scan starts `ms` late. More than `overrun_limit`
+    /// scan periods late is an overrun (SEMANTICS, faults: counted, and a
+    /// fault when the project sets `overrun_fault`), as the firmware's
+    /// pacing judges it. Returns whether it was one.
+    pub fn stall(&mut self, ms: u64) -> bool {
+        self.time_ms += ms;
+        let limit = u64::from(self.project.overrun_limit) * u64::from(self.project.scan_period_ms);
+        let overrun = ms > limit;
+        if overrun {
+            self.controller.report_overrun();
+        }
+        overrun
+    }
+
     /// Runs one scan at `time_ms` with the raw image `raw`.
     pub fn scan_with(&mut self, time_ms: u64, raw: &[bool]) -> Result<&TraceRow, SimError> {
         if raw.len() != self.project.inputs.len() {

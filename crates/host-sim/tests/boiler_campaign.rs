@@ -1,8 +1,11 @@
 //! The boiler's randomized campaign: many seeded runs of ten simulated
 //! minutes each (random operator actions, ignition failures, flame-outs,
 //! load changes, temperature excursions, a fouled flue, sensor bounce,
-//! stuck contacts and dropouts, resets), every scan checked by the safety
-//! invariants. Zero violations and zero faults are required.
+//! stuck contacts and dropouts, controller stalls, resets), every scan
+//! checked by the safety invariants. Zero violations are required, and the
+//! only faults allowed are the overruns of a stalled controller: a fault
+//! mode that starts in the first scan after a stall of more than
+//! `overrun_limit` periods, with cause `Overrun`.
 //!
 //! Run in release (CI does, through `cargo xtask ci`):
 //! `cargo test --release -p host-sim --test boiler_campaign -- --ignored`;
@@ -23,8 +26,17 @@ fn env(name: &str, default: u64) -> u64 {
         .unwrap_or(default)
 }
 
-/// One run; its violations as text, the number of shutdowns and of scans.
-fn campaign_run(project: &codegen::project::Project, seed: u64) -> (Vec<String>, usize, usize) {
+/// What one run found.
+struct Outcome {
+    problems: Vec<String>,
+    shutdowns: usize,
+    scans: usize,
+    stalls: usize,
+    overruns: usize,
+}
+
+/// One run: its violations and unexplained faults as text, and counts.
+fn campaign_run(project: &codegen::project::Project, seed: u64) -> Outcome {
     let mut sim = Sim::new(project.clone(), Backend::Table).unwrap();
     let params = BoilerParams {
         ignition_failure_probability: 0.2,
@@ -39,18 +51,37 @@ fn campaign_run(project: &codegen::project::Project, seed: u64) -> (Vec<String>,
         .iter()
         .map(|v| format!("seed {seed}: {v}"))
         .collect();
-    if let Some(row) = run.first(|r| r.fault.is_some()) {
-        problems.push(format!(
-            "seed {seed}: fault {:?} at scan {}",
-            row.fault, row.scan
-        ));
+    let limit_ms = u64::from(project.overrun_limit) * u64::from(project.scan_period_ms);
+    let (mut stalls, mut overruns) = (0, 0);
+    for w in run.rows.windows(2) {
+        let late = w[1].time_ms - w[0].time_ms - u64::from(project.scan_period_ms);
+        stalls += usize::from(late > limit_ms);
+        if w[1].fault.is_some() && w[0].fault.is_none() {
+            if w[1].fault.as_deref() == Some("Overrun") && late > limit_ms {
+                overruns += 1;
+            } else {
+                problems.push(format!(
+                    "seed {seed}: fault {:?} at scan {}, {late} ms late",
+                    w[1].fault, w[1].scan
+                ));
+            }
+        }
+    }
+    if let Some(row) = run.rows.first().filter(|r| r.fault.is_some()) {
+        problems.push(format!("seed {seed}: fault {:?} at scan 0", row.fault));
     }
     let shutdowns = run
         .rows
         .iter()
         .filter(|r| r.events.iter().any(|e| e == "sd1" || e == "sd2"))
         .count();
-    (problems, shutdowns, run.rows.len())
+    Outcome {
+        problems,
+        shutdowns,
+        scans: run.rows.len(),
+        stalls,
+        overruns,
+    }
 }
 
 #[test]
@@ -61,7 +92,7 @@ fn random_campaign_has_no_safety_violation() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../models/boiler/boiler.plc.toml");
     let project = codegen::project::load(&path).unwrap();
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u64;
-    let results: Vec<(Vec<String>, usize, usize)> = std::thread::scope(|s| {
+    let results: Vec<Outcome> = std::thread::scope(|s| {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
                 let project = &project;
@@ -78,17 +109,24 @@ fn random_campaign_has_no_safety_violation() {
             .flat_map(|h| h.join().expect("a campaign thread panicked"))
             .collect()
     });
-    let problems: Vec<&String> = results.iter().flat_map(|r| &r.0).collect();
-    let shutdowns: usize = results.iter().map(|r| r.1).sum();
-    let scans: usize = results.iter().map(|r| r.2).sum();
+    let problems: Vec<&String> = results.iter().flat_map(|r| &r.problems).collect();
+    let total = |f: fn(&Outcome) -> usize| results.iter().map(f).sum::<usize>();
+    let (shutdowns, scans) = (total(|r| r.shutdowns), total(|r| r.scans));
+    let (stalls, overruns) = (total(|r| r.stalls), total(|r| r.overruns));
     println!(
-        "boiler campaign: {runs} runs × {MINUTES} min, {scans} scans, {shutdowns} shutdowns, {} problems",
+        "boiler campaign: {runs} runs × {MINUTES} min, {scans} scans, {shutdowns} shutdowns, \
+         {stalls} controller stalls, {overruns} overrun faults, {} problems",
         problems.len()
     );
     assert_eq!(results.len() as u64, runs);
     assert!(
         shutdowns > runs as usize / 10,
         "the disturbances caused shutdowns ({shutdowns})"
+    );
+    // A stall during fault mode (or ended by a reset edge) adds no fault.
+    assert!(
+        overruns * 2 > stalls,
+        "stalls became overrun faults ({overruns} of {stalls})"
     );
     assert!(problems.is_empty(), "{problems:#?}");
 }

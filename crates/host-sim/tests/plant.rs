@@ -1047,6 +1047,40 @@ fn a_shutdown_counts_from_the_debounced_edge() {
     assert!(!check(rules, [0; 7], &inputs, burner(24)).is_empty());
 }
 
+#[test]
+fn a_selector_on_when_the_controller_reinitialises_demands_no_heat_until_switched_on() {
+    // Selector on from scan 1; the controller re-initialises at scan 100
+    // (leaves fault mode); the bath limit rises at scan 200, the selector
+    // is switched off at 300 and on at 301, the flue limit rises at 400.
+    let mut inputs = selector_on_at_scan_1();
+    for i in &mut inputs[200..] {
+        i.bath_hot = true;
+    }
+    inputs[300].sel_low = false;
+    for i in &mut inputs[400..] {
+        i.flue_hot = true;
+    }
+    let judge = |reinit: Option<usize>| {
+        let mut c = Checker::new(Invariants::default());
+        for (k, i) in inputs.iter().enumerate() {
+            if Some(k) == reinit {
+                c.reinitialised();
+            }
+            c.observe(k as u64 * SCAN_MS, i, &Outputs::default());
+        }
+        c.finish()
+    };
+    let scans = |v: &[Violation]| v.iter().map(|v| (v.scan, v.rule)).collect::<Vec<_>>();
+    // Without re-initialisation the bath limit is a shutdown: no alarm.
+    assert_eq!(
+        scans(&judge(None)),
+        [(202, Rule::NoAlarm), (402, Rule::NoAlarm)]
+    );
+    // After it, the controller has seen no selector edge: only the flue
+    // limit, after the selector was switched on again, must alarm.
+    assert_eq!(scans(&judge(Some(100))), [(402, Rule::NoAlarm)]);
+}
+
 // ------------------------------------------- through the executor
 
 #[test]

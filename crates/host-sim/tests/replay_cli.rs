@@ -107,7 +107,7 @@ fn boiler_main_job_prints_a_timeline_and_writes_waveforms() {
     );
     assert!(stdout.contains("mf_off sd2 mv_off pv_close"), "{stdout}");
     assert!(
-        stdout.contains("safety invariants: held on all 6000 scans"),
+        stdout.contains("safety invariants: held on all 7500 scans"),
         "{stdout}"
     );
     assert!(std::fs::read_to_string(&vcd)

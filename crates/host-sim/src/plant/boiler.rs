@@ -343,6 +343,8 @@ impl BoilerPlant {
             Action::Reset => self.reset_until_ms = Some(self.time_ms + self.params.reset_pulse_ms),
             Action::Disturb(d) => self.disturb(d),
             Action::SensorFault(input, fault) => self.wiring.install(input, fault, self.time_ms),
+            // The controller's, not the plant's: see `plant::run_with`.
+            Action::Stall { .. } => {}
         }
         self.limit_switches();
         self.wiring.update(&self.truth(), self.time_ms);

@@ -22,6 +22,12 @@ pub trait BoilerController {
 
     /// One scan with the input image `inputs`.
     fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, PlantError>;
+
+    /// The controller hangs for `ms` (no scans, outputs held); the next
+    /// scan starts that late. Default: nothing to note.
+    fn stall(&mut self, ms: u64) {
+        let _ = ms;
+    }
 }
 
 /// What a controller did in one scan.
@@ -128,5 +134,12 @@ impl BoilerController for Plc<'_> {
             states: row.states,
             fault: row.fault,
         })
+    }
+
+    fn stall(&mut self, ms: u64) {
+        match &mut self.target {
+            Target::Sim(sim) => sim.stall(ms),
+            Target::Lockstep(ls) => ls.stall(ms),
+        };
     }
 }

@@ -12,17 +12,25 @@
 //! when it is 1 in `O[k]` and 0 in `O[k-1]`. The fuel valves are
 //! `pilot_valve`, `main_valve_lo` and `main_valve_hi`.
 //!
-//! A **start request** begins in scan `k` when the selector (`sel_high` or
-//! `sel_low`) is on in `F[k]` and off in `F[k-1]`, or when `reset` rises in
-//! `F[k]` with the selector on, the burner locked out (a shutdown below
-//! not yet reset, or `alarm` on in `O[k-1]`) and every fuel valve closed in
-//! `O[k-1]` (a restart after a lockout purges again). It ends when the
-//! selector is off.
+//! The selector is **switched on** in scan `k` when one of its contacts
+//! (`sel_high`, `sel_low`) rises in `F[k]` while it does not demand heat;
+//! it then **demands heat** until it is off (both contacts 0) again. A
+//! selector already on when the controller starts (scan 0, where there are
+//! no edges) or when it re-initialises (the scan that leaves fault mode,
+//! reported with [`Checker::reinitialised`], which also ends the start
+//! request) does not demand heat until a contact rises: the controller has
+//! seen no edge of it (SEMANTICS, scan cycle steps 1 and 2).
+//!
+//! A **start request** begins in scan `k` when the selector is switched on,
+//! or when `reset` rises in `F[k]` while the selector demands heat, the
+//! burner locked out (a shutdown below not yet reset, or `alarm` on in
+//! `O[k-1]`) and every fuel valve closed in `O[k-1]` (a restart after a
+//! lockout purges again). It ends when the selector is off.
 //!
 //! A **shutdown** is triggered in scan `k` by a rising edge of `bath_hot`
-//! or `flue_hot` in `F` while the selector is on, or by a falling edge of
-//! `main_flame` while a main valve was open in `O[k-1]`. The burner is then
-//! **locked out** until a rising edge of `reset`.
+//! or `flue_hot` in `F` while the selector demands heat, or by a falling
+//! edge of `main_flame` while a main valve was open in `O[k-1]`. The burner
+//! is then **locked out** until a rising edge of `reset`.
 //!
 //! # The rules ([`Rule`])
 //!
@@ -229,6 +237,7 @@ pub struct Checker {
     scan: u64,
     prev_inputs: Inputs,
     prev_outputs: Outputs,
+    demand: bool,
     request: Option<Request>,
     blower_since_ms: Option<u64>,
     lockout: Option<(u64, &'static str)>,
@@ -258,6 +267,7 @@ impl Checker {
             scan: 0,
             prev_inputs: Inputs::default(),
             prev_outputs: Outputs::default(),
+            demand: false,
             request: None,
             blower_since_ms: None,
             lockout: None,
@@ -280,6 +290,14 @@ impl Checker {
     /// The violations found so far.
     pub fn violations(&self) -> &[Violation] {
         &self.violations
+    }
+
+    /// The controller re-initialises in the next observed scan (it leaves
+    /// fault mode on `reset`): the start request ends, and a selector
+    /// already on no longer demands heat until one of its contacts rises.
+    pub fn reinitialised(&mut self) {
+        self.demand = false;
+        self.request = None;
     }
 
     /// The violations of the whole record.
@@ -344,9 +362,12 @@ impl Checker {
         if reset {
             self.lockout = None;
         }
+        let contact_rose = s.rose(Input::SelHigh) || s.rose(Input::SelLow);
+        let switched_on = s.now.selector_on() && !self.demand && contact_rose;
+        self.demand = s.now.selector_on() && (self.demand || switched_on);
         if !s.now.selector_on() {
             self.request = None;
-        } else if !s.before.selector_on() || (reset && locked && !s.out_before.fuel_open()) {
+        } else if switched_on || (reset && locked && self.demand && !s.out_before.fuel_open()) {
             self.request = Some(Request {
                 scan: s.k,
                 time_ms: s.time_ms,
@@ -370,10 +391,10 @@ impl Checker {
 
     fn track_shutdowns(&mut self, s: &Scan) {
         let mut causes = Vec::new();
-        if s.now.selector_on() && s.rose(Input::BathHot) {
+        if self.demand && s.rose(Input::BathHot) {
             causes.push("bath_hot rose");
         }
-        if s.now.selector_on() && s.rose(Input::FlueHot) {
+        if self.demand && s.rose(Input::FlueHot) {
             causes.push("flue_hot rose");
         }
         if s.fell(Input::MainFlame) && s.out_before.main_open() {
@@ -428,7 +449,7 @@ impl Checker {
             let purge = self.rules.purge_ms;
             let Some(r) = self.request else {
                 let why = if s.now.selector_on() {
-                    "the selector has been on since the first scan, never switched on"
+                    "the selector was on when the controller (re)started, not switched on since"
                 } else {
                     "the selector is off"
                 };
@@ -616,6 +637,11 @@ impl ProjectChecker {
         Ok(())
     }
 
+    /// See [`Checker::reinitialised`].
+    pub fn reinitialised(&mut self) {
+        self.checker.reinitialised();
+    }
+
     /// The violations found so far.
     pub fn violations(&self) -> &[Violation] {
         self.checker.violations()
@@ -628,7 +654,8 @@ impl ProjectChecker {
 }
 
 /// The violations in rows of `(time_ms, raw inputs, raw outputs)` of
-/// `project`.
+/// `project`, a controller that never leaves fault mode in them (rows
+/// with fault causes: [`check_replay`]).
 pub fn check_rows<'r>(
     project: &Project,
     rules: Invariants,
@@ -655,12 +682,14 @@ pub fn check_replay(
             trace: trace.len(),
         });
     }
-    check_rows(
-        project,
-        rules,
-        inputs
-            .iter()
-            .zip(trace)
-            .map(|(i, t)| (t.time_ms, i.values.as_slice(), t.outputs.as_slice())),
-    )
+    let mut checker = Checker::for_project(project, rules)?;
+    let mut faulted = false;
+    for (i, t) in inputs.iter().zip(trace) {
+        if faulted && t.fault.is_none() {
+            checker.reinitialised();
+        }
+        faulted = t.fault.is_some();
+        checker.observe(t.time_ms, &i.values, &t.outputs)?;
+    }
+    Ok(checker.finish())
 }

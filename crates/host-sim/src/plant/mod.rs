@@ -16,7 +16,9 @@
 //!
 //! One scan of [`run`] / [`run_with`]:
 //!
-//! 1. script actions due at the plant's time (`at <= now`) are applied;
+//! 1. script actions due at the plant's time (`at <= now`) are applied; a
+//!    controller stall ([`Action::Stall`]) then runs the plant on the held
+//!    outputs for its length, with no scans and no rows;
 //! 2. the controller scans the input image the plant shows (sensor faults
 //!    applied);
 //! 3. the plant advances one scan period under the controller's outputs.
@@ -116,9 +118,22 @@ pub fn run_with<C: BoilerController + ?Sized>(
     let mut next = 0;
     let mut rows = Vec::with_capacity((duration_ms / period) as usize + 1);
     while plant.time_ms() < end {
+        let mut stall = 0;
         while let Some((_, action)) = actions.get(next).filter(|(at, _)| *at <= plant.time_ms()) {
+            if let Action::Stall { ms } = *action {
+                stall += ms;
+            }
             plant.apply(action);
             next += 1;
+        }
+        if stall > 0 {
+            let held = rows.last().map(|r: &RunRow| r.outputs).unwrap_or_default();
+            let until = plant.time_ms() + stall;
+            while plant.time_ms() < until {
+                plant.step(period.min(until - plant.time_ms()), &held);
+            }
+            controller.stall(stall);
+            continue;
         }
         let state = plant.state();
         let inputs = plant.inputs();

@@ -55,7 +55,12 @@ impl Run {
     /// the inputs as the controller filtered them.
     pub fn violations(&self, invariants: &Invariants) -> Vec<Violation> {
         let mut checker = Checker::with_debounce(invariants.clone(), self.debounce);
+        let mut faulted = false;
         for row in &self.rows {
+            if faulted && row.fault.is_none() {
+                checker.reinitialised();
+            }
+            faulted = row.fault.is_some();
             checker.observe(row.time_ms, &row.inputs, &row.outputs);
         }
         checker.finish()

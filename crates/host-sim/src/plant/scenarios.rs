@@ -7,16 +7,19 @@ use super::signals::{Input, Selector};
 use super::wiring::SensorFault;
 
 /// Scenario names, in the order `host-sim boiler` lists them.
-pub const NAMES: [&str; 9] = [
+pub const NAMES: [&str; 12] = [
     "cold-start-high",
     "cold-start-low",
     "high-low",
     "failed-ignition",
+    "pilot-relight",
+    "two-pilot-failures",
     "main-flame-failure",
     "bath-over-temperature",
     "flue-over-temperature",
     "bouncing-flame-sensor",
     "operator-off",
+    "controller-stall",
 ];
 
 /// The script and duration (ms) of scenario `name`; `random-<seed>` gives
@@ -32,9 +35,9 @@ pub fn named(name: &str) -> Option<(Script, u64)> {
         "high-low" => (
             Script::new()
                 .at(1_000, Selector::High)
-                .at(40_000, Selector::Low)
-                .at(70_000, Selector::High),
-            100_000,
+                .at(55_000, Selector::Low)
+                .at(85_000, Selector::High),
+            115_000,
         ),
         "failed-ignition" => (
             Script::new()
@@ -43,22 +46,43 @@ pub fn named(name: &str) -> Option<(Script, u64)> {
                 .at(40_000, Action::Reset)
                 .at(41_000, Selector::Off)
                 .at(42_000, Selector::Low),
-            80_000,
+            90_000,
+        ),
+        // The pilot flame forms at about 13 s and goes out at 16 s, inside
+        // the 15 s trial window (pilot proving): trial 2 sparks again, the
+        // window expires with the flame and the main stage starts.
+        "pilot-relight" => (
+            Script::new()
+                .at(1_000, Selector::Low)
+                .at(16_000, Disturbance::PilotFlameOut { for_ms: 1_000 }),
+            60_000,
+        ),
+        // Two losses in one window: shutdown, alarm; reset acknowledges
+        // (burner management), the operator selects again and it lights.
+        "two-pilot-failures" => (
+            Script::new()
+                .at(1_000, Selector::High)
+                .at(16_000, Disturbance::PilotFlameOut { for_ms: 1_000 })
+                .at(21_000, Disturbance::PilotFlameOut { for_ms: 1_000 })
+                .at(30_000, Action::Reset)
+                .at(31_000, Selector::Off)
+                .at(32_000, Selector::High),
+            90_000,
         ),
         "main-flame-failure" => (
             Script::new()
                 .at(1_000, Selector::High)
-                .at(30_000, Disturbance::MainFlameOut { for_ms: 60_000 })
-                .at(45_000, Action::Reset),
-            60_000,
+                .at(45_000, Disturbance::MainFlameOut { for_ms: 60_000 })
+                .at(60_000, Action::Reset),
+            75_000,
         ),
         "bath-over-temperature" => (
             Script::new()
                 .at(1_000, Selector::High)
-                .at(30_000, Disturbance::BathTemperature(90.0))
-                .at(35_000, Disturbance::BathTemperature(60.0))
-                .at(50_000, Action::Reset),
-            70_000,
+                .at(45_000, Disturbance::BathTemperature(90.0))
+                .at(50_000, Disturbance::BathTemperature(60.0))
+                .at(65_000, Action::Reset),
+            85_000,
         ),
         "flue-over-temperature" => (
             Script::new()
@@ -84,8 +108,21 @@ pub fn named(name: &str) -> Option<(Script, u64)> {
         "operator-off" => (
             Script::new()
                 .at(1_000, Selector::High)
-                .at(30_000, Selector::Off),
-            40_000,
+                .at(45_000, Selector::Off),
+            55_000,
+        ),
+        // The controller hangs for 300 ms while firing on high: the next
+        // scan is an overrun (more than 5 periods late), fault mode puts
+        // out the safe image (every valve closed, alarm on) until reset,
+        // which re-initialises the supervisors; the operator selects again.
+        "controller-stall" => (
+            Script::new()
+                .at(1_000, Selector::High)
+                .at(40_000, Action::Stall { ms: 300 })
+                .at(50_000, Action::Reset)
+                .at(51_000, Selector::Off)
+                .at(52_000, Selector::High),
+            90_000,
         ),
         _ => return None,
     })

@@ -19,6 +19,14 @@ pub enum Action {
     Disturb(Disturbance),
     /// A fault on one input's wiring (replacing any earlier one there).
     SensorFault(Input, SensorFault),
+    /// The controller hangs for `ms` (a blocking driver, an interrupt
+    /// storm): no scans, its outputs hold, the plant goes on; the next scan
+    /// starts late, an overrun if more than the project's `overrun_limit`
+    /// periods.
+    Stall {
+        /// How long no scan runs.
+        ms: u64,
+    },
 }
 
 impl From<Selector> for Action {
@@ -175,6 +183,11 @@ impl Draw {
                 let clean = t + 10_000 + self.below(60_000);
                 self.add(clean, Disturbance::FlueFouling(0.0));
                 self.reset_later(clean);
+            }
+            78..=81 => {
+                let ms = 20 + self.below(480);
+                self.add(t, Action::Stall { ms });
+                self.reset_later(t);
             }
             _ => self.sensor_fault(t),
         }
