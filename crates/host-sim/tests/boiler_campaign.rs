@@ -133,7 +133,8 @@ fn random_campaign_has_no_safety_violation() {
 
 /// Diagnosis of one campaign run: `SEED=15 cargo test --release -p
 /// host-sim --test boiler_campaign -- --ignored --nocapture debug_seed`
-/// prints its violations and the scans before the first one.
+/// prints its violations, and the scans with events (and fault changes)
+/// up to the first one.
 #[test]
 #[ignore = "diagnostic: prints one seed's run"]
 fn debug_seed() {
@@ -151,7 +152,12 @@ fn debug_seed() {
     let v = run.violations(&Invariants::default());
     println!("{v:#?}");
     if let Some(first) = v.first() {
-        for r in &run.rows[(first.scan as usize).saturating_sub(300)..(first.scan as usize + 5)] {
+        let mut fault = None;
+        for r in &run.rows[..(first.scan as usize + 5)] {
+            if r.fault != fault {
+                println!("{} {} fault {:?}", r.scan, r.time_ms, r.fault);
+                fault = r.fault.clone();
+            }
             if !r.events.is_empty() || r.scan + 5 >= first.scan {
                 println!(
                     "{} {} {:?} in={:?} out={:?} {:?}",

@@ -44,6 +44,9 @@ pub struct ControllerScan {
     pub states: Vec<(String, String)>,
     /// Fault cause on a scan spent in fault mode.
     pub fault: Option<String>,
+    /// The controller left fault mode in this scan (reset): it
+    /// re-initialised and discarded the scan's edges.
+    pub reinitialised: bool,
 }
 
 /// The executor running a project, single backend or both in lockstep.
@@ -122,6 +125,13 @@ impl BoilerController for Plc<'_> {
     }
 
     fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, PlantError> {
+        // A fault may start between scans (an overrun after a stall), so
+        // the record of the previous scan does not tell.
+        let faulted = match &self.target {
+            Target::Sim(sim) => sim.controller().fault(),
+            Target::Lockstep(ls) => ls.sim().controller().fault(),
+        }
+        .is_some();
         let row = self.scan_row(inputs)?;
         let mut outputs = Outputs::default();
         for output in Output::ALL {
@@ -132,6 +142,7 @@ impl BoilerController for Plc<'_> {
             outputs,
             events: row.events,
             states: row.states,
+            reinitialised: faulted && row.fault.is_none(),
             fault: row.fault,
         })
     }

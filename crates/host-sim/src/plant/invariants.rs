@@ -19,7 +19,9 @@
 //! no edges) or when it re-initialises (the scan that leaves fault mode,
 //! reported with [`Checker::reinitialised`], which also ends the start
 //! request) does not demand heat until a contact rises: the controller has
-//! seen no edge of it (SEMANTICS, scan cycle steps 1 and 2).
+//! seen no edge of it (SEMANTICS, scan cycle steps 1 and 2; the
+//! re-initialising scan discards its own edges, a contact rising in it
+//! included).
 //!
 //! A **start request** begins in scan `k` when the selector is switched on,
 //! or when `reset` rises in `F[k]` while the selector demands heat, the
@@ -238,6 +240,7 @@ pub struct Checker {
     prev_inputs: Inputs,
     prev_outputs: Outputs,
     demand: bool,
+    reinitialising: bool,
     request: Option<Request>,
     blower_since_ms: Option<u64>,
     lockout: Option<(u64, &'static str)>,
@@ -268,6 +271,7 @@ impl Checker {
             prev_inputs: Inputs::default(),
             prev_outputs: Outputs::default(),
             demand: false,
+            reinitialising: false,
             request: None,
             blower_since_ms: None,
             lockout: None,
@@ -297,6 +301,7 @@ impl Checker {
     /// already on no longer demands heat until one of its contacts rises.
     pub fn reinitialised(&mut self) {
         self.demand = false;
+        self.reinitialising = true;
         self.request = None;
     }
 
@@ -362,7 +367,9 @@ impl Checker {
         if reset {
             self.lockout = None;
         }
-        let contact_rose = s.rose(Input::SelHigh) || s.rose(Input::SelLow);
+        // The scan that re-initialises discards its edges (SEMANTICS step 2).
+        let contact_rose = !std::mem::take(&mut self.reinitialising)
+            && (s.rose(Input::SelHigh) || s.rose(Input::SelLow));
         let switched_on = s.now.selector_on() && !self.demand && contact_rose;
         self.demand = s.now.selector_on() && (self.demand || switched_on);
         if !s.now.selector_on() {

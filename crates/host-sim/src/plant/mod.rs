@@ -147,6 +147,7 @@ pub fn run_with<C: BoilerController + ?Sized>(
             events: scan.events,
             states: scan.states,
             fault: scan.fault,
+            reinitialised: scan.reinitialised,
             plant: state,
         });
     }

@@ -24,6 +24,8 @@ pub struct RunRow {
     pub states: Vec<(String, String)>,
     /// Fault cause on a scan spent in fault mode.
     pub fault: Option<String>,
+    /// The controller left fault mode in this scan and re-initialised.
+    pub reinitialised: bool,
     /// The true plant state when the inputs were read.
     pub plant: PlantState,
 }
@@ -55,12 +57,10 @@ impl Run {
     /// the inputs as the controller filtered them.
     pub fn violations(&self, invariants: &Invariants) -> Vec<Violation> {
         let mut checker = Checker::with_debounce(invariants.clone(), self.debounce);
-        let mut faulted = false;
         for row in &self.rows {
-            if faulted && row.fault.is_none() {
+            if row.reinitialised {
                 checker.reinitialised();
             }
-            faulted = row.fault.is_some();
             checker.observe(row.time_ms, &row.inputs, &row.outputs);
         }
         checker.finish()
