@@ -55,9 +55,10 @@ enum Command {
         /// A named scenario (`--list`), or `random-<seed>`.
         #[arg(long, default_value = "cold-start-high")]
         scenario: String,
-        /// The project.
-        #[arg(long, default_value = "models/boiler/boiler.plc.toml")]
-        project: PathBuf,
+        /// The project [default: models/boiler/boiler.plc.toml, from the
+        /// working directory or else from this repository].
+        #[arg(long)]
+        project: Option<PathBuf>,
         /// Where to write the waveform.
         #[arg(long, default_value = "boiler.vcd")]
         vcd: PathBuf,
@@ -146,7 +147,10 @@ fn run(cli: Cli) -> Result<(), String> {
             svg,
             seed,
             list,
-        } => boiler(&scenario, &project, &vcd_path, svg.as_deref(), seed, list),
+        } => {
+            let project = project.unwrap_or_else(default_boiler);
+            boiler(&scenario, &project, &vcd_path, svg.as_deref(), seed, list)
+        }
         Command::Record {
             project,
             inputs: inputs_path,
@@ -191,6 +195,20 @@ fn run(cli: Cli) -> Result<(), String> {
 
 /// `host-sim boiler`: runs a scenario, prints the timeline, writes the
 /// waveforms, checks the safety invariants.
+/// `models/boiler/boiler.plc.toml` from the working directory, or else
+/// the repository's copy (the main job run from elsewhere).
+fn default_boiler() -> PathBuf {
+    let relative = Path::new("models/boiler/boiler.plc.toml");
+    let repository = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(relative);
+    if relative.exists() || !repository.exists() {
+        relative.to_path_buf()
+    } else {
+        repository
+    }
+}
+
 fn boiler(
     name: &str,
     project_path: &Path,
@@ -201,10 +219,9 @@ fn boiler(
 ) -> Result<(), String> {
     use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Input, Invariants, Output};
     if list {
-        for n in scenarios::NAMES {
-            println!("{n}");
+        for n in scenarios::NAMES.into_iter().chain(["random-<seed>"]) {
+            println!("{n:<24} {}", scenarios::about(n).unwrap_or_default());
         }
-        println!("random-<seed>");
         return Ok(());
     }
     let (script, duration) = scenarios::named(name).ok_or_else(|| {

@@ -22,6 +22,30 @@ pub const NAMES: [&str; 12] = [
     "controller-stall",
 ];
 
+/// What scenario `name` shows, in one line (`host-sim boiler --list`).
+pub fn about(name: &str) -> Option<&'static str> {
+    Some(match name {
+        "cold-start-high" => "selector on high: pre-purge, pilot, proving, main flame on high fire",
+        "cold-start-low" => "the same on low fire",
+        "high-low" => "high to low and back while firing (gas first down, air first up)",
+        "failed-ignition" => {
+            "no pilot flame in the 15 s window: shutdown, reset, a new start lights"
+        }
+        "pilot-relight" => "pilot lost while proving: a second trial in the same window, then main",
+        "two-pilot-failures" => "pilot lost twice: shutdown, reset (BMS), a new selection lights",
+        "main-flame-failure" => "main flame lost while firing: shutdown, alarm, reset",
+        "bath-over-temperature" => "bath limit trips while firing: shutdown until reset",
+        "flue-over-temperature" => "fouled flue, flue-gas limit trips: shutdown",
+        "bouncing-flame-sensor" => "a bouncing pilot flame detector: debounce gives one clean edge",
+        "operator-off" => "selector off while firing: everything closes, no alarm",
+        "controller-stall" => {
+            "controller hangs 300 ms: overrun fault, safe outputs, reset, restart"
+        }
+        _ if name.starts_with("random-") => "ten minutes of random actions and faults",
+        _ => return None,
+    })
+}
+
 /// The script and duration (ms) of scenario `name`; `random-<seed>` gives
 /// a ten-minute random script.
 pub fn named(name: &str) -> Option<(Script, u64)> {
@@ -126,4 +150,18 @@ pub fn named(name: &str) -> Option<(Script, u64)> {
         ),
         _ => return None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_listed_scenario_has_a_script_and_a_description() {
+        for name in NAMES.into_iter().chain(["random-7"]) {
+            assert!(named(name).is_some(), "{name}");
+            assert!(about(name).is_some(), "{name}");
+        }
+        assert!(named("random-x").is_none() && about("nope").is_none());
+    }
 }
