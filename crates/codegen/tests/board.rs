@@ -5,31 +5,11 @@
 
 use codegen::board::{board_module, wiring_rows, wiring_table, Direction};
 use codegen::emit::{generate, Backend};
-use codegen::project::{self, EdgeLatch, PinId, Project, Pull};
-use codegen::Error;
-use std::path::{Path, PathBuf};
+use codegen::project::{self, EdgeLatch, PinId, Pull};
+use std::path::Path;
 
-fn fixture(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/fixtures/project")
-        .join(name)
-}
-
-/// A project given as text, placed (virtually) in the fixture directory.
-fn load_text(text: &str) -> Result<Project, Error> {
-    project::from_str(text, &fixture("t.plc.toml"))
-}
-
-fn load_ok(text: &str) -> Project {
-    load_text(text).unwrap_or_else(|e| panic!("{e}\n---\n{text}"))
-}
-
-fn load_err(text: &str) -> String {
-    match load_text(text) {
-        Ok(_) => panic!("expected an error for\n{text}"),
-        Err(e) => e.to_string(),
-    }
-}
+mod common;
+use common::{assert_errors_at_marked_lines, fixture, load_err, load_ok, marked_line};
 
 /// Signals of a small station: three inputs (one debounced), two outputs.
 const SIGNALS: &str = "[plc]\nname = \"station\"\n\
@@ -86,14 +66,6 @@ fn the_chip_defaults_to_the_nucleo_and_a_project_without_board_has_none() {
     assert!(load_ok(SIGNALS).board.is_none());
     assert_eq!(board_module(&load_ok(SIGNALS)), "");
     assert_eq!(wiring_table(&load_ok(SIGNALS)), "");
-}
-
-/// The line marked `# <-` in `text` (1-based).
-fn marked_line(text: &str) -> usize {
-    text.lines()
-        .position(|l| l.contains("# <-"))
-        .map(|i| i + 1)
-        .unwrap_or_else(|| panic!("no `# <-` marker in\n{text}"))
 }
 
 /// Each case: a `[board]` section (after [`SIGNALS`]) with the offending
@@ -194,19 +166,11 @@ const ERRORS: &[(&str, &str)] = &[
 
 #[test]
 fn every_board_rule_rejects_its_violation_at_the_offending_line() {
-    let mut failures = Vec::new();
-    for (section, expected) in ERRORS {
-        let text = format!("{SIGNALS}{section}");
-        let line = marked_line(&text);
-        let msg = load_err(&text);
-        let at = format!("t.plc.toml:{line}:");
-        if !msg.contains(&at) || !msg.contains(expected) {
-            failures.push(format!(
-                "expected `{at}` and `{expected}`\n     got `{msg}`\n---\n{text}---"
-            ));
-        }
-    }
-    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    assert_errors_at_marked_lines(
+        ERRORS
+            .iter()
+            .map(|&(section, expected)| (format!("{SIGNALS}{section}"), expected)),
+    );
 }
 
 #[test]

@@ -630,6 +630,13 @@ fn run<'a>(sups: Vec<&'a Automaton>, steps: &[(&[&str], bool, &[&str])]) -> Plc<
 }
 
 /// Both the modular set and the monolithic supervisor.
+/// The pre-purge expires: pilot gas, the trial timer, the spark.
+const PURGED: (&[&str], bool, &[&str]) = (
+    &["purge_done"],
+    false,
+    &["pv_open", "trial_start", "ign_on"],
+);
+
 fn run_boiler(steps: &[(&[&str], bool, &[&str])]) {
     let modular = run(modules().iter().map(|(_, m)| &m.sup).collect(), steps);
     let mono = run(vec![&boiler().sup], steps);
@@ -643,11 +650,7 @@ fn boiler_starts_runs_changes_fire_and_stops() {
     run_boiler(&[
         (&["op_high"], false, &["pf_init", "purge_start"]),
         (NONE, false, NONE),
-        (
-            &["purge_done"],
-            false,
-            &["pv_open", "trial_start", "ign_on"],
-        ),
+        PURGED,
         (&["pf_on"], false, &["ign_off"]),
         // Pilot proving: the trial window expires with the flame.
         (
@@ -671,11 +674,7 @@ fn boiler_starts_runs_changes_fire_and_stops() {
 fn selection_changes_during_light_off_wait_for_the_main_flame() {
     run_boiler(&[
         (&["op_low"], false, &["pf_init", "purge_start"]),
-        (
-            &["purge_done"],
-            false,
-            &["pv_open", "trial_start", "ign_on"],
-        ),
+        PURGED,
         (&["pf_on"], false, &["ign_off"]),
         // Pilot proving: the trial window expires with the flame.
         (
@@ -692,11 +691,7 @@ fn selection_changes_during_light_off_wait_for_the_main_flame() {
 fn ignition_timeout_shuts_down_until_bms_and_a_new_selection() {
     run_boiler(&[
         (&["op_low"], false, &["pf_init", "purge_start"]),
-        (
-            &["purge_done"],
-            false,
-            &["pv_open", "trial_start", "ign_on"],
-        ),
+        PURGED,
         (&["trial_done"], false, &["sd1", "ign_off", "pv_close"]),
         (&["op_off"], false, NONE),
         (&["op_high"], false, NONE),
@@ -714,11 +709,7 @@ fn pilot_flame_losses_in_the_trial_window() {
         // in the same window, and the pilot proven when the window expires
         // starts the main stage; a pilot loss then is a flame failure (sd2).
         (&["op_high"], false, &["pf_init", "purge_start"]),
-        (
-            &["purge_done"],
-            false,
-            &["pv_open", "trial_start", "ign_on"],
-        ),
+        PURGED,
         (&["pf_on"], false, &["ign_off"]),
         (&["pf_off"], false, &["ign_on"]),
         (&["pf_on"], false, &["ign_off"]),
@@ -743,11 +734,7 @@ fn pilot_flame_losses_in_the_trial_window() {
         // Two losses in one window: shutdown (sd1), burner management
         // after reset, and a new selection starts again.
         (&["op_low"], false, &["pf_init", "purge_start"]),
-        (
-            &["purge_done"],
-            false,
-            &["pv_open", "trial_start", "ign_on"],
-        ),
+        PURGED,
         (&["pf_on"], false, &["ign_off"]),
         (&["pf_off"], false, &["ign_on"]),
         (&["pf_on"], false, &["ign_off"]),
@@ -772,11 +759,7 @@ fn a_hot_limit_holds_the_start_and_a_rising_one_shuts_down_in_every_stage() {
         (&["flue_ok"], true, &["bms"]),
         // Pilot stage, sparking (pilot gas open).
         (&["op_low"], false, &["pf_init", "purge_start"]),
-        (
-            &["purge_done"],
-            false,
-            &["pv_open", "trial_start", "ign_on"],
-        ),
+        PURGED,
         (
             &["bath_over"],
             false,
@@ -797,11 +780,7 @@ fn a_hot_limit_holds_the_start_and_a_rising_one_shuts_down_in_every_stage() {
         (&["bath_ok"], true, &["bms"]),
         // Pilot established, main stage light-off.
         (&["op_low"], false, &["pf_init", "purge_start"]),
-        (
-            &["purge_done"],
-            false,
-            &["pv_open", "trial_start", "ign_on"],
-        ),
+        PURGED,
         (&["pf_on"], false, &["ign_off"]),
         // Pilot proving: the trial window expires with the flame.
         (
@@ -829,11 +808,7 @@ fn a_hot_limit_holds_the_start_and_a_rising_one_shuts_down_in_every_stage() {
 fn main_flame_faults_and_over_temperature_shut_down() {
     let to_firing: &[(&[&str], bool, &[&str])] = &[
         (&["op_low"], false, &["pf_init", "purge_start"]),
-        (
-            &["purge_done"],
-            false,
-            &["pv_open", "trial_start", "ign_on"],
-        ),
+        PURGED,
         (&["pf_on"], false, &["ign_off"]),
         // Pilot proving: the trial window expires with the flame.
         (
@@ -873,11 +848,7 @@ fn main_flame_faults_and_over_temperature_shut_down() {
     // A main flame signal before the main valve opened (false flame).
     run_boiler(&[
         (&["op_low"], false, &["pf_init", "purge_start"]),
-        (
-            &["purge_done"],
-            false,
-            &["pv_open", "trial_start", "ign_on"],
-        ),
+        PURGED,
         (&["mf_on"], false, NONE),
         (&["pf_on"], false, &["ign_off"]),
         (&["trial_done"], false, NONE),
@@ -918,11 +889,7 @@ fn pilot_and_main_controllers_alone() {
         vec![&pilot().sup],
         &[
             (&["op_high"], false, &["pf_init", "purge_start"]),
-            (
-                &["purge_done"],
-                false,
-                &["pv_open", "trial_start", "ign_on"],
-            ),
+            PURGED,
             (&["pf_on"], false, &["ign_off"]),
             (&["pf_off"], false, &["ign_on"]),
             (&["pf_on"], false, &["ign_off"]),

@@ -10,31 +10,9 @@ use codegen::project::{
 };
 use codegen::{Error, StateId};
 use proptest::prelude::*;
-use std::path::{Path, PathBuf};
 
-fn dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project")
-}
-
-fn fixture(name: &str) -> PathBuf {
-    dir().join(name)
-}
-
-/// A project given as text, placed (virtually) in the fixture directory.
-fn load_text(text: &str) -> Result<Project, Error> {
-    project::from_str(text, &fixture("t.plc.toml"))
-}
-
-fn load_ok(text: &str) -> Project {
-    load_text(text).unwrap_or_else(|e| panic!("{e}\n---\n{text}"))
-}
-
-fn load_err(text: &str) -> String {
-    match load_text(text) {
-        Ok(_) => panic!("expected an error for\n{text}"),
-        Err(e) => e.to_string(),
-    }
-}
+mod common;
+use common::{assert_errors_at_marked_lines, dir, fixture, load_err, load_ok, load_text};
 
 fn states(p: &Project, sup: usize, names: &[&str]) -> Vec<StateId> {
     let a = &p.supervisors[sup].automaton;
@@ -277,14 +255,6 @@ fn a_file_with_only_a_plant_runs_it_when_named() {
         "[plc]\nname = \"x\"\n[inputs]\ni = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"i\" }\n[[supervisor]]\nfile = \"mini/plant.toml\"\ncomponent = \"machine\"\n",
     );
     assert_eq!(p.supervisors[0].name, "machine");
-}
-
-/// The line marked `# <-` in `text` (1-based).
-fn marked_line(text: &str) -> usize {
-    text.lines()
-        .position(|l| l.contains("# <-"))
-        .map(|i| i + 1)
-        .unwrap_or_else(|| panic!("no `# <-` marker in\n{text}"))
 }
 
 /// Each case: a project with the offending line marked `# <-`, and what
@@ -610,18 +580,11 @@ const ERRORS: &[(&str, &str)] = &[
 
 #[test]
 fn every_rule_rejects_its_violation_at_the_offending_line() {
-    let mut failures = Vec::new();
-    for (text, expected) in ERRORS {
-        let line = marked_line(text);
-        let msg = load_err(text);
-        let at = format!("t.plc.toml:{line}:");
-        if !msg.contains(&at) || !msg.contains(expected) {
-            failures.push(format!(
-                "expected `{at}` and `{expected}`\n     got `{msg}`\n---\n{text}---"
-            ));
-        }
-    }
-    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    assert_errors_at_marked_lines(
+        ERRORS
+            .iter()
+            .map(|&(text, expected)| (text.to_owned(), expected)),
+    );
 }
 
 #[test]

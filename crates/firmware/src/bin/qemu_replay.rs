@@ -37,9 +37,9 @@ const MAX_SCANS: usize = 8192;
 
 /// Instructions for `ticks` SysTick ticks under `-icount shift=9`: one
 /// instruction every 512 ns, SysTick at 25 MHz, so 12.8 ticks each
-/// (× 5 / 64), rounded to nearest.
+/// (× 5 / 64), rounded to nearest, without overflow for any `ticks`.
 fn instructions(ticks: u32) -> u32 {
-    (ticks * 5 + 32) / 64
+    ticks / 64 * 5 + (ticks % 64 * 5 + 32) / 64
 }
 
 /// A budget given at build time, `u32::MAX` when absent.
@@ -91,8 +91,7 @@ fn instructions_long(syst: &mut SYST, f: impl FnOnce()) -> u32 {
     let ticks = (WRAPS.load(Ordering::Relaxed) << 24)
         .wrapping_add(before)
         .wrapping_sub(after);
-    // ticks × 5 / 64 without overflowing u32.
-    ticks / 64 * 5 + (ticks % 64 * 5 + 32) / 64
+    instructions(ticks)
 }
 
 /// Ticks elapsed between two readings of the 24-bit down-counter.

@@ -90,10 +90,11 @@ impl<'a> Plc<'a> {
         &self.io
     }
 
-    fn project(&self) -> &codegen::project::Project {
+    /// The simulation (in lockstep, the table backend's).
+    fn sim(&self) -> &Sim {
         match &self.target {
-            Target::Sim(sim) => sim.project(),
-            Target::Lockstep(ls) => ls.project(),
+            Target::Sim(sim) => sim,
+            Target::Lockstep(ls) => ls.sim(),
         }
     }
 
@@ -117,7 +118,7 @@ impl<'a> Plc<'a> {
 
 impl BoilerController for Plc<'_> {
     fn scan_period_ms(&self) -> u32 {
-        self.project().scan_period_ms
+        self.sim().project().scan_period_ms
     }
 
     fn debounce(&self) -> [u8; Input::ALL.len()] {
@@ -127,11 +128,7 @@ impl BoilerController for Plc<'_> {
     fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, PlantError> {
         // A fault may start between scans (an overrun after a stall), so
         // the record of the previous scan does not tell.
-        let faulted = match &self.target {
-            Target::Sim(sim) => sim.controller().fault(),
-            Target::Lockstep(ls) => ls.sim().controller().fault(),
-        }
-        .is_some();
+        let faulted = self.sim().controller().fault().is_some();
         let row = self.scan_row(inputs)?;
         let mut outputs = Outputs::default();
         for output in Output::ALL {
