@@ -26,6 +26,7 @@ pub fn codegen() -> Command {
             .manifest_path(repo().join("Cargo.toml"))
             .package("codegen")
             .bin("codegen")
+            .features("espresso")
             .run()
             .expect("codegen builds")
             .path()

@@ -2,7 +2,8 @@
 //!
 //! - `PLC_PROJECT`: the project file, relative to the workspace root
 //!   (default `models/boiler/boiler.plc.toml`, the boiler).
-//! - `PLC_BACKEND`: `table` (default), `logic`, or `match` (the baseline).
+//! - `PLC_BACKEND`: `table` (default), `logic` (needs the `logic` feature),
+//!   or `match` (the baseline).
 //! - `PLC_SCENARIO` (feature `qemu`): the recorded scenario to replay
 //!   (`host-sim record`); `cargo xtask qemu` sets it.
 //!
@@ -47,6 +48,15 @@ fn main() {
             std::process::exit(1);
         }
     };
+    if backend == codegen::emit::Backend::Logic && std::env::var_os("CARGO_FEATURE_LOGIC").is_none()
+    {
+        eprintln!(
+            "error: PLC_BACKEND=logic needs the firmware's `logic` feature (`--features logic`): \
+             the logic backend minimises its equations with Espresso at build time, whose \
+             bindings need libclang (Debian/Ubuntu: `apt-get install libclang-dev`)"
+        );
+        std::process::exit(1);
+    }
     if board && bare_metal {
         require_board(&root.join(&project), &project);
     }

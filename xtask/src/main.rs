@@ -8,12 +8,14 @@
 //!   every model (zero mismatches against host-sim, instructions per scan,
 //!   budgets, ratios to a `match` baseline).
 //! - `size [MODEL…]`: flash and static RAM of the board firmware.
+//! - `deps`: no build a new user starts with needs libclang (bindgen).
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
 mod bench;
 mod budgets;
+mod deps;
 mod qemu;
 mod size;
 mod sysdeps;
@@ -25,6 +27,7 @@ fn main() -> ExitCode {
         Some("bench-faudes") => bench::run(&args[1..]),
         Some("qemu") => qemu::run_task(&args[1..]),
         Some("size") => size::run_task(&args[1..]),
+        Some("deps") => deps::run_task(&args[1..]),
         _ => {
             eprintln!(
                 "usage: cargo xtask <task>\n\
@@ -32,7 +35,8 @@ fn main() -> ExitCode {
                  ci                         fmt, clippy, all tests, differential tests vs libFAUDES\n  \
                  bench-faudes [--runs N] [MODEL…]  compose + supcon timings and memory vs libFAUDES\n  \
                  qemu [PROJECT] [SCENARIO]  replay in QEMU: zero mismatches, instructions per scan, budgets\n  \
-                 size [MODEL…]              flash and static RAM of the board firmware, budgets"
+                 size [MODEL…]              flash and static RAM of the board firmware, budgets\n  \
+                 deps                       the README's commands and the firmware build without libclang (cargo tree)"
             );
             Err("no task given".into())
         }
@@ -130,6 +134,10 @@ fn ci() -> Result {
         .arg("toolchain")
         .arg("install")
         .current_dir(root()))?;
+    // Before anything installs libclang: the commands a new user starts
+    // with must not need it.
+    deps::run_task(&[])?;
+    // The logic backend's tests need Espresso, hence libclang.
     sysdeps::ensure_libclang()?;
     run(cargo().args(["fmt", "--all", "--", "--check"]))?;
     // Host crates; the firmware is checked for its own targets below.
@@ -166,7 +174,7 @@ fn ci() -> Result {
         "test",
         "--release",
         "-p",
-        "codegen",
+        "des",
         "--test",
         "faudes_diff",
         "--",

@@ -200,7 +200,11 @@ fn build(
         "firmware",
         "--no-default-features",
         "--features",
-        "qemu",
+        if backend == "logic" {
+            "qemu,logic"
+        } else {
+            "qemu"
+        },
         "--bin",
         "qemu-replay",
         "--target",

@@ -1,8 +1,9 @@
 //! System packages the build needs beyond the Rust toolchain.
 //!
-//! `codegen` minimises CMSSM logic with the `espresso-logic` crate, whose
-//! build script generates bindings with bindgen and therefore loads libclang
-//! and clang's builtin headers. On Debian and Ubuntu the task installs them
+//! The logic backend (`codegen`'s `espresso` feature, which the tests turn
+//! on) minimises CMSSM logic with the `espresso-logic` crate, whose build
+//! script generates bindings with bindgen and therefore loads libclang and
+//! clang's builtin headers. Nothing else needs them (`cargo xtask deps`). On Debian and Ubuntu the task installs them
 //! with apt (`libclang1` and the matching `libclang-common-N-dev`) when they
 //! are missing; elsewhere it says what to install.
 
@@ -83,7 +84,7 @@ pub fn ensure_qemu() -> Result<String> {
     Ok("qemu-system-arm".into())
 }
 
-const MISSING: &str = "libclang is required to build `codegen` (espresso-logic uses bindgen): \
+const MISSING: &str = "libclang is required to build the logic backend (`codegen --features espresso`, which the tests use; espresso-logic runs bindgen): \
      install libclang and clang's builtin headers (Debian/Ubuntu: `apt-get install libclang-dev`) \
      or set LIBCLANG_PATH";
 

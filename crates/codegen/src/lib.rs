@@ -1,8 +1,10 @@
-//! Supervisor synthesis and PLC code generation.
+//! PLC code generation: from supervisors and a PLC project to the program
+//! the executor runs.
 //!
-//! - [`automaton`]: the automaton model (dense ids, CSR transitions).
-//! - [`formats`]: native TOML, libFAUDES `.gen`, TCT `.ads`, Waters `.wmod`.
-//! - [`ops`]: the discrete-event operations (sync, supcon, minstate, …).
+//! The automata, their formats and the discrete-event operations live in
+//! the [`des`] crate; they are re-exported here under their old paths
+//! ([`automaton`], [`formats`], [`ops`], [`dot`], [`error`]).
+//!
 //! - [`backend`]: supervisors as bit-packed tables or CMSSM logic.
 //! - [`dot`]: Graphviz output.
 //! - [`project`]: PLC project files (`*.plc.toml`), parsed and validated.
@@ -14,19 +16,13 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
-pub mod automaton;
 pub mod backend;
 pub mod board;
 pub mod build;
-pub mod dot;
 pub mod emit;
-pub mod error;
-pub mod formats;
 pub mod image;
-pub mod ops;
 pub mod project;
-#[cfg(test)]
-mod testing;
 
-pub use automaton::{Alphabet, Automaton, AutomatonBuilder, EventId, StateId};
-pub use error::{Error, Location, Result};
+pub use des;
+pub use des::{automaton, dot, error, formats, ops};
+pub use des::{Alphabet, Automaton, AutomatonBuilder, Error, EventId, Location, Result, StateId};

@@ -605,9 +605,7 @@ fn errors_carry_the_column_too() {
 
 #[test]
 fn errors_inside_model_files_point_into_the_model_file() {
-    let msg = load_err(
-        "[plc]\nname = \"x\"\n[[supervisor]]\nfile = \"../formats/bad_transition.toml\"\n",
-    );
+    let msg = load_err("[plc]\nname = \"x\"\n[[supervisor]]\nfile = \"bad_transition.toml\"\n");
     assert!(msg.contains("bad_transition.toml:"), "{msg}");
     assert!(!msg.contains("t.plc.toml"), "{msg}");
 }

@@ -70,6 +70,18 @@ use crate::project::ident::snake_ident;
 use std::collections::HashSet;
 use std::fmt::{self, Write as _};
 
+/// Whether this build can minimise: the logic backend needs Espresso
+/// (cargo feature `espresso`), everything else works without it.
+pub const AVAILABLE: bool = cfg!(feature = "espresso");
+
+/// What a build without Espresso says when asked for the logic backend.
+pub const UNAVAILABLE: &str =
+    "the logic backend minimises its equations with Espresso, which this \
+     build leaves out: rebuild with the `espresso` feature (`cargo run -p codegen --features \
+     espresso -- …`; host-sim and the firmware: `--features logic`). Espresso's Rust bindings \
+     need libclang when they are built (Debian/Ubuntu: `apt-get install libclang-dev`); the \
+     table backend needs nothing of the kind";
+
 /// Largest specification of `ω` (care points = states × (local events +
 /// 1)) synthesis accepts.
 pub const MAX_ROWS: usize = 200_000;
@@ -95,6 +107,9 @@ pub enum Minimisation {
 /// Why the logic backend could not produce (trustworthy) equations.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum LogicError {
+    /// This build has no minimiser ([`AVAILABLE`] is false).
+    #[error("{UNAVAILABLE}")]
+    Unavailable,
     /// The automaton has no states.
     #[error("supervisor `{0}` has no states")]
     Empty(String),
@@ -363,6 +378,7 @@ const LIT_FREE: u8 = 2;
 /// One family of functions as a PLA: rows of input literals (`LIT_*`)
 /// with the outputs they assert (1) in their set.
 #[derive(Default)]
+#[cfg_attr(not(feature = "espresso"), allow(dead_code))]
 struct Pla {
     inputs: usize,
     outputs: usize,
@@ -410,6 +426,13 @@ impl Pla {
     }
 
     /// Minimises the outputs `outputs` together; one cover each.
+    #[cfg(not(feature = "espresso"))]
+    fn minimise_outputs(&self, _outputs: &[usize]) -> Result<Vec<Cover>, LogicError> {
+        Err(LogicError::Unavailable)
+    }
+
+    /// Minimises the outputs `outputs` together; one cover each.
+    #[cfg(feature = "espresso")]
     fn minimise_outputs(&self, outputs: &[usize]) -> Result<Vec<Cover>, LogicError> {
         use espresso_logic::espresso::{Espresso, EspressoCover};
         let no = outputs.len();
@@ -515,6 +538,9 @@ impl LogicSupervisor {
         encoding: Encoding,
         how: Minimisation,
     ) -> Result<LogicSupervisor, LogicError> {
+        if !AVAILABLE {
+            return Err(LogicError::Unavailable);
+        }
         let n = a.num_states();
         if n == 0 {
             return Err(LogicError::Empty(a.name().to_owned()));
@@ -1093,11 +1119,30 @@ fn unique(base: String, taken: &mut HashSet<String>) -> String {
     candidate
 }
 
-#[cfg(test)]
+/// A build without Espresso refuses with [`LogicError::Unavailable`]
+/// before any work, and says how to get the backend.
+#[cfg(all(test, not(feature = "espresso")))]
+mod without_espresso {
+    use super::*;
+    use des::testing::auto;
+
+    #[test]
+    fn the_logic_backend_says_what_to_build_with() {
+        let a = auto("m", &[("go", true)], &[("0", "go", "0")], &["0"]);
+        let local: Vec<EventId> = a.alphabet().ids().collect();
+        let err = LogicSupervisor::synthesize(&a, &local, Encoding::binary(1)).unwrap_err();
+        assert_eq!(err, LogicError::Unavailable);
+        let message = err.to_string();
+        assert!(message.contains("--features espresso"), "{message}");
+        assert!(message.contains("libclang"), "{message}");
+    }
+}
+
+#[cfg(all(test, feature = "espresso"))]
 mod tests {
     use super::*;
     use crate::automaton::AutomatonBuilder;
-    use crate::testing::auto;
+    use des::testing::auto;
     use proptest::prelude::*;
 
     fn ids(a: &Automaton, names: &[&str]) -> Vec<EventId> {

@@ -145,7 +145,7 @@ impl EncodedTable {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testing::auto;
+    use des::testing::auto;
 
     fn ids(a: &Automaton, names: &[&str]) -> Vec<EventId> {
         names.iter().map(|n| a.alphabet().id(n).unwrap()).collect()

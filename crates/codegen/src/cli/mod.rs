@@ -214,10 +214,10 @@ pub fn load_components(path: &Path, name: Option<&str>) -> Result<Vec<Component>
 /// `states/transitions` plus event counts, for reports.
 #[derive(Debug, serde::Serialize)]
 pub struct Size {
-    states: usize,
-    transitions: usize,
-    events: usize,
-    controllable: usize,
+    pub states: usize,
+    pub transitions: usize,
+    pub events: usize,
+    pub controllable: usize,
 }
 
 impl Size {

@@ -36,7 +36,11 @@ impl Spinner {
 
 impl codegen::ops::Progress for Spinner {
     fn report(&self, phase: &str, done: usize) {
-        self.bar.set_message(format!("{phase}: {done} states"));
+        if done == 0 {
+            self.bar.set_message(phase.to_owned());
+        } else {
+            self.bar.set_message(format!("{phase}: {done} states"));
+        }
     }
 }
 

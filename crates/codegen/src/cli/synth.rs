@@ -3,8 +3,9 @@
 use super::progress::Spinner;
 use super::{load, print_json, Outcome, Role, Size};
 use codegen::formats::{self, Component, Kind};
-use codegen::ops::{self, ComposeOptions, Composition};
-use codegen::{Automaton, Error};
+use codegen::ops::synthesis::Synthesis;
+use codegen::ops::{self, ComposeOptions, SynthesisOptions};
+use codegen::Error;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -68,23 +69,17 @@ fn ms(since: Instant) -> f64 {
     since.elapsed().as_secs_f64() * 1e3
 }
 
-/// The synchronous composition of `parts` (the one part itself if single).
-fn compose(parts: &[Automaton], options: ComposeOptions<'_>) -> Result<Automaton, Error> {
-    if let [one] = parts {
-        return Ok(one.clone());
-    }
-    let refs: Vec<&Automaton> = parts.iter().collect();
-    Ok(ops::compose(&refs, Composition::Sync, options)?.automaton)
-}
-
 pub fn run(args: &SynthArgs, json: bool) -> Result<Outcome, Error> {
     let start = Instant::now();
     let mut t = Timings::default();
     let spinner = Spinner::new("loading");
-    let options = ComposeOptions {
-        name_states: !args.no_state_names,
-        progress: &spinner,
-        ..ComposeOptions::default()
+    let options = SynthesisOptions {
+        compose: ComposeOptions {
+            name_states: !args.no_state_names,
+            progress: &spinner,
+            ..ComposeOptions::default()
+        },
+        minstate: args.minstate,
     };
 
     let mark = Instant::now();
@@ -92,30 +87,23 @@ pub fn run(args: &SynthArgs, json: bool) -> Result<Outcome, Error> {
     let specs = load(&args.specs, Role::Spec)?;
     t.load = ms(mark);
 
-    spinner.phase("composing the plant");
-    let mark = Instant::now();
-    let plant = compose(&plants, options)?;
-    t.compose_plant = ms(mark);
-
-    spinner.phase("composing the specification");
-    let mark = Instant::now();
-    let spec = compose(&specs, options)?;
-    t.compose_spec = ms(mark);
-
-    spinner.phase("supcon");
-    let mark = Instant::now();
-    let mut sup = ops::supcon_with(&plant, &spec, options)?;
-    t.supcon = ms(mark);
-    let supcon_size = Size::of(&sup);
-
-    let mut minimised = None;
-    if args.minstate {
-        spinner.phase("minstate");
-        let mark = Instant::now();
-        sup = ops::minstate(&sup);
-        t.minstate = ms(mark);
-        minimised = Some(Size::of(&sup));
-    }
+    let Synthesis {
+        plant,
+        spec,
+        supervisor: mut sup,
+        supcon_size,
+        timings,
+    } = ops::synthesize(&plants, &specs, options)?;
+    t.compose_plant = timings.compose_plant.as_secs_f64() * 1e3;
+    t.compose_spec = timings.compose_spec.as_secs_f64() * 1e3;
+    t.supcon = timings.supcon.as_secs_f64() * 1e3;
+    t.minstate = timings.minstate.as_secs_f64() * 1e3;
+    let supervisor = Size {
+        states: supcon_size.states,
+        transitions: supcon_size.transitions,
+        ..Size::of(&sup)
+    };
+    let minimised = args.minstate.then(|| Size::of(&sup));
 
     let name = args.name.clone().unwrap_or_else(|| {
         args.output.file_stem().map_or_else(
@@ -139,8 +127,8 @@ pub fn run(args: &SynthArgs, json: bool) -> Result<Outcome, Error> {
 
     let report = Report {
         plant: Size::of(&plant),
-        spec: (!specs.is_empty()).then(|| Size::of(&spec)),
-        supervisor: supcon_size,
+        spec: spec.as_ref().map(Size::of),
+        supervisor,
         empty: sup.is_empty(),
         minimised,
         output: args.output.display().to_string(),

@@ -132,7 +132,7 @@ use super::parse::{names, Entries, Name, Names, RawEvent, RawProject, RawSupervi
 use crate::automaton::{Alphabet, Automaton, EventId, StateId};
 use crate::error::{line_column, Error, Location, Result};
 use crate::formats::{self, Component, Kind};
-use crate::ops::{self, ComposeOptions};
+use crate::ops;
 use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -1067,25 +1067,18 @@ impl Validator<'_> {
                     ),
                     other => other,
                 };
-                let compose = |this: &Self, list: Vec<Automaton>| -> Result<Automaton> {
-                    if list.len() == 1 {
-                        return Ok(list.into_iter().next().expect("one automaton"));
-                    }
-                    let refs: Vec<&Automaton> = list.iter().collect();
-                    ops::sync(&refs).map_err(|e| fail(this, e))
+                let options = ops::SynthesisOptions {
+                    minstate: s.minimize,
+                    ..ops::SynthesisOptions::default()
                 };
-                let plant = compose(self, plant_automata)?;
-                let spec = compose(self, spec_automata)?;
-                let mut result = ops::supcon_with(&plant, &spec, ComposeOptions::default())
-                    .map_err(|e| fail(self, e))?;
+                let result = ops::synthesize(&plant_automata, &spec_automata, options)
+                    .map_err(|e| fail(self, e))?
+                    .supervisor;
                 if result.is_empty() {
                     return Err(self.error(
                         &synth.span(),
                         "synthesis gave the empty supervisor: the specification cannot be enforced",
                     ));
-                }
-                if s.minimize {
-                    result = ops::minstate(&result);
                 }
                 Ok((
                     result,

@@ -2,8 +2,8 @@
 //! format round-trips, conversions between formats preserve the automaton,
 //! errors point at the right line, and no input makes a reader panic.
 
-use codegen::formats::{self, ads, gen, read_str, wmod, Component, Format, Kind};
-use codegen::{Automaton, AutomatonBuilder, Error, StateId};
+use des::formats::{self, ads, gen, read_str, wmod, Component, Format, Kind};
+use des::{Automaton, AutomatonBuilder, Error, StateId};
 use proptest::prelude::*;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -788,7 +788,7 @@ fn libfaudes_reads_our_gen_files() {
 }
 
 /// A `.gen` file with a million transitions reads in well under a second
-/// (release mode: `cargo test --release -p codegen --test formats -- --ignored`).
+/// (release mode: `cargo test --release -p des --test formats -- --ignored`).
 #[test]
 #[ignore = "timing; run in release mode"]
 fn a_million_transitions_read_fast() {

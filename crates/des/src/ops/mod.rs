@@ -10,6 +10,7 @@
 //! | [`condat`] | control data: disabled events per supervisor state |
 //! | [`verify`] | controllability, nonblocking, nonconflict, with witnesses |
 //! | [`equivalence`] | language equality, isomorphism |
+//! | [`synthesis`] | the pipeline supcon(sync(plants), sync(specs)), minstate |
 
 pub mod condat;
 pub mod equivalence;
@@ -18,6 +19,7 @@ pub mod reach;
 pub mod selfloop;
 pub mod supcon;
 pub mod sync;
+pub mod synthesis;
 pub mod verify;
 
 pub use condat::{condat, Condat};
@@ -27,6 +29,7 @@ pub use reach::{accessible, coaccessible, coreachable, is_trim, reachable, restr
 pub use selfloop::{inverse_projection, selfloop};
 pub use supcon::{supcon, supcon_with};
 pub use sync::{compose, meet, sync, ComposeOptions, Composition, Product};
+pub use synthesis::{synthesize, Synthesis, SynthesisOptions};
 pub use verify::{
     check_controllable, check_nonblocking, check_nonconflicting, BlockingWitness,
     UncontrollableWitness,

@@ -1,9 +1,9 @@
 //! The benchmark models of `models/bench/README.md`: plant sizes and
 //! supcon results must match the published (textbook) figures.
 
-use codegen::formats::read_automaton;
-use codegen::ops::{self, ComposeOptions, Composition};
-use codegen::Automaton;
+use des::formats::read_automaton;
+use des::ops::{self, ComposeOptions, Composition};
+use des::Automaton;
 use std::path::{Path, PathBuf};
 
 fn bench_dir(set: &str) -> PathBuf {

@@ -1,12 +1,12 @@
 //! Compose + supcon on the benchmark models (`models/bench`).
 //!
-//! `cargo bench -p codegen` measures our time alone; `cargo xtask
+//! `cargo bench -p des` measures our time alone; `cargo xtask
 //! bench-faudes` puts it next to libFAUDES in one run.
 
-use codegen::formats::read_automaton;
-use codegen::ops::{self, ComposeOptions, Composition};
-use codegen::Automaton;
 use criterion::{criterion_group, criterion_main, Criterion};
+use des::formats::read_automaton;
+use des::ops::{self, ComposeOptions, Composition};
+use des::Automaton;
 use std::path::Path;
 use std::time::Duration;
 

@@ -1,7 +1,7 @@
 //! Feeds arbitrary bytes to the Wmod reader: it must return, never panic.
 #![no_main]
 
-use codegen::formats::{read_str, Format};
+use des::formats::{read_str, Format};
 use libfuzzer_sys::fuzz_target;
 use std::path::Path;
 

@@ -6,11 +6,11 @@
 //! whose controllability never changes (so any two of them compose), with
 //! a partial deterministic transition function and random marking.
 
-use codegen::ops::{
+use des::ops::{
     accessible, check_controllable, check_nonblocking, inverse_projection, is_trim, isomorphic,
     language_difference, language_equal, meet, minstate, supcon, sync, trim,
 };
-use codegen::{Automaton, AutomatonBuilder, StateId};
+use des::{Automaton, AutomatonBuilder, StateId};
 use proptest::prelude::*;
 use proptest::sample::{subsequence, Index};
 use std::collections::VecDeque;

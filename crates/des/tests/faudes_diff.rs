@@ -32,15 +32,15 @@
 //!
 //! Both tests are ignored by default: they need Python with libFAUDES.
 //! `cargo xtask ci` runs them; by hand:
-//! `cargo test --release -p codegen --test faudes_diff -- --ignored`.
+//! `cargo test --release -p des --test faudes_diff -- --ignored`.
 //! When run without the package they fail: a skipped oracle must not look
 //! like a pass.
 
-use codegen::ops::{
+use des::ops::{
     accessible, inverse_projection, is_trim, isomorphic, language_difference, minstate, supcon,
     sync, trim,
 };
-use codegen::{Automaton, AutomatonBuilder, StateId};
+use des::{Automaton, AutomatonBuilder, StateId};
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::path::PathBuf;
