@@ -1,8 +1,10 @@
 //! `budgets.toml`: per model, the flash, static RAM and instructions per
 //! scan CI allows. Start from measured values with a small margin; raising
 //! a budget needs its reason in the commit message.
+//!
+//! This module only reads the limits and compares numbers with them; the
+//! tasks that measure (`qemu`, `size`) use it, never the other way round.
 
-use crate::qemu::Figures;
 use crate::{root, Result};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -54,12 +56,12 @@ impl Budgets {
     }
 }
 
-fn check(failures: &mut Vec<String>, model: &str, what: &str, got: u64, limit: Option<u64>) {
-    if let Some(limit) = limit {
-        if got > limit {
-            failures.push(format!("{model}: {what} {got} over its budget {limit}"));
-        }
-    }
+/// The complaint when `got` is over `limit` (an absent limit is never
+/// exceeded).
+pub fn over(model: &str, what: &str, got: u64, limit: Option<u64>) -> Option<String> {
+    limit
+        .filter(|&limit| got > limit)
+        .map(|limit| format!("{model}: {what} {got} over its budget {limit}"))
 }
 
 impl ModelBudget {
@@ -99,52 +101,15 @@ impl ModelBudget {
         .collect()
     }
 
-    /// Violations of the QEMU budgets by `f`.
-    pub fn check_qemu(&self, model: &str, f: &Figures) -> Vec<String> {
-        let mut failures = Vec::new();
-        check(
-            &mut failures,
-            model,
-            "instructions per scan (median)",
-            f.median,
-            self.instr_median,
-        );
-        check(
-            &mut failures,
-            model,
-            "instructions per scan (max)",
-            f.max,
-            self.instr_max,
-        );
-        check(
-            &mut failures,
-            model,
-            "harness flash",
-            f.flash,
-            self.qemu_flash,
-        );
-        check(
-            &mut failures,
-            model,
-            "harness static RAM",
-            f.ram,
-            self.qemu_ram,
-        );
-        failures
-    }
-
     /// Violations of the board budgets.
     pub fn check_board(&self, model: &str, flash: u64, ram: u64) -> Vec<String> {
-        let mut failures = Vec::new();
-        check(&mut failures, model, "board flash", flash, self.board_flash);
-        check(
-            &mut failures,
-            model,
-            "board static RAM",
-            ram,
-            self.board_ram,
-        );
-        failures
+        [
+            over(model, "board flash", flash, self.board_flash),
+            over(model, "board static RAM", ram, self.board_ram),
+        ]
+        .into_iter()
+        .flatten()
+        .collect()
     }
 
     /// The QEMU budgets as text.

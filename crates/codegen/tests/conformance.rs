@@ -22,9 +22,9 @@
 //! moves except along a defined transition, or back to its initial state in
 //! a reset scan).
 //!
-//! # How the reference follows SEMANTICS.md
+//! # How the reference follows docs/semantics.md
 //!
-//! The reference is written from `/work/shared/design/SEMANTICS.md` alone,
+//! The reference is written from `docs/semantics.md` alone,
 //! with plain `Vec`s and one hash map of transitions per supervisor, and
 //! works on the [`Project`] model directly (never on the executor's
 //! `Config`). One method per numbered rule of "One scan":
@@ -51,7 +51,7 @@
 //!    outputs as the OR over their state map, the safe image in fault mode.
 //! 7. [`Record`]: the trace record.
 //!
-//! Where SEMANTICS.md is silent the reference makes one choice, stated
+//! Where docs/semantics.md is silent the reference makes one choice, stated
 //! here: the filtered value of a debounced input at scan 0 is its raw
 //! sample (the filter has no history yet; F\[-1\] = F\[0\] then makes scan 0
 //! edge-free, as rule 1 requires).
@@ -131,7 +131,7 @@ impl From<Fault> for Cause {
     }
 }
 
-/// One scan's trace record (SEMANTICS.md rule 7), owned.
+/// One scan's trace record (docs/semantics.md, step 7), owned.
 #[derive(Debug, Clone, PartialEq, Eq)]
 struct Record {
     scan: u32,
@@ -161,7 +161,7 @@ impl From<ScanRecord<'_>> for Record {
 // Reference interpreter
 // ---------------------------------------------------------------------------
 
-/// The reference interpreter: a straightforward reading of SEMANTICS.md
+/// The reference interpreter: a straightforward reading of docs/semantics.md
 /// over the [`Project`] model (see the module docs for the rule map).
 struct Reference<'p> {
     project: &'p Project,

@@ -548,7 +548,7 @@ const COMMAND_ORDER: &[&str] = &[
     "mv_hi",
 ];
 
-/// A modular controller as the executor runs it (SEMANTICS.md): an event
+/// A modular controller as the executor runs it (docs/semantics.md): an event
 /// is feasible when every supervisor that has it can take it.
 struct Plc<'a> {
     sups: Vec<&'a Automaton>,

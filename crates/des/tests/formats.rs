@@ -18,17 +18,15 @@ fn fixture_text(name: &str) -> String {
     std::fs::read_to_string(fixture(name)).unwrap()
 }
 
-/// The benchmark models (`models/bench` in the repository, or the shared
-/// copy beside it).
+/// The benchmark models (`models/bench`).
 fn bench_root() -> PathBuf {
-    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
-    for candidate in ["../../models/bench", "../../../shared/bench"] {
-        let p = here.join(candidate);
-        if p.is_dir() {
-            return p;
-        }
-    }
-    panic!("benchmark models not found (looked in models/bench and ../shared/bench)");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../models/bench");
+    assert!(
+        root.is_dir(),
+        "benchmark models not found at {}",
+        root.display()
+    );
+    root
 }
 
 fn bench_files() -> Vec<PathBuf> {

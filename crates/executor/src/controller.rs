@@ -1,4 +1,4 @@
-//! The scan cycle (SEMANTICS.md, "One scan").
+//! The scan cycle (docs/semantics.md, "One scan").
 
 use crate::inputs;
 use crate::memory::{Memory, Ram};

@@ -1,13 +1,137 @@
 //! The PLC scan cycle that runs synthesised supervisors.
 //!
 //! `#![no_std]`, no allocation (unless the `alloc` feature is asked for,
-//! for hosts), no `unsafe`. The same source runs in the firmware on a
-//! Cortex-M and in `host-sim` on a PC, so both produce the same trace.
+//! for hosts), no `unsafe`. The same source runs in the board firmware, in
+//! the QEMU replay harness and in `host-sim` on a PC, so all of them
+//! produce the same trace for the same inputs.
 //!
-//! # Guarantees (SEMANTICS.md)
+//! The scan cycle's specification is `docs/semantics.md` in the
+//! repository; this page summarises what the crate guarantees and names
+//! the tests that hold it to that.
+//!
+//! # Example
+//!
+//! A one-supervisor program written by hand (the code generator emits
+//! the same pieces from a project file: `CONFIG`, `PROGRAM` and a
+//! `Memory` type): a start button whose press arms the supervisor, which
+//! then lets the controller switch the motor on.
+//!
+//! ```
+//! use executor::memory::StaticMemory;
+//! use executor::program::{
+//!     Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Program, Span,
+//!     SupervisorSpec, Trigger, UnexpectedPolicy,
+//! };
+//! use executor::table::config_crc;
+//! use executor::{Controller, Fault, SizeMismatch};
+//!
+//! // Indices in declaration order: one input, one output, two events.
+//! const START_PB: Index = 0;
+//! const MOTOR: Index = 0;
+//! const PRESSED: Index = 0; // uncontrollable: rising edge of START_PB
+//! const RUN: Index = 1; // controllable: sets MOTOR
+//! // Supervisor `starter`: IDLE --pressed--> ARMED --run--> RUNNING.
+//! const IDLE: u32 = 0;
+//! const ARMED: u32 = 1;
+//! const RUNNING: u32 = 2;
+//!
+//! const CONFIG: Config<'static> = Config {
+//!     name: "starter",
+//!     scan_period_ms: 10,
+//!     max_commands_per_scan: 1,
+//!     unexpected: UnexpectedPolicy::Fault,
+//!     reset: None,
+//!     overrun_limit: 1,
+//!     overrun_fault: false,
+//!     lost_edge_fault: false,
+//!     inputs: &[InputSpec { debounce_scans: 0 }],
+//!     outputs: &[OutputSpec { safe: false, initial: false, state_map: Span::EMPTY }],
+//!     timers: &[],
+//!     events: &[
+//!         EventSpec {
+//!             trigger: Trigger::Rising(Span::new(0, 1)), // input_lists[0..1]
+//!             when: Span::EMPTY,
+//!             unless: Span::EMPTY,
+//!             request: None,
+//!             actions: Span::EMPTY,
+//!             members: Span::new(0, 1), // memberships[0..1]
+//!         },
+//!         EventSpec {
+//!             trigger: Trigger::Command,
+//!             when: Span::EMPTY,
+//!             unless: Span::EMPTY,
+//!             request: None,
+//!             actions: Span::new(0, 1), // actions[0..1]
+//!             members: Span::new(1, 1), // memberships[1..2]
+//!         },
+//!     ],
+//!     supervisors: &[SupervisorSpec { states: 3, initial: IDLE }],
+//!     input_lists: &[START_PB],
+//!     actions: &[Action::Set(MOTOR)],
+//!     memberships: &[
+//!         Membership { supervisor: 0, local: 0 },
+//!         Membership { supervisor: 0, local: 1 },
+//!     ],
+//!     state_map: &[],
+//! };
+//!
+//! /// The supervisor as a `match` on (state, local event).
+//! struct Starter {
+//!     /// The image CRC recorded when the program was made.
+//!     crc: u32,
+//! }
+//!
+//! impl Program for Starter {
+//!     fn config(&self) -> Config<'_> {
+//!         CONFIG
+//!     }
+//!     fn next_state(&self, _supervisor: Index, state: u32, local: Index) -> Option<u32> {
+//!         match (state, local) {
+//!             (IDLE, PRESSED) => Some(ARMED),
+//!             (ARMED, RUN) => Some(RUNNING),
+//!             _ => None,
+//!         }
+//!     }
+//!     fn image_intact(&self) -> bool {
+//!         config_crc(&CONFIG) == self.crc
+//!     }
+//! }
+//!
+//! let program = Starter { crc: config_crc(&CONFIG) };
+//! // 1 input, 1 output, 0 timers, 1 supervisor, 2 events.
+//! type Memory = StaticMemory<1, 1, 0, 1, 2>;
+//! assert!(matches!(
+//!     Controller::new(&program, StaticMemory::<1, 1, 0, 1, 3>::new()),
+//!     Err(SizeMismatch)
+//! ));
+//! let mut plc = Controller::new(&program, Memory::new()).expect("sized for CONFIG");
+//!
+//! // Scan 0 finds the button already held: no edge at power-on.
+//! let r = plc.scan(0, &[true]);
+//! assert!(r.executed.is_empty());
+//! assert_eq!((r.states, r.outputs), (&[IDLE][..], &[false][..]));
+//!
+//! // Released, pressed again: the edge moves the supervisor, and in the
+//! // same scan the controller picks `run`, now enabled, which starts the motor.
+//! plc.scan(10, &[false]);
+//! let r = plc.scan(20, &[true]);
+//! assert_eq!(r.executed, [PRESSED, RUN]);
+//! assert_eq!(r.states, [RUNNING]);
+//! assert_eq!(r.outputs, [true]);
+//!
+//! // A press while running is an edge no supervisor expects: fault mode,
+//! // safe outputs (and, without a reset input, until power-off).
+//! plc.scan(30, &[false]);
+//! let r = plc.scan(40, &[true]);
+//! assert_eq!(r.fault, Some(Fault::Unexpected { event: PRESSED }));
+//! assert_eq!(r.unexpected, [PRESSED]);
+//! assert_eq!(r.outputs, [false]);
+//! ```
+//!
+//! # Guarantees
 //!
 //! Each call of [`Controller::scan`] with a time `t` (ms, wrapping) and the
-//! raw input image:
+//! raw input image (`docs/semantics.md`, "One scan"):
 //!
 //! 1. **Samples** the inputs and debounces them (an input with
 //!    `debounce_scans = d > 1` follows its raw value only after `d`
@@ -17,8 +141,9 @@
 //!    sample (a filter has no history to hold against at power-on).
 //!    Filtering goes on in fault mode and is not reset by a fault reset.
 //! 2. **In fault mode** writes the safe output image, unless the `reset`
-//!    input rises: then everything is re-initialised and the initial image
-//!    written; either way the scan ends there.
+//!    input rises and the program image is intact: then everything is
+//!    re-initialised and the initial image written; either way the scan
+//!    ends there.
 //! 3. **Timers** whose deadline is reached stop; their bound events occur.
 //!    A timer started in scan k is first checked in scan k+1.
 //! 4. **Uncontrollable events** that occurred (edges with their
@@ -38,11 +163,30 @@
 //! so every executed controllable event is allowed by every supervisor that
 //! has it (control equivalence with the supervisors, modular or not; the
 //! product is never built). A supervisor state out of range or a program
-//! image whose CRC does not match is a `Corrupt` fault.
+//! image whose CRC does not match is a `Corrupt` fault. Late scans and lost
+//! edges are found by the code that paces the scans and reads the pins
+//! (the board firmware, host-sim's simulated stalls) and reported with
+//! [`Controller::report_overrun`] and [`Controller::report_lost_edge`]:
+//! counted, and faults when the project says so.
 //!
-//! The tests proving this are in `crates/codegen/tests/conformance.rs`
-//! (table and logic backends against a reference interpreter over random
-//! projects and inputs) and in this crate's unit tests.
+//! Memory is sized in its type ([`memory::StaticMemory`]) and sealed:
+//! [`Controller::new`] refuses memory whose sizes differ from the
+//! program's, and nothing outside the crate can reach its arrays.
+//!
+//! # Where it is proven
+//!
+//! - `crates/codegen/tests/conformance.rs`: the table and logic backends
+//!   against a reference interpreter written from the specification, over
+//!   10,000 random projects with random inputs, scan by scan, with control
+//!   equivalence checked against the source automata.
+//! - `tests/generated.rs`: the generated code (table, logic, `match`) of
+//!   every seed project equals host-sim, scan by scan.
+//! - `cargo xtask qemu`: the same programs on a Cortex-M4 under QEMU, with
+//!   zero mismatches against host-sim.
+//! - This crate's unit tests (`src/tests.rs`: edges, timers across the
+//!   clock wrap, debounce, request inputs, fault mode and reset, corrupt
+//!   images, memory sizes) and the examples on this page and in
+//!   [`memory`].
 //!
 //! # Pieces
 //!
@@ -55,7 +199,7 @@
 //!
 //! # Features
 //!
-//! - `alloc`: [`memory::HeapMemory`], sized at run time (hosts).
+//! - `alloc`: `memory::HeapMemory`, sized at run time (hosts).
 //! - `defmt`: `defmt::Format` for [`Fault`] and [`Counters`].
 //! - `replay`: recorded scans for replay harnesses (`replay` module).
 

@@ -2,58 +2,97 @@
 //! user's back.
 //!
 //! [`StaticMemory`] holds fixed-size arrays whose lengths are const
-//! generics (the code generator emits them from the project); with the
-//! `alloc` feature, [`HeapMemory`] sizes itself from a [`Config`] at run
-//! time for hosts. Both hand the controller a [`Ram`] of slices.
+//! generics (the code generator emits them from the project as the
+//! `Memory` type); with the `alloc` feature, `HeapMemory` sizes itself
+//! from a [`Config`] at run time for hosts.
+//!
+//! Memory is opaque outside this crate. [`Memory`] is sealed: only the
+//! types here implement it, so every array has the size its constructor
+//! gave it, and [`crate::Controller::new`] refuses memory whose sizes do
+//! not match the program's configuration. Nothing outside the crate can
+//! read or write the arrays; the controller's state is visible only
+//! through [`crate::Controller`]'s accessors and its scan records.
 
 use crate::program::Config;
 
-/// Mutable views of every per-controller array.
-pub struct Ram<'a> {
-    /// Debounced input values, this scan (F\[k\]).
-    pub filtered: &'a mut [bool],
-    /// Debounced input values, previous scan (F\[k-1\]).
-    pub previous: &'a mut [bool],
-    /// Consecutive scans each raw input has differed from its filtered value.
-    pub debounce: &'a mut [u8],
-    /// Per timer: running.
-    pub timer_running: &'a mut [bool],
-    /// Per timer: deadline (ms, wrapping).
-    pub timer_deadline: &'a mut [u32],
-    /// Levels of action-driven outputs.
-    pub latched: &'a mut [bool],
-    /// The output image written by the last scan.
-    pub outputs: &'a mut [bool],
-    /// The state of each supervisor.
-    pub states: &'a mut [u32],
-    /// Per event: occurred (edge or expiry) in this scan.
-    pub occurred: &'a mut [bool],
-    /// Per event: executed in this scan.
-    pub done: &'a mut [bool],
-    /// Events executed in this scan, in order (capacity: all events).
-    pub executed: &'a mut [u16],
-    /// Unexpected events of this scan, in order (capacity: all events).
-    pub unexpected: &'a mut [u16],
+pub(crate) use sealed::Ram;
+
+/// What only this crate may see. `pub` items in a private module: the
+/// types can appear in the sealed trait's signatures, yet no one outside
+/// can name them.
+pub(crate) mod sealed {
+    /// Mutable views of every per-controller array, for the scan cycle.
+    pub struct Ram<'a> {
+        /// Debounced input values, this scan (F\[k\]).
+        pub(crate) filtered: &'a mut [bool],
+        /// Debounced input values, previous scan (F\[k-1\]).
+        pub(crate) previous: &'a mut [bool],
+        /// Consecutive scans each raw input has differed from its filtered value.
+        pub(crate) debounce: &'a mut [u8],
+        /// Per timer: running.
+        pub(crate) timer_running: &'a mut [bool],
+        /// Per timer: deadline (ms, wrapping).
+        pub(crate) timer_deadline: &'a mut [u32],
+        /// Levels of action-driven outputs.
+        pub(crate) latched: &'a mut [bool],
+        /// The output image written by the last scan.
+        pub(crate) outputs: &'a mut [bool],
+        /// The state of each supervisor.
+        pub(crate) states: &'a mut [u32],
+        /// Per event: occurred (edge or expiry) in this scan.
+        pub(crate) occurred: &'a mut [bool],
+        /// Per event: executed in this scan.
+        pub(crate) done: &'a mut [bool],
+        /// Events executed in this scan, in order (capacity: all events).
+        pub(crate) executed: &'a mut [u16],
+        /// Unexpected events of this scan, in order (capacity: all events).
+        pub(crate) unexpected: &'a mut [u16],
+    }
+
+    /// The arrays behind a [`super::Memory`]; crate-private, so no one
+    /// outside can implement `Memory` or reach the arrays.
+    pub trait Storage {
+        /// All arrays at once, mutably.
+        fn ram(&mut self) -> Ram<'_>;
+        /// The supervisor states.
+        fn states(&self) -> &[u32];
+        /// The last output image.
+        fn outputs(&self) -> &[bool];
+        /// The last scan's executed events (the controller knows how many
+        /// are valid).
+        fn executed(&self) -> &[u16];
+        /// The last scan's unexpected events.
+        fn unexpected(&self) -> &[u16];
+    }
 }
 
-/// Storage a [`crate::Controller`] can run in.
-pub trait Memory {
-    /// All arrays at once, mutably.
-    fn ram(&mut self) -> Ram<'_>;
-
-    /// The supervisor states.
-    fn states(&self) -> &[u32];
-
-    /// The last output image.
-    fn outputs(&self) -> &[bool];
-
-    /// The last scan's executed events (first `executed_len` are valid).
-    fn executed(&self) -> &[u16];
-
-    /// The last scan's unexpected events.
-    fn unexpected(&self) -> &[u16];
-
-    /// `true` when every array is large enough for `config`.
+/// Storage a [`crate::Controller`] can run in: [`StaticMemory`], or
+/// `HeapMemory` with the `alloc` feature.
+///
+/// Sealed, so that memory always has the sizes it was built with; a type
+/// outside this crate cannot implement it:
+///
+/// ```compile_fail,E0277
+/// use executor::memory::Memory;
+/// use executor::program::Config;
+///
+/// struct Mine;
+/// impl Memory for Mine {
+///     fn fits(&self, _: &Config<'_>) -> bool { true }
+/// }
+/// ```
+///
+/// and the arrays inside are out of reach (the controller alone reads and
+/// writes them):
+///
+/// ```compile_fail,E0599
+/// use executor::memory::StaticMemory;
+///
+/// let mut memory: StaticMemory<1, 1, 0, 1, 2> = StaticMemory::new();
+/// let _ = memory.ram();
+/// ```
+pub trait Memory: sealed::Storage {
+    /// `true` when every array has exactly the size `config` needs.
     fn fits(&self, config: &Config<'_>) -> bool;
 }
 
@@ -61,9 +100,15 @@ pub trait Memory {
 /// `E` events.
 ///
 /// ```
-/// use executor::memory::{Memory, StaticMemory};
-/// let mem: StaticMemory<2, 1, 0, 1, 3> = StaticMemory::new();
-/// assert_eq!(mem.states().len(), 1);
+/// use executor::memory::StaticMemory;
+///
+/// /// A project with 2 inputs, 1 output, no timer, 1 supervisor and 3
+/// /// events, as `codegen gen` declares its memory.
+/// pub type Memory = StaticMemory<2, 1, 0, 1, 3>;
+///
+/// // `new` is `const`, so the memory can be a `static` or built at compile time.
+/// const FRESH: Memory = Memory::new();
+/// # let _ = FRESH;
 /// ```
 #[derive(Debug, Clone)]
 pub struct StaticMemory<
@@ -117,7 +162,7 @@ impl<const I: usize, const O: usize, const T: usize, const S: usize, const E: us
     }
 }
 
-impl<const I: usize, const O: usize, const T: usize, const S: usize, const E: usize> Memory
+impl<const I: usize, const O: usize, const T: usize, const S: usize, const E: usize> sealed::Storage
     for StaticMemory<I, O, T, S, E>
 {
     fn ram(&mut self) -> Ram<'_> {
@@ -152,7 +197,11 @@ impl<const I: usize, const O: usize, const T: usize, const S: usize, const E: us
     fn unexpected(&self) -> &[u16] {
         &self.unexpected
     }
+}
 
+impl<const I: usize, const O: usize, const T: usize, const S: usize, const E: usize> Memory
+    for StaticMemory<I, O, T, S, E>
+{
     fn fits(&self, config: &Config<'_>) -> bool {
         config.inputs.len() == I
             && config.outputs.len() == O
@@ -167,7 +216,7 @@ pub use heap::HeapMemory;
 
 #[cfg(feature = "alloc")]
 mod heap {
-    use super::{Memory, Ram};
+    use super::{sealed, Memory, Ram};
     use crate::program::Config;
     use alloc::vec;
     use alloc::vec::Vec;
@@ -215,7 +264,7 @@ mod heap {
         }
     }
 
-    impl Memory for HeapMemory {
+    impl sealed::Storage for HeapMemory {
         fn ram(&mut self) -> Ram<'_> {
             Ram {
                 filtered: &mut self.filtered,
@@ -248,7 +297,9 @@ mod heap {
         fn unexpected(&self) -> &[u16] {
             &self.unexpected
         }
+    }
 
+    impl Memory for HeapMemory {
         fn fits(&self, config: &Config<'_>) -> bool {
             config.inputs.len() == self.filtered.len()
                 && config.outputs.len() == self.outputs.len()

@@ -22,7 +22,7 @@ pub enum Fault {
     LostEdge,
 }
 
-/// The trace record of one scan (SEMANTICS.md, step 7), borrowed from the
+/// The trace record of one scan (docs/semantics.md, "One scan", step 7), borrowed from the
 /// controller until its next scan.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ScanRecord<'a> {

@@ -1,4 +1,4 @@
-//! Lost edges (SEMANTICS.md, "Faults": `LostEdge`). An interrupt on both
+//! Lost edges (docs/semantics.md, "Fault mode": `LostEdge`). An interrupt on both
 //! edges of an input's EXTI line counts its changes between two samples;
 //! the scan sees only the level at each sample, so a second change in
 //! between (a pulse shorter than the scan period, or a bounce) was never

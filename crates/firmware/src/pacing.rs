@@ -1,4 +1,4 @@
-//! Scan pacing (SEMANTICS.md, "Faults": `Overrun`): scans are due every
+//! Scan pacing (docs/semantics.md, "Scan pacing": `Overrun`): scans are due every
 //! `scan_period_ms` on a fixed grid, and a scan that starts more than
 //! `overrun_limit` periods after its deadline is an overrun.
 //!

@@ -1,4 +1,4 @@
-//! `inputs.csv` (FORMATS.md §3): a header `scan,time_ms,<inputs…>`, then a
+//! `inputs.csv` (docs/formats.md, "inputs.csv"): a header `scan,time_ms,<inputs…>`, then a
 //! row per scan with consecutive scan numbers, non-decreasing times and
 //! 0/1 input values.
 

@@ -1,5 +1,5 @@
 //! Scenarios for replay harnesses: inputs per scan plus the trace host-sim
-//! expects, as postcard records (FORMATS.md §3), and seeded random input
+//! expects, as postcard records (docs/formats.md, "Recorded scenario"), and seeded random input
 //! sequences that drive a project through its supervisors.
 
 use crate::inputs::InputRow;

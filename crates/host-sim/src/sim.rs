@@ -161,7 +161,7 @@ impl Sim {
 
     /// The controller hangs for `ms`: no scan runs and the virtual clock
     /// jumps, so the next scan starts `ms` late. More than `overrun_limit`
-    /// scan periods late is an overrun (SEMANTICS, faults: counted, and a
+    /// scan periods late is an overrun (docs/semantics.md, "Scan pacing": counted, and a
     /// fault when the project sets `overrun_fault`), as the firmware's
     /// pacing judges it. Returns whether it was one.
     pub fn stall(&mut self, ms: u64) -> bool {

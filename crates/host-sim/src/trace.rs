@@ -1,4 +1,4 @@
-//! Trace rows (FORMATS.md §3): one per scan, with names instead of
+//! Trace rows (docs/formats.md, "trace.csv"): one per scan, with names instead of
 //! indices, and their CSV form.
 
 use codegen::project::Project;

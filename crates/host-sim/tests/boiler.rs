@@ -316,7 +316,7 @@ fn a_bouncing_flame_sensor_is_filtered() {
 
 #[test]
 fn a_controller_stall_faults_to_the_safe_image_until_reset() {
-    // SEMANTICS faults: a scan more than `overrun_limit` periods late is
+    // docs/semantics.md, "Fault mode": a scan more than `overrun_limit` periods late is
     // an overrun, a fault with `overrun_fault = true`: the safe image
     // (every output off but `alarm`, whose safe level is 1) until the
     // rising edge of `reset` re-initialises the supervisors.

@@ -104,7 +104,7 @@ pub enum Action {
     Reset(usize),
 }
 
-/// Who causes an uncontrollable event (informational, SEMANTICS.md).
+/// Who causes an uncontrollable event (informational, docs/semantics.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Origin {
     /// The controller (controllable events).
@@ -255,7 +255,7 @@ impl std::str::FromStr for PinId {
 
 /// Why an input's changes are or are not latched between samples by an
 /// edge interrupt (EXTI line `pin.number`, both edges), which is what
-/// detects lost edges (SEMANTICS.md, `LostEdge`).
+/// detects lost edges (docs/semantics.md, `LostEdge`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EdgeLatch {
     /// Every change is counted; more than one between two samples is a

@@ -10,10 +10,10 @@
 //! `preserve_order` feature of the `toml` crate, without which tables come
 //! out sorted by key.
 //!
-//! Leniency beyond FORMATS.md §2: every list of names (`rising`, `when`,
+//! Leniency (docs/formats.md, "PLC project"): every list of names (`rising`, `when`,
 //! `set`, `plants`, …) also accepts a single name (`set = "lamp"`).
 //!
-//! `[board]` (not in FORMATS.md §2 yet; see [`super::validate`], "Board")
+//! `[board]` (docs/formats.md, "[board]"; see [`super::validate`], "Board")
 //! maps each signal to a pin given as a table (`{ pin = "PA0", pull =
 //! "up", active_low = true }`) or as a bare pin name (`"PA0"`).
 

@@ -119,7 +119,7 @@
 //!
 //! **Edge latching** ([`EdgeLatch`]): the firmware counts the changes of an
 //! input between two samples with an interrupt on both edges of EXTI line
-//! *n* (the pin number); more than one change is a lost edge (SEMANTICS.md,
+//! *n* (the pin number); more than one change is a lost edge (docs/semantics.md,
 //! `LostEdge`). A line listens to one port, so the first input in
 //! declaration order with pin number *n* owns it and a later one on
 //! another port is not latched (a warning). Debounced inputs

@@ -47,7 +47,7 @@ enum FileKind {
 
 type Name = Spanned<String>;
 
-/// The file's fields, exactly as in FORMATS.md.
+/// The file's fields, exactly as in docs/formats.md ("Native TOML").
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct File {

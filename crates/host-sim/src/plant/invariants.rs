@@ -6,7 +6,7 @@
 //!
 //! Scan `k` has the input image `I[k]` the controller read and the output
 //! image `O[k]` it wrote. The checker filters the inputs as the controller
-//! does (`debounce_scans`, SEMANTICS.md: a level is taken after it has
+//! does (`debounce_scans`, docs/semantics.md: a level is taken after it has
 //! differed for that many scans) into `F[k]`; scan 0 has no input edges
 //! (`F[-1] = F[0]`) and `O[-1]` is all off. An output *opens* in scan `k`
 //! when it is 1 in `O[k]` and 0 in `O[k-1]`. The fuel valves are
@@ -19,7 +19,7 @@
 //! no edges) or when it re-initialises (the scan that leaves fault mode,
 //! reported with [`Checker::reinitialised`], which also ends the start
 //! request) does not demand heat until a contact rises: the controller has
-//! seen no edge of it (SEMANTICS, scan cycle steps 1 and 2; the
+//! seen no edge of it (docs/semantics.md, "One scan", steps 1 and 2; the
 //! re-initialising scan discards its own edges, a contact rising in it
 //! included).
 //!
@@ -185,7 +185,7 @@ enum Episode {
     DamperBoth,
 }
 
-/// The controller's input filter, replayed (SEMANTICS.md, step 1).
+/// The controller's input filter, replayed (docs/semantics.md, "One scan", step 1).
 #[derive(Debug, Clone)]
 struct Filter {
     debounce: [u8; Input::ALL.len()],
@@ -367,7 +367,7 @@ impl Checker {
         if reset {
             self.lockout = None;
         }
-        // The scan that re-initialises discards its edges (SEMANTICS step 2).
+        // The scan that re-initialises discards its edges (docs/semantics.md, step 2).
         let contact_rose = !std::mem::take(&mut self.reinitialising)
             && (s.rose(Input::SelHigh) || s.rose(Input::SelLow));
         let switched_on = s.now.selector_on() && !self.demand && contact_rose;
