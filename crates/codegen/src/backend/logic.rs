@@ -62,13 +62,13 @@
 //!
 //! [`LogicSupervisor::next_state`] evaluates the covers directly (same
 //! contract as the executor's `Program::next_state`);
-//! [`LogicSupervisor::emit_rust`] prints the equations as plain Rust
-//! functions that need neither `std`, allocation nor `unsafe`.
+//! [`crate::emit::logic`] writes the equations down as plain Rust
+//! functions that need neither `std`, allocation nor `unsafe`, and in
+//! mathematical notation.
 
 use crate::automaton::{Automaton, EventId, StateId};
-use crate::project::ident::snake_ident;
 use std::collections::HashSet;
-use std::fmt::{self, Write as _};
+use std::fmt;
 
 /// Whether this build can minimise: the logic backend needs Espresso
 /// (cargo feature `espresso`), everything else works without it.
@@ -821,302 +821,6 @@ impl LogicSupervisor {
             defined,
         }
     }
-
-    /// The equations in mathematical notation, one per line (`ω_b = …`
-    /// then `φ_i = …`), with event names from `event_names` (local order;
-    /// missing names print as `e<i>`). For reports and logs.
-    pub fn equations(&self, event_names: &[&str]) -> String {
-        let event = |i: usize| {
-            event_names
-                .get(i)
-                .map_or_else(|| format!("e{i}"), |s| comment_text(s))
-        };
-        let cube = |c: &Cube| {
-            let mut lits = Vec::new();
-            for b in (0..self.bits()).rev() {
-                if c.state_mask >> b & 1 == 1 {
-                    let neg = if c.state_value >> b & 1 == 1 {
-                        ""
-                    } else {
-                        "¬"
-                    };
-                    lits.push(format!("{neg}q{b}"));
-                }
-            }
-            for i in 0..self.events() {
-                if c.events_on >> i & 1 == 1 {
-                    lits.push(event(i));
-                }
-            }
-            for i in 0..self.events() {
-                if c.events_off >> i & 1 == 1 {
-                    lits.push(format!("¬{}", event(i)));
-                }
-            }
-            if lits.is_empty() {
-                "1".to_owned()
-            } else {
-                lits.join(" ∧ ")
-            }
-        };
-        let sum = |c: &Cover| {
-            if c.cubes.is_empty() {
-                return "0".to_owned();
-            }
-            let terms: Vec<String> = c.cubes.iter().map(cube).collect();
-            if terms.len() == 1 {
-                terms.into_iter().next().unwrap_or_default()
-            } else {
-                terms
-                    .iter()
-                    .map(|t| {
-                        if t.contains(' ') {
-                            format!("({t})")
-                        } else {
-                            t.clone()
-                        }
-                    })
-                    .collect::<Vec<_>>()
-                    .join(" ∨ ")
-            }
-        };
-        let mut out = String::new();
-        for (b, w) in self.next.iter().enumerate().rev() {
-            let _ = writeln!(out, "ω{b} = {}", sum(w));
-        }
-        for (i, phi) in self.defined.iter().enumerate() {
-            let _ = writeln!(out, "φ{i} = {}  [{}]", sum(phi), event(i));
-        }
-        out
-    }
-
-    /// Plain Rust for the equations: `<name>_next(q, e) -> u32` (`Ω`),
-    /// `<name>_defined(q, e) -> bool` (`φ`) and `<name>_step(q, e) ->
-    /// Option<u32>` (both, as the executor's `Program::next_state`), where
-    /// `q` is a state code and `e` a local event index. `event_names` and
-    /// `state_names` (local and state order) only name variables and
-    /// comments; names are sanitised into identifiers or stripped of line
-    /// breaks in comments, so no name can inject code. The functions use
-    /// neither `std`, allocation nor `unsafe`.
-    pub fn emit_rust(&self, name: &str, event_names: &[&str], state_names: &[&str]) -> String {
-        let prefix = snake_ident(name);
-        let l = usize::from(self.bits());
-        let m = self.events();
-        let event_name = |i: usize| {
-            event_names
-                .get(i)
-                .map_or_else(|| format!("e{i}"), |s| (*s).to_owned())
-        };
-        // Identifiers of the event wires, unique and clear of the fixed locals.
-        let mut taken: HashSet<String> = ["q", "e"].iter().map(|s| (*s).to_owned()).collect();
-        for b in 0..l {
-            taken.insert(format!("q{b}"));
-            taken.insert(format!("w{b}"));
-        }
-        let wires: Vec<String> = (0..m)
-            .map(|i| unique(snake_ident(&event_name(i)), &mut taken))
-            .collect();
-
-        let cube_expr = |c: &Cube| {
-            let mut lits = Vec::new();
-            for b in (0..l).rev() {
-                if c.state_mask >> b & 1 == 1 {
-                    let neg = if c.state_value >> b & 1 == 1 { "" } else { "!" };
-                    lits.push(format!("{neg}q{b}"));
-                }
-            }
-            for (i, wire) in wires.iter().enumerate() {
-                if c.events_on >> i & 1 == 1 {
-                    lits.push(wire.clone());
-                }
-            }
-            for (i, wire) in wires.iter().enumerate() {
-                if c.events_off >> i & 1 == 1 {
-                    lits.push(format!("!{wire}"));
-                }
-            }
-            lits
-        };
-        let sum_expr = |c: &Cover| {
-            let terms: Vec<Vec<String>> = c.cubes.iter().map(cube_expr).collect();
-            match terms.len() {
-                0 => "false".to_owned(),
-                1 if terms[0].is_empty() => "true".to_owned(),
-                1 => terms[0].join(" & "),
-                _ => terms
-                    .iter()
-                    .map(|t| {
-                        if t.is_empty() {
-                            "true".to_owned()
-                        } else if t.len() == 1 {
-                            t[0].clone()
-                        } else {
-                            format!("({})", t.join(" & "))
-                        }
-                    })
-                    .collect::<Vec<_>>()
-                    .join(" | "),
-            }
-        };
-        let state_bits_used = |covers: &[Cover]| {
-            covers
-                .iter()
-                .flat_map(|c| c.cubes.iter())
-                .fold(0u32, |acc, c| acc | c.state_mask)
-        };
-        let bit_lets = |out: &mut String, used: u32| {
-            for b in (0..l).rev() {
-                if used >> b & 1 == 1 {
-                    if b == 0 {
-                        let _ = writeln!(out, "    let q0 = q & 1 != 0;");
-                    } else {
-                        let _ = writeln!(out, "    let q{b} = (q >> {b}) & 1 != 0;");
-                    }
-                }
-            }
-            if used == 0 {
-                let _ = writeln!(out, "    let _ = q;");
-            }
-        };
-
-        let mut out = String::new();
-        let _ = writeln!(
-            out,
-            "// CMSSM logic of supervisor {} (Leduc–Wonham), minimised with Espresso.",
-            comment_text(&self.name)
-        );
-        let _ = writeln!(out, "// State codes ({l} bits):");
-        let mut by_code: Vec<(u32, usize)> = self
-            .encoding
-            .codes()
-            .iter()
-            .enumerate()
-            .map(|(s, &c)| (c, s))
-            .collect();
-        by_code.sort_unstable();
-        for (code, s) in by_code {
-            let state = state_names
-                .get(s)
-                .map_or_else(|| s.to_string(), |n| comment_text(n));
-            let _ = writeln!(out, "//   {code:#0width$b}  {state}", width = l + 2);
-        }
-        let _ = writeln!(out, "// Local events:");
-        for (i, wire) in wires.iter().enumerate() {
-            let _ = writeln!(out, "//   {i}  {}  ({wire})", comment_text(&event_name(i)));
-        }
-        if let Some(init) = self.initial {
-            let _ = writeln!(out, "// Reset code: {init:#0width$b}", width = l + 2);
-        }
-        let _ = writeln!(out);
-
-        // Ω
-        let _ = writeln!(
-            out,
-            "/// `{prefix}`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.\n\
-             ///\n\
-             /// `q`: state code ({l} bits); `e`: local event index. An event the state does\n\
-             /// not define, or an index of no event, leaves the code unchanged."
-        );
-        let _ = writeln!(out, "pub fn {prefix}_next(q: u32, e: u16) -> u32 {{");
-        bit_lets(&mut out, state_bits_used(&self.next));
-        let wires_used = self
-            .next
-            .iter()
-            .flat_map(|c| c.cubes.iter())
-            .fold(0u128, |acc, c| acc | c.events_on | c.events_off);
-        for (i, wire) in wires.iter().enumerate() {
-            if wires_used >> i & 1 == 1 {
-                let _ = writeln!(out, "    let {wire} = e == {i};");
-            }
-        }
-        if wires_used == 0 {
-            let _ = writeln!(out, "    let _ = e;");
-        }
-        for (b, w) in self.next.iter().enumerate().rev() {
-            let _ = writeln!(out, "    let w{b} = {};", sum_expr(w));
-        }
-        let assembled: Vec<String> = (0..l)
-            .rev()
-            .map(|b| {
-                if b == 0 {
-                    "(w0 as u32)".to_owned()
-                } else {
-                    format!("((w{b} as u32) << {b})")
-                }
-            })
-            .collect();
-        let _ = writeln!(out, "    {}", assembled.join(" | "));
-        let _ = writeln!(out, "}}\n");
-
-        // Φ
-        let _ = writeln!(
-            out,
-            "/// `{prefix}`: whether local event `e` is defined in state code `q`: enabled\n\
-             /// for a controllable event, expected for an uncontrollable one."
-        );
-        let _ = writeln!(out, "pub fn {prefix}_defined(q: u32, e: u16) -> bool {{");
-        bit_lets(&mut out, state_bits_used(&self.defined));
-        if m == 0 {
-            let _ = writeln!(out, "    let _ = e;\n    false");
-        } else {
-            let _ = writeln!(out, "    match e {{");
-            for (i, phi) in self.defined.iter().enumerate() {
-                let _ = writeln!(
-                    out,
-                    "        {i} => {}, // {}",
-                    sum_expr(phi),
-                    comment_text(&event_name(i))
-                );
-            }
-            let _ = writeln!(out, "        _ => false,\n    }}");
-        }
-        let _ = writeln!(out, "}}\n");
-
-        // Both, as the executor wants them.
-        let _ = writeln!(
-            out,
-            "/// `{prefix}`: the code reached from `q` on local event `e`, `None` when the\n\
-             /// event is not defined there."
-        );
-        let _ = writeln!(
-            out,
-            "pub fn {prefix}_step(q: u32, e: u16) -> Option<u32> {{\n    \
-             if {prefix}_defined(q, e) {{\n        \
-             Some({prefix}_next(q, e))\n    \
-             }} else {{\n        \
-             None\n    \
-             }}\n\
-             }}"
-        );
-        out
-    }
-}
-
-/// Text safe inside a `//` comment: control characters (line breaks among
-/// them) become spaces.
-fn comment_text(s: &str) -> String {
-    s.chars()
-        .map(|c| {
-            if c.is_control() || c == '\u{2028}' || c == '\u{2029}' {
-                ' '
-            } else {
-                c
-            }
-        })
-        .collect()
-}
-
-/// `base`, or `base_2`, `base_3`, … whichever is not yet in `taken`; the
-/// result is added to `taken`.
-fn unique(base: String, taken: &mut HashSet<String>) -> String {
-    let mut candidate = base.clone();
-    let mut k = 2;
-    while taken.contains(&candidate) {
-        candidate = format!("{base}_{k}");
-        k += 1;
-    }
-    taken.insert(candidate.clone());
-    candidate
 }
 
 /// A build without Espresso refuses with [`LogicError::Unavailable`]
@@ -1210,18 +914,14 @@ mod tests {
             let (_, _, logic) = crane_logic_with(how);
             println!(
                 "sup_crane1, ours ({how:?}):\n{}",
-                logic.equations(&CRANE_EVENTS)
+                crate::emit::logic::equations(&logic, &CRANE_EVENTS)
             );
             println!("sizes: {:?}\n", logic.sizes());
             check_crane_against_paper(&logic);
         }
         // Per function, no equation is longer than the paper's: ω has 5
         // literals each there, φ1 = ¬qa0 and φ2 = ¬qa1 one, φ0 two.
-        let logic = crane_logic().2;
-        let code = logic.emit_rust("sup_crane1", &CRANE_EVENTS, &["idle", "train1", "train2"]);
-        println!("{code}");
-        syn::parse_file(&code).unwrap();
-        let sizes = logic.sizes();
+        let sizes = crane_logic().2.sizes();
         assert!(sizes.next.iter().all(|s| s.literals <= 5), "{sizes:?}");
         let lits: Vec<usize> = sizes.defined[3..].iter().map(|s| s.literals).collect();
         assert_eq!(lits, [2, 1, 1]);
@@ -1378,8 +1078,11 @@ mod tests {
         let logic = LogicSupervisor::synthesize(&a, &local, Encoding::binary(1)).unwrap();
         assert_eq!(logic.next_state(0, 0), Some(0));
         assert_eq!(logic.next_state(0, 1), None);
-        let code = logic.emit_rust("one", &["a", "b"], &["0"]);
-        syn::parse_file(&code).unwrap();
+        // ω0 is constant 0 (the only state keeps its code), φ of `a`
+        // constant 1, φ of `b` constant 0.
+        assert!(logic.next_covers()[0].cubes.is_empty());
+        assert_eq!(logic.defined_covers()[0].cubes, [Cube::default()]);
+        assert!(logic.defined_covers()[1].cubes.is_empty());
     }
 
     /// An automaton with states `s0..`, events `e0..` (even ones
@@ -1457,131 +1160,6 @@ mod tests {
             let logic = LogicSupervisor::synthesize(&a, &local, enc.clone()).unwrap();
             check_against(&a, &local, &logic, &enc);
         }
-    }
-
-    #[test]
-    fn emitted_names_are_sanitised_and_cannot_inject_code() {
-        let mut taken = HashSet::new();
-        assert_eq!(unique("a".into(), &mut taken), "a");
-        assert_eq!(unique("a".into(), &mut taken), "a_2");
-
-        let a = auto(
-            "evil",
-            &[
-                ("x\n}fn pwn(){", true),
-                ("X }fn pwn(){", false),
-                ("q", true),
-                ("break", true),
-            ],
-            &[
-                ("0", "x\n}fn pwn(){", "1"),
-                ("1", "X }fn pwn(){", "0"),
-                ("1", "q", "2"),
-                ("2", "break", "0"),
-            ],
-            &[],
-        );
-        let names = ["x\n}fn pwn(){", "X }fn pwn(){", "q", "break"];
-        let local = ids(&a, &names);
-        let logic = LogicSupervisor::synthesize(&a, &local, Encoding::binary(3)).unwrap();
-        let code = logic.emit_rust("sup\n}evil", &names, &["a\r\nb", "*/", "ok"]);
-        let file = syn::parse_file(&code).unwrap();
-        let fns: Vec<String> = file
-            .items
-            .iter()
-            .map(|item| match item {
-                syn::Item::Fn(f) => f.sig.ident.to_string(),
-                _ => panic!("unexpected item"),
-            })
-            .collect();
-        assert_eq!(
-            fns,
-            ["sup__evil_next", "sup__evil_defined", "sup__evil_step"]
-        );
-        assert!(code.contains("let q_2 = e == 2;"), "{code}");
-        assert!(code.contains("let x__fn_pwn____2 = e == 1;"), "{code}");
-        assert!(code.contains("break_"), "{code}");
-    }
-
-    /// Writes `src` to `dir/name.rs` and compiles it with rustc.
-    fn rustc(dir: &std::path::Path, name: &str, src: &str, args: &[&str]) -> std::path::PathBuf {
-        let path = dir.join(format!("{name}.rs"));
-        std::fs::write(&path, src).unwrap();
-        let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
-        let out = std::process::Command::new(rustc)
-            .args(["--edition", "2021", "-D", "warnings", "--crate-name", name])
-            .args(args)
-            .arg("-o")
-            .arg(dir.join(name))
-            .arg(&path)
-            .output()
-            .expect("rustc runs");
-        assert!(
-            out.status.success(),
-            "rustc failed on\n{src}\n{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        dir.join(name)
-    }
-
-    #[test]
-    fn emitted_code_compiles_no_std_and_agrees_with_next_state() {
-        // MACH1 plus a buffer: four states (one unused code), events with
-        // awkward names.
-        let a = auto(
-            "Mach 1",
-            &[
-                ("start", true),
-                ("finish", false),
-                ("break", false),
-                ("repair", true),
-                ("e", true),
-            ],
-            &[
-                ("0", "start", "1"),
-                ("1", "finish", "0"),
-                ("1", "break", "2"),
-                ("2", "repair", "0"),
-                ("0", "e", "3"),
-                ("3", "e", "3"),
-                ("3", "finish", "2"),
-            ],
-            &[],
-        );
-        let names = ["start", "finish", "break", "repair", "e"];
-        let local = ids(&a, &names);
-        let logic = LogicSupervisor::synthesize(&a, &local, Encoding::binary(4)).unwrap();
-        let code = logic.emit_rust(a.name(), &names, &["idle", "working", "down", "other"]);
-        println!("{code}");
-        let dir = tempfile::tempdir().unwrap();
-
-        // As a no_std, unsafe-free library.
-        let lib = format!("#![no_std]\n#![forbid(unsafe_code)]\n{code}");
-        rustc(dir.path(), "emitted_lib", &lib, &["--crate-type", "lib"]);
-
-        // As a program printing every (code, event) pair.
-        let main = format!(
-            "{code}\nfn main() {{\n    for q in 0..4u32 {{\n        for e in 0..6u16 {{\n            \
-             println!(\"{{q}} {{e}} {{:?}} {{}}\", mach_1_step(q, e), mach_1_next(q, e));\n        \
-             }}\n    }}\n}}\n"
-        );
-        let exe = rustc(dir.path(), "emitted_main", &main, &[]);
-        let out = std::process::Command::new(exe).output().unwrap();
-        assert!(out.status.success());
-        let printed = String::from_utf8(out.stdout).unwrap();
-        let mut expected = String::new();
-        for q in 0..4u32 {
-            for e in 0..6u16 {
-                let input = (usize::from(e) < names.len()).then_some(e);
-                let _ = writeln!(
-                    expected,
-                    "{q} {e} {:?} {}",
-                    logic.next_state(q, e),
-                    logic.next_code(q, input)
-                );
-            }
-        }
-        assert_eq!(printed, expected);
     }
 
     /// Synthesis time for a random 50-state, 10-event supervisor; run with

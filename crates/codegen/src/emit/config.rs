@@ -1,0 +1,648 @@
+//! The name modules (`input`, `output`, …, `states`) and the executor's
+//! configuration as statics (`INPUTS` … `STATE_MAP`, `CONFIG`, `Memory`).
+//!
+//! The configuration is indices and spans into shared pools; its doc
+//! comments decode them (which inputs an event is bound to, what it does,
+//! which supervisors have it; which event owns which pool positions), so a
+//! reader never counts offsets. The decoding reads the pools themselves,
+//! not the project, so the comments describe exactly the data below them.
+
+use super::{ident, listed, positions, quoted, Emitter};
+
+/// A doc comment: `title` and, if there are any, the list items `doc`.
+fn titled(title: &str, doc: &str) -> String {
+    if doc.is_empty() {
+        format!("/// {title}.\n")
+    } else {
+        format!("/// {title}:\n{doc}")
+    }
+}
+use crate::project::Origin;
+use crate::StateId;
+use executor::program as ex;
+use std::fmt::Write;
+
+impl Emitter<'_> {
+    /// `pub mod <module>` with one index constant per name, `COUNT` and
+    /// `NAMES`.
+    fn name_module(&mut self, module: &str, doc: &str, names: &[&str]) {
+        // Names are for reference: a crate uses some of them, never all.
+        let _ = writeln!(
+            self.out,
+            "/// {doc}\n#[allow(dead_code)]\npub mod {module} {{"
+        );
+        if !names.is_empty() {
+            let _ = writeln!(self.out, "    use super::Index;");
+        }
+        for (i, n) in names.iter().enumerate() {
+            let _ = writeln!(self.out, "    /// {}", quoted(n));
+            let _ = writeln!(self.out, "    pub const {}: Index = {i};", ident(n));
+        }
+        let _ = writeln!(
+            self.out,
+            "    /// How many there are.\n    pub const COUNT: usize = {};\n    /// Names in declaration order.\n    pub static NAMES: [&str; {}] = [{}];\n}}",
+            names.len(),
+            names.len(),
+            names.iter().map(|n| format!("{n:?}")).collect::<Vec<_>>().join(", ")
+        );
+    }
+
+    /// The name modules of inputs, outputs, timers, events and
+    /// supervisors, and the state names of every supervisor.
+    pub(super) fn names(&mut self) {
+        let p = self.project;
+        let inputs: Vec<&str> = p.inputs.iter().map(|x| x.name.as_str()).collect();
+        let outputs: Vec<&str> = p.outputs.iter().map(|x| x.name.as_str()).collect();
+        let timers: Vec<&str> = p.timers.iter().map(|x| x.name.as_str()).collect();
+        let events: Vec<&str> = p.events.iter().map(|x| x.name.as_str()).collect();
+        let sups: Vec<&str> = p.supervisors.iter().map(|x| x.name.as_str()).collect();
+        self.name_module("input", "Inputs, in declaration order.", &inputs);
+        self.name_module("output", "Outputs, in declaration order.", &outputs);
+        self.name_module("timer", "Timers, in declaration order.", &timers);
+        self.name_module("event", "Events, in declaration (priority) order.", &events);
+        self.name_module("supervisor", "Supervisors, in declaration order.", &sups);
+        let _ = writeln!(
+            self.out,
+            "/// State names of each supervisor, by state index.\n#[allow(dead_code)]\npub mod states {{"
+        );
+        for s in &p.supervisors {
+            let names: Vec<String> = s
+                .automaton
+                .states()
+                .map(|x| format!("{:?}", s.automaton.state_name(x)))
+                .collect();
+            let _ = writeln!(
+                self.out,
+                "    /// Supervisor {}.\n    pub static {}: [&str; {}] = [{}];",
+                quoted(&s.name),
+                ident(&s.name),
+                names.len(),
+                names.join(", ")
+            );
+        }
+        let _ = writeln!(self.out, "}}");
+    }
+
+    fn input_name(&self, i: ex::Index) -> String {
+        quoted(&self.project.inputs[usize::from(i)].name)
+    }
+
+    fn output_name(&self, o: ex::Index) -> String {
+        quoted(&self.project.outputs[usize::from(o)].name)
+    }
+
+    fn timer_name(&self, t: ex::Index) -> String {
+        quoted(&self.project.timers[usize::from(t)].name)
+    }
+
+    fn event_name(&self, e: usize) -> String {
+        quoted(&self.project.events[e].name)
+    }
+
+    fn supervisor_name(&self, s: ex::Index) -> String {
+        quoted(&self.project.supervisors[usize::from(s)].name)
+    }
+
+    fn state_name(&self, s: ex::Index, state: u32) -> String {
+        let a = &self.project.supervisors[usize::from(s)].automaton;
+        quoted(&a.state_name(StateId(state)))
+    }
+
+    /// The input names of an input-list span.
+    fn inputs_in(&self, s: ex::Span) -> Vec<String> {
+        s.of(&self.pools.input_lists)
+            .iter()
+            .map(|&i| self.input_name(i))
+            .collect()
+    }
+
+    /// The events whose actions include `wanted`.
+    fn events_doing(&self, wanted: ex::Action) -> Vec<String> {
+        let pools = self.pools;
+        (0..pools.events.len())
+            .filter(|&e| pools.events[e].actions.of(&pools.actions).contains(&wanted))
+            .map(|e| self.event_name(e))
+            .collect()
+    }
+
+    /// "`sup` is in `a` or `b`, or `other` is in `c`": the states of a
+    /// state-map span, grouped by supervisor in pool order.
+    fn state_map_text(&self, s: ex::Span) -> String {
+        let mut groups: Vec<(ex::Index, Vec<String>)> = Vec::new();
+        for entry in s.of(&self.pools.state_map) {
+            let name = self.state_name(entry.supervisor, entry.state);
+            match groups.last_mut() {
+                Some((sup, states)) if *sup == entry.supervisor => states.push(name),
+                _ => groups.push((entry.supervisor, vec![name])),
+            }
+        }
+        let clauses: Vec<String> = groups
+            .iter()
+            .map(|(sup, states)| {
+                format!(
+                    "{} is in {}",
+                    self.supervisor_name(*sup),
+                    listed(states, "or")
+                )
+            })
+            .collect();
+        clauses.join(", or ")
+    }
+
+    /// One event decoded: its kind, binding and conditions, actions and
+    /// supervisors (with its local index in each).
+    fn event_text(&self, e: usize) -> String {
+        let pools = self.pools;
+        let spec = &pools.events[e];
+        let ev = &self.project.events[e];
+        let kind = match (ev.controllable, ev.origin) {
+            (true, _) => "controllable",
+            (false, Origin::Operator) => "uncontrollable, operator",
+            (false, _) => "uncontrollable, plant",
+        };
+        let edge = |what: &str, s: ex::Span| {
+            let inputs = self.inputs_in(s);
+            if inputs.len() == 1 {
+                format!("{what} edge of {}", inputs[0])
+            } else {
+                format!("{what} edge of ({})", listed(&inputs, "or"))
+            }
+        };
+        let mut binding = match spec.trigger {
+            ex::Trigger::Command => "commanded".to_owned(),
+            ex::Trigger::Rising(s) => edge("rising", s),
+            ex::Trigger::Falling(s) => edge("falling", s),
+            ex::Trigger::Expired(t) => format!("expiry of {}", self.timer_name(t)),
+        };
+        if !spec.when.is_empty() {
+            let _ = write!(
+                binding,
+                " when {}",
+                listed(&self.inputs_in(spec.when), "and")
+            );
+        }
+        if !spec.unless.is_empty() {
+            let _ = write!(
+                binding,
+                " unless {}",
+                listed(&self.inputs_in(spec.unless), "or")
+            );
+        }
+        if let Some(r) = spec.request {
+            let _ = write!(binding, ", only while {} is 1", self.input_name(r));
+        }
+        let mut parts = vec![binding];
+        let actions: Vec<String> = spec
+            .actions
+            .of(&pools.actions)
+            .iter()
+            .map(|a| match *a {
+                ex::Action::Set(o) => format!("sets {}", self.output_name(o)),
+                ex::Action::Clear(o) => format!("clears {}", self.output_name(o)),
+                ex::Action::Start(t) => format!("starts {}", self.timer_name(t)),
+                ex::Action::Reset(t) => format!("resets {}", self.timer_name(t)),
+            })
+            .collect();
+        if !actions.is_empty() {
+            parts.push(actions.join(", "));
+        }
+        let members: Vec<String> = spec
+            .members
+            .of(&pools.memberships)
+            .iter()
+            .map(|m| format!("{} (local {})", self.supervisor_name(m.supervisor), m.local))
+            .collect();
+        parts.push(if members.is_empty() {
+            "in no supervisor".to_owned()
+        } else {
+            format!("in {}", members.join(", "))
+        });
+        format!("{} ({kind}): {}", self.event_name(e), parts.join("; "))
+    }
+
+    /// Doc lines naming the owner of each non-empty span, in pool order.
+    fn owners(&self, mut spans: Vec<(ex::Span, String)>) -> String {
+        spans.retain(|(s, _)| !s.is_empty());
+        spans.sort_by_key(|(s, _)| s.start);
+        let mut doc = String::new();
+        for (s, owner) in spans {
+            let _ = writeln!(doc, "/// - {}: {owner}", positions(s));
+        }
+        doc
+    }
+
+    /// The configuration statics, `CONFIG` and `Memory`.
+    pub(super) fn config(&mut self) {
+        let pools = self.pools;
+        let p = self.project;
+        let list = |items: Vec<String>| items.join(", ");
+
+        let mut doc = String::new();
+        for (i, input) in pools.inputs.iter().enumerate() {
+            let filter = match input.debounce_scans {
+                0 | 1 => "unfiltered".to_owned(),
+                d => format!("debounced over {d} scans"),
+            };
+            let _ = writeln!(doc, "/// - {i} {}: {filter}", quoted(&p.inputs[i].name));
+        }
+        let inputs = list(
+            pools
+                .inputs
+                .iter()
+                .map(|i| format!("InputSpec {{ debounce_scans: {} }}", i.debounce_scans))
+                .collect(),
+        );
+        let _ = writeln!(
+            self.out,
+            "{}const INPUTS: [InputSpec; {}] = [{inputs}];",
+            titled("Input filtering, by input", &doc),
+            pools.inputs.len()
+        );
+
+        let mut doc = String::new();
+        for (o, out) in pools.outputs.iter().enumerate() {
+            let index = o as ex::Index;
+            let drive = if out.state_map.is_empty() {
+                let mut how = format!("latched, initially {}", u8::from(out.initial));
+                let set = self.events_doing(ex::Action::Set(index));
+                let clear = self.events_doing(ex::Action::Clear(index));
+                if !set.is_empty() {
+                    let _ = write!(how, "; set by {}", listed(&set, "and"));
+                }
+                if !clear.is_empty() {
+                    let _ = write!(how, "; cleared by {}", listed(&clear, "and"));
+                }
+                how
+            } else {
+                format!("1 while {}", self.state_map_text(out.state_map))
+            };
+            let _ = writeln!(
+                doc,
+                "/// - {o} {} (safe {}): {drive}",
+                self.output_name(index),
+                u8::from(out.safe)
+            );
+        }
+        let outputs = list(
+            pools
+                .outputs
+                .iter()
+                .map(|o| {
+                    format!(
+                        "OutputSpec {{ safe: {}, initial: {}, state_map: {} }}",
+                        o.safe,
+                        o.initial,
+                        self.span(o.state_map)
+                    )
+                })
+                .collect(),
+        );
+        let _ = writeln!(
+            self.out,
+            "{}const OUTPUTS: [OutputSpec; {}] = [{outputs}];",
+            titled(
+                "Outputs, by output (level in fault mode, and how each is driven)",
+                &doc
+            ),
+            pools.outputs.len()
+        );
+
+        let mut doc = String::new();
+        for (t, timer) in pools.timers.iter().enumerate() {
+            let index = t as ex::Index;
+            let mut about = format!("{} ms", timer.preset_ms);
+            let started = self.events_doing(ex::Action::Start(index));
+            let reset = self.events_doing(ex::Action::Reset(index));
+            let expiry: Vec<String> = (0..pools.events.len())
+                .filter(|&e| pools.events[e].trigger == ex::Trigger::Expired(index))
+                .map(|e| self.event_name(e))
+                .collect();
+            if !started.is_empty() {
+                let _ = write!(about, ", started by {}", listed(&started, "and"));
+            }
+            if !reset.is_empty() {
+                let _ = write!(about, ", reset by {}", listed(&reset, "and"));
+            }
+            if !expiry.is_empty() {
+                let _ = write!(about, ", expiry raises {}", listed(&expiry, "and"));
+            }
+            let _ = writeln!(doc, "/// - {t} {}: {about}", self.timer_name(index));
+        }
+        let timers = list(
+            pools
+                .timers
+                .iter()
+                .map(|t| format!("TimerSpec {{ preset_ms: {} }}", t.preset_ms))
+                .collect(),
+        );
+        let _ = writeln!(
+            self.out,
+            "{}const TIMERS: [TimerSpec; {}] = [{timers}];",
+            titled("Timer presets, by timer", &doc),
+            pools.timers.len()
+        );
+
+        let mut doc = String::new();
+        for e in 0..pools.events.len() {
+            let _ = writeln!(doc, "/// - {e} {}", self.event_text(e));
+        }
+        let events = list(
+            pools
+                .events
+                .iter()
+                .map(|e| {
+                    let trigger = match e.trigger {
+                        ex::Trigger::Command => "Trigger::Command".to_owned(),
+                        ex::Trigger::Rising(s) => format!("Trigger::Rising({})", self.span(s)),
+                        ex::Trigger::Falling(s) => format!("Trigger::Falling({})", self.span(s)),
+                        ex::Trigger::Expired(t) => format!("Trigger::Expired({})", self.timer(t)),
+                    };
+                    let request = e
+                        .request
+                        .map_or("None".to_owned(), |r| format!("Some({})", self.input(r)));
+                    format!(
+                        "EventSpec {{ trigger: {trigger}, when: {}, unless: {}, request: {request}, actions: {}, members: {} }}",
+                        self.span(e.when),
+                        self.span(e.unless),
+                        self.span(e.actions),
+                        self.span(e.members)
+                    )
+                })
+                .collect(),
+        );
+        let _ = writeln!(
+            self.out,
+            "{}const EVENTS: [EventSpec; {}] = [{events}];",
+            titled(
+                "Events in priority order (trigger and conditions; actions; supervisors, with the event's local index)",
+                &doc
+            ),
+            pools.events.len()
+        );
+
+        let mut doc = String::new();
+        for (j, s) in pools.supervisors.iter().enumerate() {
+            let index = j as ex::Index;
+            let _ = writeln!(
+                doc,
+                "/// - {j} {}: {} states, initial {}",
+                self.supervisor_name(index),
+                s.states,
+                self.state_name(index, s.initial)
+            );
+        }
+        let sups = list(
+            pools
+                .supervisors
+                .iter()
+                .map(|s| {
+                    format!(
+                        "SupervisorSpec {{ states: {}, initial: {} }}",
+                        s.states, s.initial
+                    )
+                })
+                .collect(),
+        );
+        let _ = writeln!(
+            self.out,
+            "{}const SUPERVISORS: [SupervisorSpec; {}] = [{sups}];",
+            titled("Supervisor sizes and initial states, by supervisor", &doc),
+            pools.supervisors.len()
+        );
+
+        let mut spans = Vec::new();
+        for (e, spec) in pools.events.iter().enumerate() {
+            let name = self.event_name(e);
+            if let ex::Trigger::Rising(s) | ex::Trigger::Falling(s) = spec.trigger {
+                spans.push((s, format!("edge of {name}")));
+            }
+            spans.push((spec.when, format!("`when` of {name}")));
+            spans.push((spec.unless, format!("`unless` of {name}")));
+        }
+        let doc = self.owners(spans);
+        let lists = list(pools.input_lists.iter().map(|&i| self.input(i)).collect());
+        let _ = writeln!(
+            self.out,
+            "{}const INPUT_LISTS: [Index; {}] = [{lists}];",
+            titled(
+                "Input lists of edge bindings and `when`/`unless` conditions, by position",
+                &doc
+            ),
+            pools.input_lists.len()
+        );
+
+        let spans = (0..pools.events.len())
+            .map(|e| (pools.events[e].actions, self.event_name(e)))
+            .collect();
+        let doc = self.owners(spans);
+        let actions = list(
+            pools
+                .actions
+                .iter()
+                .map(|a| match *a {
+                    ex::Action::Set(o) => format!("Action::Set({})", self.output(o)),
+                    ex::Action::Clear(o) => format!("Action::Clear({})", self.output(o)),
+                    ex::Action::Start(t) => format!("Action::Start({})", self.timer(t)),
+                    ex::Action::Reset(t) => format!("Action::Reset({})", self.timer(t)),
+                })
+                .collect(),
+        );
+        let _ = writeln!(
+            self.out,
+            "{}const ACTIONS: [Action; {}] = [{actions}];",
+            titled("Event actions, by position", &doc),
+            pools.actions.len()
+        );
+
+        let spans = (0..pools.events.len())
+            .map(|e| (pools.events[e].members, self.event_name(e)))
+            .collect();
+        let doc = self.owners(spans);
+        let members = list(
+            pools
+                .memberships
+                .iter()
+                .map(|m| {
+                    format!(
+                        "Membership {{ supervisor: {}, local: {} }}",
+                        self.supervisor(m.supervisor),
+                        m.local
+                    )
+                })
+                .collect(),
+        );
+        let _ = writeln!(
+            self.out,
+            "{}const MEMBERSHIPS: [Membership; {}] = [{members}];",
+            titled(
+                "Which supervisors have each event, and its local index there, by position",
+                &doc
+            ),
+            pools.memberships.len()
+        );
+
+        let spans = (0..pools.outputs.len())
+            .map(|o| (pools.outputs[o].state_map, self.output_name(o as ex::Index)))
+            .collect();
+        let doc = self.owners(spans);
+        let map = list(
+            pools
+                .state_map
+                .iter()
+                .map(|m| {
+                    format!(
+                        "StateMapEntry {{ supervisor: {}, state: {} }}",
+                        self.supervisor(m.supervisor),
+                        m.state
+                    )
+                })
+                .collect(),
+        );
+        let _ = writeln!(
+            self.out,
+            "{}const STATE_MAP: [StateMapEntry; {}] = [{map}];",
+            titled(
+                "Moore outputs: (supervisor, state) pairs, by position",
+                &doc
+            ),
+            pools.state_map.len()
+        );
+
+        let policy = match pools.unexpected {
+            ex::UnexpectedPolicy::Fault => "Fault",
+            ex::UnexpectedPolicy::Ignore => "Ignore",
+        };
+        let reset = pools
+            .reset
+            .map_or("None".to_owned(), |r| format!("Some({})", self.input(r)));
+        let _ = writeln!(
+            self.out,
+            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, inputs: &INPUTS, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_lists: &INPUT_LISTS, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP }};",
+            pools.name,
+            pools.scan_period_ms,
+            pools.max_commands_per_scan,
+            pools.overrun_limit,
+            pools.overrun_fault,
+            pools.lost_edge_fault,
+        );
+        let _ = writeln!(
+            self.out,
+            "/// Controller memory sized for this project.\npub type Memory = executor::memory::StaticMemory<{}, {}, {}, {}, {}>;",
+            pools.inputs.len(),
+            pools.outputs.len(),
+            pools.timers.len(),
+            pools.supervisors.len(),
+            pools.events.len()
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::emit::{generate, Backend};
+    use crate::project;
+    use std::path::Path;
+
+    /// The doc comment lines of the generated table program of `text`
+    /// (a project file in `models/`, so that its model paths resolve).
+    fn docs(text: &str) -> Vec<String> {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../models/decode_test.plc.toml");
+        let project = project::from_str(text, &path).unwrap();
+        let code = generate(&project, Backend::Table, "test").unwrap().code;
+        code.lines()
+            .map(str::trim)
+            .filter(|l| l.starts_with("///"))
+            .map(str::to_owned)
+            .collect()
+    }
+
+    fn has(docs: &[String], line: &str) {
+        assert!(
+            docs.iter().any(|d| d == line),
+            "missing `{line}` in\n{}",
+            docs.join("\n")
+        );
+    }
+
+    /// Every pool-indexed field decoded by name: bindings over several
+    /// inputs, `when`/`unless`, requests, actions of every kind, several
+    /// supervisors, state maps and the owners of pool positions.
+    #[test]
+    fn the_configuration_is_decoded_by_name() {
+        let docs = docs(
+            r#"
+[plc]
+name = "decode"
+reset = "rst"
+
+[inputs]
+a = { debounce_scans = 3 }
+b = {}
+c = {}
+d = {}
+go = {}
+rst = {}
+
+[outputs]
+lamp = { states = { sup_crane1 = ["train1", "train2"], sup_section = ["t1_in"] } }
+valve = { initial = true, safe = true }
+
+[timers]
+t = { preset_ms = 500 }
+
+[events]
+t1_at13 = { rising = "a", when = ["b", "c"], unless = ["go"], origin = "operator" }
+t2_at13 = { falling = ["a", "b"], reset = ["t"] }
+f_ld1 = { expired = "t" }
+t1_at14 = { rising = "c" }
+t2_at14 = { rising = "b" }
+st_ld1 = { controllable = true, request = "go", set = ["valve"], start = ["t"] }
+run_t1 = { controllable = true, clear = ["valve"] }
+run_t2 = { controllable = true }
+spare = { rising = "d" }
+
+[[supervisor]]
+name = "sup_crane1"
+file = "crane/sup_crane1.toml"
+
+[[supervisor]]
+name = "sup_section"
+file = "crane/sup_section.toml"
+"#,
+        );
+        for line in [
+            // INPUTS, OUTPUTS, TIMERS
+            "/// - 0 `a`: debounced over 3 scans",
+            "/// - 1 `b`: unfiltered",
+            "/// - 0 `lamp` (safe 0): 1 while `sup_crane1` is in `train1` or `train2`, or `sup_section` is in `t1_in`",
+            "/// - 1 `valve` (safe 1): latched, initially 1; set by `st_ld1`; cleared by `run_t1`",
+            "/// - 0 `t`: 500 ms, started by `st_ld1`, reset by `t2_at13`, expiry raises `f_ld1`",
+            // EVENTS
+            "/// - 0 `t1_at13` (uncontrollable, operator): rising edge of `a` when `b` and `c` unless `go`; in `sup_crane1` (local 0)",
+            "/// - 1 `t2_at13` (uncontrollable, plant): falling edge of (`a` or `b`); resets `t`; in `sup_crane1` (local 1)",
+            "/// - 2 `f_ld1` (uncontrollable, plant): expiry of `t`; in `sup_crane1` (local 2)",
+            "/// - 5 `st_ld1` (controllable): commanded, only while `go` is 1; sets `valve`, starts `t`; in `sup_crane1` (local 3)",
+            "/// - 6 `run_t1` (controllable): commanded; clears `valve`; in `sup_crane1` (local 4), `sup_section` (local 2)",
+            "/// - 8 `spare` (uncontrollable, plant): rising edge of `d`; in no supervisor",
+            // SUPERVISORS
+            "/// - 0 `sup_crane1`: 3 states, initial `idle`",
+            // INPUT_LISTS
+            "/// - 0: edge of `t1_at13`",
+            "/// - 1–2: `when` of `t1_at13`",
+            "/// - 3: `unless` of `t1_at13`",
+            "/// - 4–5: edge of `t2_at13`",
+            "/// - 8: edge of `spare`",
+            // ACTIONS
+            "/// - 0: `t2_at13`",
+            "/// - 1–2: `st_ld1`",
+            "/// - 3: `run_t1`",
+            // MEMBERSHIPS
+            "/// - 6–7: `run_t1`",
+            "/// - 8–9: `run_t2`",
+            // STATE_MAP
+            "/// - 0–2: `lamp`",
+        ] {
+            has(&docs, line);
+        }
+    }
+}

@@ -1,0 +1,706 @@
+//! The logic backend's text: each supervisor's CMSSM as a Rust module of
+//! plain functions ([`supervisor_module`]), the `Logic` program over them,
+//! and the equations in mathematical notation for reports ([`equations`]).
+//!
+//! The synthesis and verification of the equations are in
+//! [`crate::backend::logic`]; this module only writes them down. All the
+//! explanations it writes are doc comments, so they survive layout.
+
+use super::{doc_text, one_line, quoted, Emitter, SupervisorStats};
+use crate::backend::logic::{Cover, Cube, LogicSupervisor};
+use crate::project::ident::snake_ident;
+use executor::program as ex;
+use std::collections::HashSet;
+use std::fmt::Write;
+
+/// Transitions shown in a module's doc comment (the first states').
+const DOC_ROWS: usize = 8;
+
+/// What the module of one supervisor calls things.
+#[derive(Debug, Clone, Copy)]
+pub struct Names<'a> {
+    /// The supervisor's name; the module and its functions are named
+    /// after it.
+    pub supervisor: &'a str,
+    /// Where the supervisor came from, as Markdown for the module's doc
+    /// comment (``from `file` ``), or empty. Line breaks become spaces.
+    pub origin: &'a str,
+    /// Local event names, in local order (a missing name prints as
+    /// `e<i>`).
+    pub events: &'a [&'a str],
+    /// State names, in state order (a missing name prints as the index).
+    pub states: &'a [&'a str],
+}
+
+impl Names<'_> {
+    fn event(&self, i: usize) -> String {
+        self.events
+            .get(i)
+            .map_or_else(|| format!("e{i}"), |s| (*s).to_owned())
+    }
+
+    fn state(&self, s: usize) -> String {
+        self.states
+            .get(s)
+            .map_or_else(|| s.to_string(), |n| (*n).to_owned())
+    }
+}
+
+/// `base`, or `base_2`, `base_3`, … whichever is not yet in `taken`; the
+/// result is added to `taken`.
+fn unique(base: String, taken: &mut HashSet<String>) -> String {
+    let mut candidate = base.clone();
+    let mut k = 2;
+    while taken.contains(&candidate) {
+        candidate = format!("{base}_{k}");
+        k += 1;
+    }
+    taken.insert(candidate.clone());
+    candidate
+}
+
+/// A code as a binary literal of `bits` digits.
+fn code_literal(code: u32, bits: usize) -> String {
+    format!("{code:#0width$b}", width = bits + 2)
+}
+
+/// `pub mod <name> { … }`: the CMSSM of one supervisor as plain Rust.
+///
+/// The module holds one constant per local event (`T1_AT13: u16 = 0`, the
+/// `e` the functions take) and the functions `<name>_next(q, e) -> u32`
+/// (`Ω`), `<name>_defined(q, e) -> bool` (`φ`) and `<name>_step(q, e) ->
+/// Option<u32>` (both, as the executor's `Program::next_state`), where `q`
+/// is a state code. Its doc comment gives the state codes, the reset code
+/// and the transitions of the first states. Names are sanitised into
+/// identifiers, or into one-line text in doc comments, so no name can
+/// inject code; the functions use neither `std`, allocation nor `unsafe`.
+pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
+    let prefix = snake_ident(names.supervisor);
+    let l = usize::from(logic.bits());
+    let m = logic.events();
+    // Identifiers of the event wires, unique and clear of the fixed locals;
+    // the event constants are the same in upper case (wires are lower
+    // case, so the constants are unique too and clear of every function).
+    let mut taken: HashSet<String> = ["q", "e"].iter().map(|s| (*s).to_owned()).collect();
+    for b in 0..l {
+        taken.insert(format!("q{b}"));
+        taken.insert(format!("w{b}"));
+    }
+    let wires: Vec<String> = (0..m)
+        .map(|i| unique(snake_ident(&names.event(i)), &mut taken))
+        .collect();
+    let constants: Vec<String> = wires.iter().map(|w| w.to_ascii_uppercase()).collect();
+
+    let mut out = String::new();
+    module_doc(&mut out, logic, names);
+    let _ = writeln!(out, "pub mod {prefix} {{");
+    for (i, constant) in constants.iter().enumerate() {
+        let _ = writeln!(
+            out,
+            "/// Local event {i}: {}.\npub const {constant}: u16 = {i};",
+            quoted(&names.event(i))
+        );
+    }
+
+    let cube_expr = |c: &Cube| {
+        let mut lits = Vec::new();
+        for b in (0..l).rev() {
+            if c.state_mask >> b & 1 == 1 {
+                let neg = if c.state_value >> b & 1 == 1 { "" } else { "!" };
+                lits.push(format!("{neg}q{b}"));
+            }
+        }
+        for (i, wire) in wires.iter().enumerate() {
+            if c.events_on >> i & 1 == 1 {
+                lits.push(wire.clone());
+            }
+        }
+        for (i, wire) in wires.iter().enumerate() {
+            if c.events_off >> i & 1 == 1 {
+                lits.push(format!("!{wire}"));
+            }
+        }
+        lits
+    };
+    let sum_expr = |c: &Cover| {
+        let terms: Vec<Vec<String>> = c.cubes.iter().map(cube_expr).collect();
+        match terms.len() {
+            0 => "false".to_owned(),
+            1 if terms[0].is_empty() => "true".to_owned(),
+            1 => terms[0].join(" & "),
+            _ => terms
+                .iter()
+                .map(|t| {
+                    if t.is_empty() {
+                        "true".to_owned()
+                    } else if t.len() == 1 {
+                        t[0].clone()
+                    } else {
+                        format!("({})", t.join(" & "))
+                    }
+                })
+                .collect::<Vec<_>>()
+                .join(" | "),
+        }
+    };
+    let state_bits_used = |covers: &[Cover]| {
+        covers
+            .iter()
+            .flat_map(|c| c.cubes.iter())
+            .fold(0u32, |acc, c| acc | c.state_mask)
+    };
+    let bit_lets = |out: &mut String, used: u32| {
+        for b in (0..l).rev() {
+            if used >> b & 1 == 1 {
+                if b == 0 {
+                    let _ = writeln!(out, "    let q0 = q & 1 != 0;");
+                } else {
+                    let _ = writeln!(out, "    let q{b} = (q >> {b}) & 1 != 0;");
+                }
+            }
+        }
+        if used == 0 {
+            let _ = writeln!(out, "    let _ = q;");
+        }
+    };
+
+    // Ω
+    let _ = writeln!(
+        out,
+        "/// `{prefix}`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.\n\
+         ///\n\
+         /// `q`: state code ({l} bits); `e`: local event index. An event the state does\n\
+         /// not define, or an index of no event, leaves the code unchanged."
+    );
+    let _ = writeln!(out, "pub fn {prefix}_next(q: u32, e: u16) -> u32 {{");
+    bit_lets(&mut out, state_bits_used(logic.next_covers()));
+    let wires_used = logic
+        .next_covers()
+        .iter()
+        .flat_map(|c| c.cubes.iter())
+        .fold(0u128, |acc, c| acc | c.events_on | c.events_off);
+    for (i, wire) in wires.iter().enumerate() {
+        if wires_used >> i & 1 == 1 {
+            let _ = writeln!(out, "    let {wire} = e == {};", constants[i]);
+        }
+    }
+    if wires_used == 0 {
+        let _ = writeln!(out, "    let _ = e;");
+    }
+    for (b, w) in logic.next_covers().iter().enumerate().rev() {
+        let _ = writeln!(out, "    let w{b} = {};", sum_expr(w));
+    }
+    let assembled: Vec<String> = (0..l)
+        .rev()
+        .map(|b| {
+            if b == 0 {
+                "(w0 as u32)".to_owned()
+            } else {
+                format!("((w{b} as u32) << {b})")
+            }
+        })
+        .collect();
+    let _ = writeln!(out, "    {}", assembled.join(" | "));
+    let _ = writeln!(out, "}}\n");
+
+    // Φ
+    let _ = writeln!(
+        out,
+        "/// `{prefix}`: whether local event `e` is defined in state code `q`: enabled\n\
+         /// for a controllable event, expected for an uncontrollable one."
+    );
+    let _ = writeln!(out, "pub fn {prefix}_defined(q: u32, e: u16) -> bool {{");
+    bit_lets(&mut out, state_bits_used(logic.defined_covers()));
+    if m == 0 {
+        let _ = writeln!(out, "    let _ = e;\n    false");
+    } else {
+        let _ = writeln!(out, "    match e {{");
+        for (phi, constant) in logic.defined_covers().iter().zip(&constants) {
+            let _ = writeln!(out, "        {constant} => {},", sum_expr(phi));
+        }
+        let _ = writeln!(out, "        _ => false,\n    }}");
+    }
+    let _ = writeln!(out, "}}\n");
+
+    // Both, as the executor wants them.
+    let _ = writeln!(
+        out,
+        "/// `{prefix}`: the code reached from `q` on local event `e`, `None` when the\n\
+         /// event is not defined there."
+    );
+    let _ = writeln!(
+        out,
+        "pub fn {prefix}_step(q: u32, e: u16) -> Option<u32> {{\n    \
+         if {prefix}_defined(q, e) {{\n        \
+         Some({prefix}_next(q, e))\n    \
+         }} else {{\n        \
+         None\n    \
+         }}\n\
+         }}\n}}"
+    );
+    out
+}
+
+/// The doc comment of a supervisor's module: what it is, its state codes
+/// and reset code, and the transitions of the first states (read off the
+/// equations, which verification proved equal to the automaton).
+fn module_doc(out: &mut String, logic: &LogicSupervisor, names: &Names<'_>) {
+    let l = usize::from(logic.bits());
+    let origin = if names.origin.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", one_line(names.origin))
+    };
+    let _ = writeln!(
+        out,
+        "/// Supervisor {}{origin} as a CMSSM (Leduc–Wonham), minimised with Espresso.\n///",
+        quoted(names.supervisor)
+    );
+    let reset = logic.initial_code().map_or_else(String::new, |c| {
+        format!(", reset code {}", code_literal(c, l))
+    });
+    let _ = writeln!(
+        out,
+        "/// State codes ({l} bits{reset}) and the transitions of the first states:"
+    );
+    let encoding = logic.encoding();
+    for (s, &code) in encoding.codes().iter().enumerate().take(DOC_ROWS) {
+        let moves: Vec<String> = (0..logic.events())
+            .filter_map(|i| {
+                let target = logic.next_state(code, i as u16)?;
+                let t = encoding.state_of(target)?;
+                Some(format!(
+                    "{} → {}",
+                    names.event(i),
+                    names.state(t.0 as usize)
+                ))
+            })
+            .collect();
+        let moves = if moves.is_empty() {
+            "(no transitions)".to_owned()
+        } else {
+            doc_text(&moves.join(", "))
+        };
+        let _ = writeln!(
+            out,
+            "/// - {} {}: {moves}",
+            code_literal(code, l),
+            quoted(&names.state(s))
+        );
+    }
+    if encoding.len() > DOC_ROWS {
+        let _ = writeln!(out, "/// - … {} more states", encoding.len() - DOC_ROWS);
+    }
+}
+
+/// The equations of `logic` in mathematical notation, one per line
+/// (`ω_b = …` then `φ_i = …`), with event names from `event_names` (local
+/// order; missing names print as `e<i>`). For reports and logs.
+pub fn equations(logic: &LogicSupervisor, event_names: &[&str]) -> String {
+    let event = |i: usize| {
+        event_names
+            .get(i)
+            .map_or_else(|| format!("e{i}"), |s| doc_text(s))
+    };
+    let cube = |c: &Cube| {
+        let mut lits = Vec::new();
+        for b in (0..logic.bits()).rev() {
+            if c.state_mask >> b & 1 == 1 {
+                let neg = if c.state_value >> b & 1 == 1 {
+                    ""
+                } else {
+                    "¬"
+                };
+                lits.push(format!("{neg}q{b}"));
+            }
+        }
+        for i in 0..logic.events() {
+            if c.events_on >> i & 1 == 1 {
+                lits.push(event(i));
+            }
+        }
+        for i in 0..logic.events() {
+            if c.events_off >> i & 1 == 1 {
+                lits.push(format!("¬{}", event(i)));
+            }
+        }
+        if lits.is_empty() {
+            "1".to_owned()
+        } else {
+            lits.join(" ∧ ")
+        }
+    };
+    let sum = |c: &Cover| {
+        if c.cubes.is_empty() {
+            return "0".to_owned();
+        }
+        let terms: Vec<String> = c.cubes.iter().map(cube).collect();
+        if terms.len() == 1 {
+            terms.into_iter().next().unwrap_or_default()
+        } else {
+            terms
+                .iter()
+                .map(|t| {
+                    if t.contains(' ') {
+                        format!("({t})")
+                    } else {
+                        t.clone()
+                    }
+                })
+                .collect::<Vec<_>>()
+                .join(" ∨ ")
+        }
+    };
+    let mut out = String::new();
+    for (b, w) in logic.next_covers().iter().enumerate().rev() {
+        let _ = writeln!(out, "ω{b} = {}", sum(w));
+    }
+    for (i, phi) in logic.defined_covers().iter().enumerate() {
+        let _ = writeln!(out, "φ{i} = {}  [{}]", sum(phi), event(i));
+    }
+    out
+}
+
+impl Emitter<'_> {
+    /// `pub mod logic` with one [`supervisor_module`] per supervisor,
+    /// `IMAGE_CRC` and the `Logic` program.
+    pub(super) fn logic(&mut self, logic: &[LogicSupervisor], crc: u32) -> Vec<SupervisorStats> {
+        let mut stats = Vec::new();
+        let mut arms = Vec::new();
+        let _ = writeln!(
+            self.out,
+            "/// The supervisors as CMSSM next-state (`_next`) and enable (`_defined`) functions.\npub mod logic {{"
+        );
+        for (j, (sup, l)) in self.project.supervisors.iter().zip(logic).enumerate() {
+            let fn_name = snake_ident(&sup.name);
+            let events: Vec<&str> = sup
+                .local_events
+                .iter()
+                .map(|&(g, _)| self.project.events[g].name.as_str())
+                .collect();
+            let states: Vec<String> = sup
+                .automaton
+                .states()
+                .map(|s| sup.automaton.state_name(s).into_owned())
+                .collect();
+            let states: Vec<&str> = states.iter().map(String::as_str).collect();
+            let origin = self.source_line(j);
+            let names = Names {
+                supervisor: &sup.name,
+                origin: &origin,
+                events: &events,
+                states: &states,
+            };
+            self.out.push_str(&supervisor_module(l, &names));
+            self.out.push('\n');
+            arms.push(format!(
+                "{} => logic::{fn_name}::{fn_name}_step(state, local),",
+                self.supervisor(j as ex::Index)
+            ));
+            let sizes = l.sizes();
+            stats.push(SupervisorStats {
+                name: sup.name.clone(),
+                states: sup.automaton.num_states() as u32,
+                events: events.len() as u16,
+                layout: None,
+                table_bytes: 0,
+                naive_bytes: 2 * sup.automaton.num_states() * events.len(),
+                cubes: sizes.cubes,
+                literals: sizes.literals,
+            });
+        }
+        let _ = writeln!(self.out, "}}");
+        let _ = writeln!(
+            self.out,
+            "/// CRC-32 of the configuration (the supervisors are code), checked at start.\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program: supervisors as minimised boolean functions.\npub struct Logic;\nimpl Program for Logic {{\n    fn config(&self) -> Config<'_> {{ CONFIG }}\n    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n    fn image_intact(&self) -> bool {{ executor::table::config_crc(&CONFIG) == IMAGE_CRC }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Logic = Logic;",
+            arms.join("\n")
+        );
+        stats
+    }
+}
+
+#[cfg(all(test, feature = "espresso"))]
+mod tests {
+    use super::*;
+    use crate::automaton::Automaton;
+    use crate::backend::logic::Encoding;
+    use crate::EventId;
+    use des::testing::auto;
+
+    fn ids(a: &Automaton, names: &[&str]) -> Vec<EventId> {
+        names.iter().map(|n| a.alphabet().id(n).unwrap()).collect()
+    }
+
+    /// sup_crane1 of Leduc–Wonham (see the backend's tests), binary
+    /// encoded: idle (state 0) 0b00, train1 0b01, train2 0b10.
+    fn crane() -> (LogicSupervisor, [&'static str; 6], [&'static str; 3]) {
+        let events = ["t1_at13", "t2_at13", "f_ld1", "st_ld1", "run_t1", "run_t2"];
+        let a = auto(
+            "sup_crane1",
+            &[
+                ("t1_at13", false),
+                ("t2_at13", false),
+                ("f_ld1", false),
+                ("st_ld1", true),
+                ("run_t1", true),
+                ("run_t2", true),
+            ],
+            &[
+                ("0", "t1_at13", "1"),
+                ("0", "t2_at13", "2"),
+                ("1", "f_ld1", "0"),
+                ("2", "f_ld1", "0"),
+                ("1", "st_ld1", "1"),
+                ("2", "st_ld1", "2"),
+                ("0", "run_t1", "0"),
+                ("2", "run_t1", "2"),
+                ("0", "run_t2", "0"),
+                ("1", "run_t2", "1"),
+            ],
+            &["0"],
+        );
+        let logic =
+            LogicSupervisor::synthesize(&a, &ids(&a, &events), Encoding::binary(3)).unwrap();
+        (logic, events, ["idle", "train1", "train2"])
+    }
+
+    #[test]
+    fn every_explanation_is_a_doc_comment_and_survives_layout() {
+        let (logic, events, states) = crane();
+        let names = Names {
+            supervisor: "sup_crane1",
+            origin: "from `crane.toml`",
+            events: &events,
+            states: &states,
+        };
+        let written = supervisor_module(&logic, &names);
+        let laid_out = crate::emit::format_rust(&written).unwrap();
+        println!("{laid_out}");
+        let kept: HashSet<&str> = laid_out.lines().map(str::trim).collect();
+        for line in written.lines().map(str::trim) {
+            if line.starts_with("///") {
+                assert!(kept.contains(line), "`{line}` lost in layout");
+            } else {
+                assert!(
+                    !line.contains("//"),
+                    "plain comment `{line}` is dropped by layout"
+                );
+            }
+        }
+        // What the old `//` comments said: codes, reset code, event indices.
+        for expected in [
+            "/// Supervisor `sup_crane1` (from `crane.toml`) as a CMSSM (Leduc–Wonham), minimised with Espresso.",
+            "/// State codes (2 bits, reset code 0b00) and the transitions of the first states:",
+            "/// - 0b00 `idle`: t1_at13 → train1, t2_at13 → train2, run_t1 → idle, run_t2 → idle",
+            "/// - 0b01 `train1`: f_ld1 → idle, st_ld1 → train1, run_t2 → train1",
+            "/// - 0b10 `train2`: f_ld1 → idle, st_ld1 → train2, run_t1 → train2",
+            "/// Local event 2: `f_ld1`.",
+            "pub const F_LD1: u16 = 2;",
+            "let f_ld1 = e == F_LD1;",
+        ] {
+            assert!(kept.contains(expected), "missing `{expected}` in\n{laid_out}");
+        }
+        // φ is matched on the named events, one arm per local event.
+        let arms: Vec<&str> = laid_out
+            .lines()
+            .map(str::trim)
+            .filter(|l| l.contains(" => "))
+            .collect();
+        assert_eq!(arms.len(), 7, "{arms:?}");
+        for (arm, event) in arms.iter().zip(events) {
+            assert!(arm.starts_with(&event.to_ascii_uppercase()), "{arm}");
+        }
+    }
+
+    #[test]
+    fn names_are_sanitised_and_cannot_inject_code() {
+        let mut taken = HashSet::new();
+        assert_eq!(unique("a".into(), &mut taken), "a");
+        assert_eq!(unique("a".into(), &mut taken), "a_2");
+
+        let a = auto(
+            "evil",
+            &[
+                ("x\n}fn pwn(){", true),
+                ("X }fn pwn(){", false),
+                ("q", true),
+                ("break", true),
+            ],
+            &[
+                ("0", "x\n}fn pwn(){", "1"),
+                ("1", "X }fn pwn(){", "0"),
+                ("1", "q", "2"),
+                ("2", "break", "0"),
+            ],
+            &[],
+        );
+        let events = ["x\n}fn pwn(){", "X }fn pwn(){", "q", "break"];
+        let logic =
+            LogicSupervisor::synthesize(&a, &ids(&a, &events), Encoding::binary(3)).unwrap();
+        let names = Names {
+            supervisor: "sup\n}evil",
+            origin: "",
+            events: &events,
+            states: &["a\r\nb", "*/`", "ok"],
+        };
+        let code = supervisor_module(&logic, &names);
+        let file = syn::parse_file(&code).unwrap();
+        let [syn::Item::Mod(module)] = &file.items[..] else {
+            panic!("one module expected:\n{code}");
+        };
+        assert_eq!(module.ident, "sup__evil");
+        let items: Vec<String> = module
+            .content
+            .as_ref()
+            .unwrap()
+            .1
+            .iter()
+            .map(|item| match item {
+                syn::Item::Fn(f) => f.sig.ident.to_string(),
+                syn::Item::Const(c) => c.ident.to_string(),
+                _ => panic!("unexpected item"),
+            })
+            .collect();
+        assert_eq!(
+            items,
+            [
+                "X__FN_PWN___",
+                "X__FN_PWN____2",
+                "Q_2",
+                "BREAK_",
+                "sup__evil_next",
+                "sup__evil_defined",
+                "sup__evil_step"
+            ]
+        );
+        assert!(code.contains("let q_2 = e == Q_2;"), "{code}");
+        assert!(
+            code.contains("let x__fn_pwn____2 = e == X__FN_PWN____2;"),
+            "{code}"
+        );
+        // Names in doc comments stay on their line and out of code spans.
+        assert!(
+            code.contains("/// - 0b00 `a  b`: x }fn pwn(){ → */'\n"),
+            "{code}"
+        );
+    }
+
+    #[test]
+    fn constant_functions_are_literals() {
+        // One state, a self-loop and an event never defined: ω0 = 0, φ of
+        // `a` = 1, φ of `b` = 0.
+        let a = auto("one", &[("a", true), ("b", false)], &[("0", "a", "0")], &[]);
+        let events = ["a", "b"];
+        let logic =
+            LogicSupervisor::synthesize(&a, &ids(&a, &events), Encoding::binary(1)).unwrap();
+        let names = Names {
+            supervisor: "one",
+            origin: "",
+            events: &events,
+            states: &["0"],
+        };
+        let code = crate::emit::format_rust(&supervisor_module(&logic, &names)).unwrap();
+        for expected in ["let w0 = false;", "A => true,", "B => false,", "let _ = e;"] {
+            assert!(code.contains(expected), "missing `{expected}` in\n{code}");
+        }
+    }
+
+    #[test]
+    fn equations_read_as_the_paper_writes_them() {
+        let (logic, events, _) = crane();
+        let text = equations(&logic, &events);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 2 + 6, "{text}");
+        assert!(lines[0].starts_with("ω1 = "), "{text}");
+        assert!(lines[1].starts_with("ω0 = "), "{text}");
+        assert_eq!(lines[6], "φ4 = ¬q0  [run_t1]", "{text}");
+        assert_eq!(lines[7], "φ5 = ¬q1  [run_t2]", "{text}");
+    }
+
+    /// Writes `src` to `dir/name.rs` and compiles it with rustc.
+    fn rustc(dir: &std::path::Path, name: &str, src: &str, args: &[&str]) -> std::path::PathBuf {
+        let path = dir.join(format!("{name}.rs"));
+        std::fs::write(&path, src).unwrap();
+        let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
+        let out = std::process::Command::new(rustc)
+            .args(["--edition", "2021", "-D", "warnings", "--crate-name", name])
+            .args(args)
+            .arg("-o")
+            .arg(dir.join(name))
+            .arg(&path)
+            .output()
+            .expect("rustc runs");
+        assert!(
+            out.status.success(),
+            "rustc failed on\n{src}\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        dir.join(name)
+    }
+
+    #[test]
+    fn the_module_compiles_no_std_and_agrees_with_next_state() {
+        // MACH1 plus a buffer: four states (one unused code), events with
+        // awkward names.
+        let a = auto(
+            "Mach 1",
+            &[
+                ("start", true),
+                ("finish", false),
+                ("break", false),
+                ("repair", true),
+                ("e", true),
+            ],
+            &[
+                ("0", "start", "1"),
+                ("1", "finish", "0"),
+                ("1", "break", "2"),
+                ("2", "repair", "0"),
+                ("0", "e", "3"),
+                ("3", "e", "3"),
+                ("3", "finish", "2"),
+            ],
+            &[],
+        );
+        let events = ["start", "finish", "break", "repair", "e"];
+        let logic =
+            LogicSupervisor::synthesize(&a, &ids(&a, &events), Encoding::binary(4)).unwrap();
+        let names = Names {
+            supervisor: a.name(),
+            origin: "",
+            events: &events,
+            states: &["idle", "working", "down", "other"],
+        };
+        let code = supervisor_module(&logic, &names);
+        println!("{code}");
+        let dir = tempfile::tempdir().unwrap();
+
+        // As a no_std, unsafe-free library.
+        let lib = format!("#![no_std]\n#![forbid(unsafe_code)]\n{code}");
+        rustc(dir.path(), "emitted_lib", &lib, &["--crate-type", "lib"]);
+
+        // As a program printing every (code, event) pair.
+        let main = format!(
+            "{code}\nfn main() {{\n    for q in 0..4u32 {{\n        for e in 0..6u16 {{\n            \
+             println!(\"{{q}} {{e}} {{:?}} {{}}\", mach_1::mach_1_step(q, e), mach_1::mach_1_next(q, e));\n        \
+             }}\n    }}\n}}\n"
+        );
+        let exe = rustc(dir.path(), "emitted_main", &main, &[]);
+        let out = std::process::Command::new(exe).output().unwrap();
+        assert!(out.status.success());
+        let printed = String::from_utf8(out.stdout).unwrap();
+        let mut expected = String::new();
+        for q in 0..4u32 {
+            for e in 0..6u16 {
+                let input = (usize::from(e) < events.len()).then_some(e);
+                let _ = writeln!(
+                    expected,
+                    "{q} {e} {:?} {}",
+                    logic.next_state(q, e),
+                    logic.next_code(q, input)
+                );
+            }
+        }
+        assert_eq!(printed, expected);
+    }
+}

@@ -1,0 +1,61 @@
+//! The `match` baseline's text: each supervisor as one plain `match` on
+//! (state, local event), what a hand-written state machine would be, and
+//! the `Match` program over them. Used to measure the other backends.
+
+use super::{ident, quoted, Emitter, SupervisorStats};
+use crate::project::ident::snake_ident;
+use executor::program as ex;
+use std::fmt::Write;
+
+impl Emitter<'_> {
+    /// The baseline: each supervisor as one `match` on (state, local event).
+    pub(super) fn matches(&mut self, crc: u32) -> Vec<SupervisorStats> {
+        let mut stats = Vec::new();
+        let mut arms = Vec::new();
+        let _ = writeln!(
+            self.out,
+            "/// The supervisors as plain `match` statements on (state, local event): the\n/// baseline a hand-written state machine would be.\npub mod matches {{"
+        );
+        for (j, sup) in self.project.supervisors.iter().enumerate() {
+            let a = &sup.automaton;
+            let fn_name = snake_ident(&sup.name);
+            let mut cases = String::new();
+            for s in a.states() {
+                for (local, &(_, id)) in sup.local_events.iter().enumerate() {
+                    if let Some(t) = a.successor(s, id) {
+                        let _ = write!(cases, "({}, {local}) => Some({}),", s.0, t.0);
+                    }
+                }
+            }
+            let _ = writeln!(
+                self.out,
+                "/// Supervisor {} ({}).\n///\n/// {} States are the indices of `states::{}`.\npub fn {fn_name}(state: u32, event: u16) -> Option<u32> {{ match (state, event) {{ {cases} _ => None }} }}",
+                quoted(&sup.name),
+                self.source_line(j),
+                self.local_events_line(j),
+                ident(&sup.name),
+            );
+            arms.push(format!(
+                "{} => matches::{fn_name}(state, local),",
+                self.supervisor(j as ex::Index)
+            ));
+            stats.push(SupervisorStats {
+                name: sup.name.clone(),
+                states: a.num_states() as u32,
+                events: sup.local_events.len() as u16,
+                layout: None,
+                table_bytes: 0,
+                naive_bytes: 2 * a.num_states() * sup.local_events.len(),
+                cubes: 0,
+                literals: 0,
+            });
+        }
+        let _ = writeln!(self.out, "}}");
+        let _ = writeln!(
+            self.out,
+            "/// CRC-32 of the configuration (the supervisors are code), checked at start.\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program: supervisors as `match` statements.\npub struct Match;\nimpl Program for Match {{\n    fn config(&self) -> Config<'_> {{ CONFIG }}\n    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n    fn image_intact(&self) -> bool {{ executor::table::config_crc(&CONFIG) == IMAGE_CRC }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Match = Match;",
+            arms.join("\n")
+        );
+        stats
+    }
+}

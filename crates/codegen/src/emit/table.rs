@@ -1,0 +1,116 @@
+//! The table backend's text: each supervisor as constant bit-packed
+//! tables (`<NAME>_DEFINED`, `<NAME>_TARGETS`, `<NAME>_ROW_STARTS`) that
+//! the executor decodes, and the `Tables` program over them.
+
+use super::{doc_text, ident, quoted, Emitter, SupervisorStats};
+use crate::backend::table::Layout;
+use crate::image::TableImage;
+use std::fmt::Write;
+
+/// Words as hexadecimal literals.
+fn words(list: &[u32]) -> String {
+    list.iter()
+        .map(|w| format!("{w:#010x}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+impl Emitter<'_> {
+    /// Doc lines showing the first rows of a supervisor's transitions.
+    fn decoded_rows(&self, j: usize, rows: usize) -> String {
+        let sup = &self.project.supervisors[j];
+        let a = &sup.automaton;
+        let mut doc = String::new();
+        for s in a.states().take(rows) {
+            let moves: Vec<String> = sup
+                .local_events
+                .iter()
+                .filter_map(|&(g, id)| {
+                    a.successor(s, id)
+                        .map(|t| format!("{} → {}", self.project.events[g].name, a.state_name(t)))
+                })
+                .collect();
+            let _ = writeln!(
+                doc,
+                "/// - state {} {}: {}",
+                s.0,
+                quoted(&a.state_name(s)),
+                if moves.is_empty() {
+                    "(no transitions)".to_owned()
+                } else {
+                    doc_text(&moves.join(", "))
+                }
+            );
+        }
+        if a.num_states() > rows {
+            let _ = writeln!(doc, "/// - … {} more states", a.num_states() - rows);
+        }
+        doc
+    }
+
+    /// The supervisors as constant tables, `TABLES`, `IMAGE_CRC` and the
+    /// `Tables` program.
+    pub(super) fn tables(&mut self, image: &TableImage) -> Vec<SupervisorStats> {
+        let mut stats = Vec::new();
+        let mut views = Vec::new();
+        for (j, (sup, table)) in self
+            .project
+            .supervisors
+            .iter()
+            .zip(&image.tables)
+            .enumerate()
+        {
+            let id = ident(&sup.name);
+            let rows = self.decoded_rows(j, 8);
+            let layout = match table.layout {
+                Layout::Dense => "dense",
+                Layout::Sparse => "sparse",
+            };
+            let _ = writeln!(
+                self.out,
+                "/// Supervisor {} ({}): {} states in {} bits, {} local events, {layout} layout, {} bytes.\n/// {}\n/// Transitions of the first states:\n{rows}const {id}_DEFINED: [u32; {}] = [{}];\n/// Packed targets of {}.\nconst {id}_TARGETS: [u32; {}] = [{}];",
+                quoted(&sup.name),
+                self.source_line(j),
+                table.states,
+                table.state_bits,
+                table.events,
+                table.bytes(),
+                self.local_events_line(j),
+                table.defined.len(),
+                words(&table.defined),
+                quoted(&sup.name),
+                table.targets.len(),
+                words(&table.targets),
+            );
+            let rows = match table.layout {
+                Layout::Dense => "Rows::Dense".to_owned(),
+                Layout::Sparse => {
+                    let _ = writeln!(
+                        self.out,
+                        "/// Row starts of {}.\nconst {id}_ROW_STARTS: [u32; {}] = [{}];",
+                        quoted(&sup.name),
+                        table.row_starts.len(),
+                        words(&table.row_starts)
+                    );
+                    format!(
+                        "Rows::Sparse {{ row_starts: &{id}_ROW_STARTS, start_bits: {} }}",
+                        table.start_bits
+                    )
+                }
+            };
+            views.push(format!(
+                "SupervisorTable {{ events: {}, state_bits: {}, defined: &{id}_DEFINED, targets: &{id}_TARGETS, rows: {rows} }}",
+                table.events, table.state_bits
+            ));
+            stats.push(SupervisorStats::of_table(&sup.name, table));
+        }
+        let _ = writeln!(
+            self.out,
+            "/// One table per supervisor.\nconst TABLES: [SupervisorTable<'static>; {}] = [{}];\n/// CRC-32 of the program image (configuration and tables), checked at start.\npub const IMAGE_CRC: u32 = {:#010x};\n/// The program: the configuration and the tables above, as constants the\n/// compiler can see through (a zero-sized type rather than a `static` holding them).\npub struct Tables;\nimpl Program for Tables {{\n    fn config(&self) -> Config<'_> {{ CONFIG }}\n    #[inline]\n    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        TABLES.get(supervisor as usize)?.next_state(state, local)\n    }}\n    fn image_intact(&self) -> bool {{ executor::table::image_crc(&CONFIG, &TABLES) == IMAGE_CRC }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Tables = Tables;",
+            views.len(),
+            views.join(", "),
+            image.crc
+        );
+        stats
+    }
+}
