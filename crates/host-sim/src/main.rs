@@ -2,7 +2,7 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use codegen::emit::Backend;
-use host_sim::{inputs, replay, scenario, trace, vcd, Sim};
+use host_sim::{inputs, random_inputs, replay, scenario, trace, vcd, Sim};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -165,7 +165,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 Some(path) => {
                     inputs::parse(&read(path)?, path, sim.project()).map_err(|e| e.to_string())?
                 }
-                None => scenario::guided_inputs(sim.project(), random, seed, noise_one_in)
+                None => random_inputs::guided_inputs(sim.project(), random, seed, noise_one_in)
                     .map_err(|e| e.to_string())?,
             };
             let bytes = scenario::record(&mut sim, &rows).map_err(|e| e.to_string())?;

@@ -5,7 +5,7 @@
 //! in closed loop with the boiler plant exactly when it declares all of
 //! them. Other inputs and outputs of the project are left alone.
 
-use super::PlantError;
+use super::error::PlantError;
 use codegen::project::Project;
 
 /// One of the boiler's PLC inputs.
