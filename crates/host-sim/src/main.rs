@@ -217,7 +217,7 @@ fn boiler(
     seed: u64,
     list: bool,
 ) -> Result<(), String> {
-    use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Input, Invariants, Output};
+    use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Invariants, Output};
     if list {
         for n in scenarios::NAMES.into_iter().chain(["random-<seed>"]) {
             println!("{n:<24} {}", scenarios::about(n).unwrap_or_default());
@@ -282,25 +282,8 @@ fn boiler(
         last_fault = row.fault.clone();
     }
 
-    let input_rows: Vec<inputs::InputRow> = run
-        .rows
-        .iter()
-        .map(|r| inputs::InputRow {
-            time_ms: r.time_ms,
-            values: sim
-                .project()
-                .inputs
-                .iter()
-                .map(|i| {
-                    Input::ALL
-                        .iter()
-                        .any(|x| x.name() == i.name && r.inputs.get(*x))
-                })
-                .collect(),
-        })
-        .collect();
     let mut buf = Vec::new();
-    vcd::write(&mut buf, sim.project(), &input_rows, sim.trace()).map_err(|e| e.to_string())?;
+    plant::waveform::write(&mut buf, sim.project(), &run).map_err(|e| e.to_string())?;
     write(vcd_path, &buf)?;
     eprintln!("wrote {}", vcd_path.display());
     if let Some(path) = svg {

@@ -1,9 +1,10 @@
-//! What can go wrong running the boiler against a controller or checking
-//! a record.
+//! What can go wrong running the boiler against a controller, checking a
+//! record or writing one out.
 
 use crate::sim::SimError;
 
-/// A problem running a plant against a controller or checking a record.
+/// A problem running a plant against a controller, checking a record or
+/// writing it out.
 #[derive(Debug, thiserror::Error)]
 pub enum PlantError {
     /// The project lacks some of the boiler's signals.
@@ -35,4 +36,7 @@ pub enum PlantError {
         /// Trace rows.
         trace: usize,
     },
+    /// Writing a record (its waveform, say) failed.
+    #[error("writing the record: {0}")]
+    Write(#[from] std::io::Error),
 }

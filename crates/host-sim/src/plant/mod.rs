@@ -15,7 +15,7 @@
 //! - [`record`]: the per-scan record of a run ([`Run`]).
 //! - [`invariants`]: the safety checker ([`Checker`]).
 //! - [`scenarios`]: the named scenarios of `host-sim boiler`.
-//! - [`svg`]: a picture of a run.
+//! - [`svg`]: a picture of a run; [`waveform`]: its VCD.
 //! - [`error`]: what can go wrong ([`PlantError`]).
 //!
 //! One scan of [`run`] / [`run_with`]:
@@ -50,6 +50,7 @@ pub mod scenarios;
 pub mod script;
 pub mod signals;
 pub mod svg;
+pub mod waveform;
 pub mod wiring;
 
 pub use controller::{BoilerController, ControllerScan, Plc};

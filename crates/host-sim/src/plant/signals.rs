@@ -122,6 +122,17 @@ pub enum Selector {
     High,
 }
 
+impl Selector {
+    /// `off`, `low` or `high`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Selector::Off => "off",
+            Selector::Low => "low",
+            Selector::High => "high",
+        }
+    }
+}
+
 /// The boiler's input image (one level per [`Input`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Inputs {
