@@ -1,15 +1,18 @@
-//! The PLC core on a PC: the same executor as the firmware, a virtual
-//! clock, replay of input files into traces and waveforms, and (later)
-//! plant simulations and scenario suites.
+//! The PLC core on a PC: the firmware's executor on a virtual clock, to
+//! replay input files, record scenarios for the QEMU harness, and run the
+//! boiler in closed loop with a simulation of its plant.
 //!
-//! - [`sim`]: a controller on a virtual clock ([`Sim`]).
-//! - [`inputs`] reads and writes `inputs.csv`.
-//! - [`trace`]: trace rows and `trace.csv`.
-//! - [`vcd`] writes waveforms.
-//! - [`lockstep`]: both backends side by side, compared every scan.
-//! - [`replay`]: a whole input file through a project.
-//! - [`scenario`]: postcard scenarios for the QEMU harness, random inputs.
-//! - [`plant`]: the boiler as a physical plant in closed loop, and its safety invariants.
+//! - [`sim`]: a project on the executor and a virtual clock ([`Sim`]);
+//!   [`lockstep`]: both backends side by side, compared every scan.
+//! - [`inputs`] reads and writes `inputs.csv`; [`trace`]: trace rows and
+//!   `trace.csv`; [`vcd`]: waveforms (GTKWave, Surfer).
+//! - [`replay`]: an input file through a project (`host-sim replay`).
+//! - [`scenario`]: postcard scenarios for the QEMU harness (`host-sim
+//!   record`), from an input file or [`random_inputs`]; [`rng`]: the seeded
+//!   generator behind everything random.
+//! - [`plant`]: the gas-fired boiler in closed loop (`host-sim boiler`):
+//!   its physics and sensor faults, scripts of operator actions and faults,
+//!   the named scenarios, the safety checker, and a run's SVG and VCD.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -17,7 +20,9 @@
 pub mod inputs;
 pub mod lockstep;
 pub mod plant;
+pub mod random_inputs;
 pub mod replay;
+pub mod rng;
 pub mod scenario;
 pub mod sim;
 pub mod trace;

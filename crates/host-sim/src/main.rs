@@ -2,9 +2,58 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use codegen::emit::Backend;
-use host_sim::{inputs, replay, scenario, trace, vcd, Sim};
+use host_sim::{inputs, random_inputs, replay, scenario, trace, vcd, Sim};
+use std::fmt;
+use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+
+/// Standard output as Unix tools use it: once its reader has gone
+/// (`host-sim boiler | head`), the rest of the report is dropped instead
+/// of a panic, and the command carries on (its files written, its exit
+/// status its own outcome).
+struct Report {
+    out: io::StdoutLock<'static>,
+    closed: bool,
+}
+
+impl Report {
+    fn new() -> Report {
+        Report {
+            out: io::stdout().lock(),
+            closed: false,
+        }
+    }
+
+    /// Writes one line; an error other than a closed pipe ends the command.
+    fn line(&mut self, args: fmt::Arguments<'_>) -> Result<(), String> {
+        if self.closed {
+            return Ok(());
+        }
+        match writeln!(self.out, "{args}") {
+            Err(e) if e.kind() == io::ErrorKind::BrokenPipe => {
+                self.closed = true;
+                Ok(())
+            }
+            result => result.map_err(|e| format!("standard output: {e}")),
+        }
+    }
+}
+
+/// One line of the report (see [`Report`]).
+macro_rules! say {
+    ($report:expr, $($arg:tt)*) => {
+        $report.line(format_args!($($arg)*))?
+    };
+}
+
+/// One line on standard error, dropped if nobody reads it (the exit status
+/// still tells).
+macro_rules! note {
+    ($($arg:tt)*) => {
+        let _ = writeln!(io::stderr(), $($arg)*);
+    };
+}
 
 /// Run PLC projects on a virtual clock.
 #[derive(Debug, Parser)]
@@ -119,7 +168,7 @@ fn run(cli: Cli) -> Result<(), String> {
         } => {
             let mut sim = Sim::load(&project, backend.into()).map_err(|e| e.to_string())?;
             for w in &sim.project().warnings {
-                eprintln!("warning: {}:{}: {}", project.display(), w.line, w.message);
+                note!("warning: {}:{}: {}", project.display(), w.line, w.message);
             }
             let rows = inputs::parse(&read(&inputs_path)?, &inputs_path, sim.project())
                 .map_err(|e| e.to_string())?;
@@ -132,7 +181,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 write(&path, &buf)?;
             }
             let faults = trace_rows.iter().filter(|r| r.fault.is_some()).count();
-            eprintln!(
+            note!(
                 "replayed {} scans: {} events executed, {} scans in fault mode",
                 trace_rows.len(),
                 trace_rows.iter().map(|r| r.events.len()).sum::<usize>(),
@@ -149,7 +198,15 @@ fn run(cli: Cli) -> Result<(), String> {
             list,
         } => {
             let project = project.unwrap_or_else(default_boiler);
-            boiler(&scenario, &project, &vcd_path, svg.as_deref(), seed, list)
+            boiler(
+                &scenario,
+                &project,
+                &vcd_path,
+                svg.as_deref(),
+                seed,
+                list,
+                &mut Report::new(),
+            )
         }
         Command::Record {
             project,
@@ -165,7 +222,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 Some(path) => {
                     inputs::parse(&read(path)?, path, sim.project()).map_err(|e| e.to_string())?
                 }
-                None => scenario::guided_inputs(sim.project(), random, seed, noise_one_in)
+                None => random_inputs::guided_inputs(sim.project(), random, seed, noise_one_in)
                     .map_err(|e| e.to_string())?,
             };
             let bytes = scenario::record(&mut sim, &rows).map_err(|e| e.to_string())?;
@@ -181,7 +238,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 )?;
             }
             let t = sim.trace();
-            eprintln!(
+            note!(
                 "recorded {} scans ({} bytes): {} events executed, {} scans in fault mode",
                 t.len(),
                 bytes.len(),
@@ -216,11 +273,12 @@ fn boiler(
     svg: Option<&Path>,
     seed: u64,
     list: bool,
+    out: &mut Report,
 ) -> Result<(), String> {
-    use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Input, Invariants, Output};
+    use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Invariants, Output};
     if list {
         for n in scenarios::NAMES.into_iter().chain(["random-<seed>"]) {
-            println!("{n:<24} {}", scenarios::about(n).unwrap_or_default());
+            say!(out, "{n:<24} {}", scenarios::about(n).unwrap_or_default());
         }
         return Ok(());
     }
@@ -234,14 +292,20 @@ fn boiler(
     let mut plant = BoilerPlant::new(BoilerParams::default(), seed);
     let run = plant::run(&mut sim, &mut plant, &script, duration).map_err(|e| e.to_string())?;
 
-    println!(
+    say!(
+        out,
         "boiler, scenario {name} ({} s), project {}",
         duration / 1000,
         project_path.display()
     );
-    println!(
+    say!(
+        out,
         "{:>9}  {:<48} {:<40} {:>7} {:>7}",
-        "time", "events", "outputs on", "bath", "flue"
+        "time",
+        "events",
+        "outputs on",
+        "bath",
+        "flue"
     );
     let mut last_states: Vec<(String, String)> = Vec::new();
     let mut last_fault = None;
@@ -254,7 +318,8 @@ fn boiler(
             .filter(|o| row.outputs.get(**o))
             .map(|o| o.name())
             .collect();
-        println!(
+        say!(
+            out,
             "{:>8.2}s  {:<48} {:<40} {:>5.1}°C {:>5.0}°C",
             row.time_ms as f64 / 1000.0,
             row.events.join(" "),
@@ -269,10 +334,11 @@ fn boiler(
             .map(|(sup, state)| format!("{sup}={state}"))
             .collect();
         if !changed.is_empty() {
-            println!("{:>11}{}", "", changed.join("  "));
+            say!(out, "{:>11}{}", "", changed.join("  "));
         }
         if row.fault != last_fault {
-            println!(
+            say!(
+                out,
                 "{:>11}fault: {}",
                 "",
                 row.fault.as_deref().unwrap_or("cleared")
@@ -282,40 +348,27 @@ fn boiler(
         last_fault = row.fault.clone();
     }
 
-    let input_rows: Vec<inputs::InputRow> = run
-        .rows
-        .iter()
-        .map(|r| inputs::InputRow {
-            time_ms: r.time_ms,
-            values: sim
-                .project()
-                .inputs
-                .iter()
-                .map(|i| {
-                    Input::ALL
-                        .iter()
-                        .any(|x| x.name() == i.name && r.inputs.get(*x))
-                })
-                .collect(),
-        })
-        .collect();
     let mut buf = Vec::new();
-    vcd::write(&mut buf, sim.project(), &input_rows, sim.trace()).map_err(|e| e.to_string())?;
+    plant::waveform::write(&mut buf, sim.project(), &run).map_err(|e| e.to_string())?;
     write(vcd_path, &buf)?;
-    eprintln!("wrote {}", vcd_path.display());
+    note!("wrote {}", vcd_path.display());
     if let Some(path) = svg {
         write(
             path,
             plant::svg::render(&run, &format!("boiler: {name}")).as_bytes(),
         )?;
-        eprintln!("wrote {}", path.display());
+        note!("wrote {}", path.display());
     }
     let violations = run.violations(&Invariants::default());
     for v in &violations {
-        println!("SAFETY VIOLATION {v}");
+        say!(out, "SAFETY VIOLATION {v}");
     }
     if violations.is_empty() {
-        println!("safety invariants: held on all {} scans", run.rows.len());
+        say!(
+            out,
+            "safety invariants: held on all {} scans",
+            run.rows.len()
+        );
         Ok(())
     } else {
         Err(format!("{} safety violations", violations.len()))
@@ -326,7 +379,7 @@ fn main() -> ExitCode {
     match run(Cli::parse()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            note!("error: {e}");
             ExitCode::from(2)
         }
     }

@@ -83,7 +83,7 @@ impl TraceRow {
 }
 
 /// Quotes a CSV field when it needs it (RFC 4180).
-fn field(text: &str) -> String {
+pub(crate) fn field(text: &str) -> String {
     if text.contains([',', '"', '\n', '\r']) {
         format!("\"{}\"", text.replace('"', "\"\""))
     } else {

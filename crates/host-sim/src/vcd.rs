@@ -1,14 +1,302 @@
-//! Value Change Dump of a trace (GTKWave, Surfer): inputs, outputs, one
-//! integer signal per supervisor state, one pulse per event.
+//! Value Change Dump of a trace (GTKWave, Surfer), in a scope named after
+//! the project:
 //!
-//! Time unit: 1 ms. An event's wire is 1 during the scan it executes in
-//! and 0 from the next scan on.
+//! - `inputs`, `outputs`: one wire per signal;
+//! - `states`: one string variable per supervisor carrying the name of its
+//!   state (`$var string`, GTKWave's extension, which Surfer reads too);
+//! - `state_numbers`: the same states as the automaton numbers them, one
+//!   vector per supervisor, wide enough for all its states (`x` for a state
+//!   the automaton does not have);
+//! - `events`: one wire per event, 0 from the first scan, 1 during each
+//!   scan it executes in;
+//! - `fault`: 1 on scans spent in fault mode;
+//! - `plant`, for a closed-loop run ([`crate::plant::waveform`]): the
+//!   plant's quantities as `real` variables, wires or strings.
+//!
+//! Time unit: 1 ms. A variable is written when its value changes (an
+//! event executed in consecutive scans falls to 0 and rises again at the
+//! same time). In string values, whitespace, control characters and `\`
+//! are written as GTKWave writes them, a backslash and three octal digits
+//! (`idle hold` becomes `idle\040hold`).
 
 use crate::inputs::InputRow;
 use crate::trace::TraceRow;
 use codegen::project::Project;
 use std::io::{self, Write};
-use vcd::{IdCode, TimescaleUnit, Value};
+use vcd::{IdCode, TimescaleUnit, Value, VarType};
+
+/// Writes the VCD of `rows` (with the raw `inputs` of each scan) to `out`;
+/// inputs of a row without an input row are `x`.
+pub fn write(
+    out: impl Write,
+    project: &Project,
+    inputs: &[InputRow],
+    rows: &[TraceRow],
+) -> io::Result<()> {
+    let scans: Vec<Scan<'_>> = rows
+        .iter()
+        .enumerate()
+        .map(|(k, row)| Scan {
+            time_ms: row.time_ms,
+            inputs: match inputs.get(k) {
+                Some(input) => input.values.iter().map(|&v| Value::from(v)).collect(),
+                None => vec![Value::X; project.inputs.len()],
+            },
+            outputs: row.outputs.iter().map(|&v| Value::from(v)).collect(),
+            states: &row.states,
+            events: &row.events,
+            fault: row.fault.is_some(),
+        })
+        .collect();
+    write_scans(out, project, &scans, &[])
+}
+
+/// One scan as a waveform shows it.
+pub(crate) struct Scan<'a> {
+    /// Time of the scan.
+    pub time_ms: u64,
+    /// One level per project input.
+    pub inputs: Vec<Value>,
+    /// One level per project output.
+    pub outputs: Vec<Value>,
+    /// `(supervisor, state)` in declaration order.
+    pub states: &'a [(String, String)],
+    /// Executed events.
+    pub events: &'a [String],
+    /// The scan was spent in fault mode.
+    pub fault: bool,
+}
+
+/// The values of one quantity outside the project, one per scan.
+pub(crate) enum Samples {
+    /// A `real` variable.
+    Real(Vec<f64>),
+    /// A wire.
+    Bit(Vec<bool>),
+    /// A string variable.
+    Text(Vec<&'static str>),
+}
+
+impl Samples {
+    fn len(&self) -> usize {
+        match self {
+            Samples::Real(v) => v.len(),
+            Samples::Bit(v) => v.len(),
+            Samples::Text(v) => v.len(),
+        }
+    }
+}
+
+/// A plant quantity for the `plant` scope.
+pub(crate) struct Quantity {
+    /// Its variable name.
+    pub name: &'static str,
+    /// Its value at every scan.
+    pub samples: Samples,
+}
+
+/// A value as written, to write a variable only when it changes.
+#[derive(Debug, Clone, PartialEq)]
+enum Written {
+    Scalar(Value),
+    Vector(Option<u64>),
+    Real(f64),
+    Text(String),
+}
+
+/// The value change section: timestamps are written only before a change.
+struct Changes<W: Write> {
+    w: vcd::Writer<W>,
+    /// The time of the scan being written.
+    now: u64,
+    /// The last timestamp written.
+    stamped: Option<u64>,
+    /// Last value written, by variable (in the order of declaration).
+    last: Vec<Option<Written>>,
+}
+
+impl<W: Write> Changes<W> {
+    fn stamp(&mut self) -> io::Result<()> {
+        if self.stamped != Some(self.now) {
+            self.w.timestamp(self.now)?;
+            self.stamped = Some(self.now);
+        }
+        Ok(())
+    }
+
+    /// Writes `value` to `var` when it differs from the last value written
+    /// there.
+    fn set(&mut self, var: Var, value: Written) -> io::Result<()> {
+        if self.last[var.slot].as_ref() == Some(&value) {
+            return Ok(());
+        }
+        self.pulse(var, &value)?;
+        self.last[var.slot] = Some(value);
+        Ok(())
+    }
+
+    /// Writes `value` to variable `var` whatever was written before.
+    fn pulse(&mut self, var: Var, value: &Written) -> io::Result<()> {
+        self.stamp()?;
+        match value {
+            Written::Scalar(v) => self.w.change_scalar(var.id, *v),
+            Written::Vector(v) => self.w.change_vector(var.id, bits(*v, var.width)),
+            Written::Real(v) => self.w.change_real(var.id, *v),
+            Written::Text(v) => self.w.change_string(var.id, v),
+        }
+    }
+}
+
+/// A declared variable.
+#[derive(Debug, Clone, Copy)]
+struct Var {
+    id: IdCode,
+    /// Bits of a vector.
+    width: u32,
+    /// Its index in [`Changes::last`].
+    slot: usize,
+}
+
+/// The header: scopes and variable declarations.
+struct Declarations<W: Write> {
+    w: vcd::Writer<W>,
+    count: usize,
+}
+
+impl<W: Write> Declarations<W> {
+    fn var(&mut self, var_type: VarType, width: u32, name: &str) -> io::Result<Var> {
+        let id = self.w.add_var(var_type, width, &identifier(name), None)?;
+        self.count += 1;
+        Ok(Var {
+            id,
+            width,
+            slot: self.count - 1,
+        })
+    }
+
+    fn scope<T>(
+        &mut self,
+        name: &str,
+        items: impl IntoIterator<Item = T>,
+        mut declare: impl FnMut(&mut Self, T) -> io::Result<Var>,
+    ) -> io::Result<Vec<Var>> {
+        self.w.add_module(name)?;
+        let vars = items
+            .into_iter()
+            .map(|item| declare(self, item))
+            .collect::<io::Result<_>>()?;
+        self.w.upscope()?;
+        Ok(vars)
+    }
+}
+
+/// Writes `scans` of `project` to `out`, with `plant` quantities (one
+/// sample per scan each) in a `plant` scope when there are any.
+pub(crate) fn write_scans(
+    out: impl Write,
+    project: &Project,
+    scans: &[Scan<'_>],
+    plant: &[Quantity],
+) -> io::Result<()> {
+    if let Some(q) = plant.iter().find(|q| q.samples.len() != scans.len()) {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!(
+                "plant quantity `{}` has {} samples for {} scans",
+                q.name,
+                q.samples.len(),
+                scans.len()
+            ),
+        ));
+    }
+    let mut d = Declarations {
+        w: vcd::Writer::new(out),
+        count: 0,
+    };
+    d.w.timescale(1, TimescaleUnit::MS)?;
+    d.w.add_module(&identifier(&project.name))?;
+    let inputs = d.scope("inputs", &project.inputs, |d, i| {
+        d.var(VarType::Wire, 1, &i.name)
+    })?;
+    let outputs = d.scope("outputs", &project.outputs, |d, o| {
+        d.var(VarType::Wire, 1, &o.name)
+    })?;
+    let names = d.scope("states", &project.supervisors, |d, s| {
+        d.var(VarType::String, 1, &s.name)
+    })?;
+    let numbers = d.scope("state_numbers", &project.supervisors, |d, s| {
+        let highest = s.automaton.num_states().saturating_sub(1).max(1) as u64;
+        d.var(VarType::Wire, highest.ilog2() + 1, &s.name)
+    })?;
+    let events = d.scope("events", &project.events, |d, e| {
+        d.var(VarType::Wire, 1, &e.name)
+    })?;
+    let quantities = if plant.is_empty() {
+        Vec::new()
+    } else {
+        d.scope("plant", plant, |d, q| match q.samples {
+            Samples::Real(_) => d.var(VarType::Real, 64, q.name),
+            Samples::Bit(_) => d.var(VarType::Wire, 1, q.name),
+            Samples::Text(_) => d.var(VarType::String, 1, q.name),
+        })?
+    };
+    let fault = d.var(VarType::Wire, 1, "fault")?;
+    d.w.upscope()?;
+    d.w.enddefinitions()?;
+
+    let mut c = Changes {
+        w: d.w,
+        now: 0,
+        stamped: None,
+        last: vec![None; d.count],
+    };
+    let mut pulsing: Vec<Var> = Vec::new();
+    for (k, scan) in scans.iter().enumerate() {
+        c.now = scan.time_ms;
+        for e in pulsing.drain(..) {
+            c.pulse(e, &Written::Scalar(Value::V0))?;
+        }
+        if k == 0 {
+            for (event, &var) in project.events.iter().zip(&events) {
+                if !scan.events.contains(&event.name) {
+                    c.pulse(var, &Written::Scalar(Value::V0))?;
+                }
+            }
+        }
+        for (&var, &v) in inputs.iter().zip(&scan.inputs) {
+            c.set(var, Written::Scalar(v))?;
+        }
+        for (&var, &v) in outputs.iter().zip(&scan.outputs) {
+            c.set(var, Written::Scalar(v))?;
+        }
+        for (j, (sup, (_, state))) in project.supervisors.iter().zip(scan.states).enumerate() {
+            c.set(names[j], Written::Text(escape(state)))?;
+            let number = sup.automaton.state_by_name(state).map(|s| u64::from(s.0));
+            c.set(numbers[j], Written::Vector(number))?;
+        }
+        for name in scan.events {
+            if let Some(e) = project.event(name) {
+                c.pulse(events[e], &Written::Scalar(Value::V1))?;
+                pulsing.push(events[e]);
+            }
+        }
+        for (&var, q) in quantities.iter().zip(plant) {
+            let value = match &q.samples {
+                Samples::Real(v) => Written::Real(v[k]),
+                Samples::Bit(v) => Written::Scalar(Value::from(v[k])),
+                Samples::Text(v) => Written::Text(escape(v[k])),
+            };
+            c.set(var, value)?;
+        }
+        c.set(fault, Written::Scalar(Value::from(scan.fault)))?;
+    }
+    // The waveform lasts until the last scan, changes or not.
+    if let Some(last) = scans.last() {
+        c.now = last.time_ms;
+        c.stamp()?;
+    }
+    c.w.flush()
+}
 
 fn identifier(name: &str) -> String {
     let clean: String = name
@@ -22,103 +310,55 @@ fn identifier(name: &str) -> String {
     }
 }
 
-fn bits(value: u64, width: u32) -> Vec<Value> {
+/// `value` as `width` bits, most significant first; all `x` for none.
+fn bits(value: Option<u64>, width: u32) -> Vec<Value> {
     (0..width)
         .rev()
-        .map(|b| {
-            if value >> b & 1 == 1 {
-                Value::V1
-            } else {
-                Value::V0
-            }
+        .map(|b| match value {
+            None => Value::X,
+            Some(v) if v >> b & 1 == 1 => Value::V1,
+            Some(_) => Value::V0,
         })
         .collect()
 }
 
-/// Writes the VCD of `rows` (with the raw `inputs` of each scan) to `out`.
-pub fn write(
-    out: impl Write,
-    project: &Project,
-    inputs: &[InputRow],
-    rows: &[TraceRow],
-) -> io::Result<()> {
-    let mut w = vcd::Writer::new(out);
-    w.timescale(1, TimescaleUnit::MS)?;
-    w.add_module(&identifier(&project.name))?;
-    w.add_module("inputs")?;
-    let input_ids: Vec<IdCode> = project
-        .inputs
-        .iter()
-        .map(|i| w.add_wire(1, &identifier(&i.name)))
-        .collect::<io::Result<_>>()?;
-    w.upscope()?;
-    w.add_module("outputs")?;
-    let output_ids: Vec<IdCode> = project
-        .outputs
-        .iter()
-        .map(|o| w.add_wire(1, &identifier(&o.name)))
-        .collect::<io::Result<_>>()?;
-    w.upscope()?;
-    w.add_module("states")?;
-    let widths: Vec<u32> = project
-        .supervisors
-        .iter()
-        .map(|s| u64::from(s.automaton.num_states().max(2) as u32 - 1).ilog2() + 1)
-        .collect();
-    let state_ids: Vec<IdCode> = project
-        .supervisors
-        .iter()
-        .zip(&widths)
-        .map(|(s, &w_)| w.add_wire(w_, &identifier(&s.name)))
-        .collect::<io::Result<_>>()?;
-    w.upscope()?;
-    w.add_module("events")?;
-    let event_ids: Vec<IdCode> = project
-        .events
-        .iter()
-        .map(|e| w.add_wire(1, &identifier(&e.name)))
-        .collect::<io::Result<_>>()?;
-    w.upscope()?;
-    let fault = w.add_wire(1, "fault")?;
-    w.upscope()?;
-    w.enddefinitions()?;
-    let mut last_time = None;
-    let mut pulsing: Vec<usize> = Vec::new();
-    for (k, row) in rows.iter().enumerate() {
-        if last_time != Some(row.time_ms) {
-            w.timestamp(row.time_ms)?;
-            last_time = Some(row.time_ms);
-        }
-        for e in pulsing.drain(..) {
-            w.change_scalar(event_ids[e], Value::V0)?;
-        }
-        if let Some(input) = inputs.get(k) {
-            for (id, &v) in input_ids.iter().zip(&input.values) {
-                w.change_scalar(*id, Value::from(v))?;
-            }
-        }
-        for (id, &v) in output_ids.iter().zip(&row.outputs) {
-            w.change_scalar(*id, Value::from(v))?;
-        }
-        for ((sup, (_, state)), (id, &width)) in project
-            .supervisors
-            .iter()
-            .zip(&row.states)
-            .zip(state_ids.iter().zip(&widths))
-        {
-            let index = sup
-                .automaton
-                .state_by_name(state)
-                .map_or(0, |s| u64::from(s.0));
-            w.change_vector(*id, bits(index, width))?;
-        }
-        for name in &row.events {
-            if let Some(e) = project.event(name) {
-                w.change_scalar(event_ids[e], Value::V1)?;
-                pulsing.push(e);
-            }
-        }
-        w.change_scalar(fault, Value::from(row.fault.is_some()))?;
+/// `text` as one VCD string token: whitespace, control characters and the
+/// backslash as `\ooo` (octal), as GTKWave writes them; other characters,
+/// UTF-8 included, as they are. An empty text is `""`.
+fn escape(text: &str) -> String {
+    if text.is_empty() {
+        return "\"\"".to_owned();
     }
-    Ok(())
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c == '\\' || c.is_ascii_whitespace() || c.is_ascii_control() {
+            out.push_str(&format!("\\{:03o}", c as u32));
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_string_value_stays_one_token_and_reads_as_gtkwave_writes_it() {
+        assert_eq!(escape("idle"), "idle");
+        assert_eq!(escape("idle hold"), "idle\\040hold");
+        assert_eq!(escape("a\tb\\c"), "a\\011b\\134c");
+        assert_eq!(escape("größe"), "größe");
+        assert_eq!(escape(""), "\"\"");
+    }
+
+    #[test]
+    fn state_numbers_are_msb_first_and_unknown_states_are_x() {
+        assert_eq!(
+            bits(Some(5), 4),
+            [Value::V0, Value::V1, Value::V0, Value::V1]
+        );
+        assert_eq!(bits(None, 2), [Value::X, Value::X]);
+    }
 }

@@ -146,7 +146,7 @@ fn a_scripted_trial_fails_and_the_next_one_lights() {
 #[test]
 fn injected_ignition_failures_take_the_next_trials() {
     let mut p = boiler();
-    p.apply(&Disturbance::FailIgnitions(2).into());
+    p.disturb(Disturbance::FailIgnitions(2));
     for _ in 0..2 {
         assert!(hold(&mut p, GAS_AND_SPARK, 4_000)
             .iter()
@@ -193,12 +193,12 @@ fn random_ignition_failures_follow_the_seed() {
 #[test]
 fn a_blown_out_pilot_needs_a_new_spark() {
     let mut p = lit_pilot();
-    p.apply(&Disturbance::PilotFlameOut { for_ms: 3_000 }.into());
+    p.disturb(Disturbance::PilotFlameOut { for_ms: 3_000 });
     assert!(!p.inputs().pilot_flame);
     assert!(hold(&mut p, PILOT_GAS, 5_000)
         .iter()
         .all(|i| !i.pilot_flame));
-    p.apply(&Disturbance::PilotFlameOut { for_ms: 3_000 }.into());
+    p.disturb(Disturbance::PilotFlameOut { for_ms: 3_000 });
     // The burner cannot light for 3 s, then needs the usual 2 s of spark.
     let seen = hold(&mut p, GAS_AND_SPARK, 6_000);
     let lit = seen.iter().position(|i| i.pilot_flame).unwrap();
@@ -278,7 +278,7 @@ fn the_main_flame_dies_when_its_air_or_gas_goes() {
 #[test]
 fn an_injected_main_flame_failure_lasts_its_time_then_the_pilot_relights_it() {
     let mut p = burning();
-    p.apply(&Disturbance::MainFlameOut { for_ms: 4_000 }.into());
+    p.disturb(Disturbance::MainFlameOut { for_ms: 4_000 });
     assert!(!p.inputs().main_flame);
     let seen = hold(&mut p, LOW_FIRE, 6_000);
     let relit = seen.iter().position(|i| i.main_flame).unwrap();
@@ -318,7 +318,7 @@ fn the_bath_heats_faster_on_high_fire_than_on_low_and_cools_with_the_fire_off() 
 fn the_bath_limit_switch_has_five_kelvin_of_hysteresis() {
     let mut p = boiler();
     let mut bath_hot_at = |c: f64| {
-        p.apply(&Disturbance::BathTemperature(c).into());
+        p.disturb(Disturbance::BathTemperature(c));
         p.inputs().bath_hot
     };
     assert!(!bath_hot_at(84.5));
@@ -337,7 +337,7 @@ fn a_fouled_flue_trips_the_flue_limit_which_resets_twenty_kelvin_below() {
         clean > 150.0 && clean < 300.0 && !p.inputs().flue_hot,
         "{clean}"
     );
-    p.apply(&Disturbance::FlueFouling(150.0).into());
+    p.disturb(Disturbance::FlueFouling(150.0));
     let mut last = p.state().flue_c;
     let on = loop {
         let seen = p.step(SCAN_MS, &HIGH_FIRE);
@@ -349,7 +349,7 @@ fn a_fouled_flue_trips_the_flue_limit_which_resets_twenty_kelvin_below() {
         assert!(p.time_ms() < 400_000, "flue_hot never came: {now}");
     };
     assert!(on.0 < 300.0 && on.1 >= 300.0, "on at the limit: {on:?}");
-    p.apply(&Disturbance::FlueFouling(0.0).into());
+    p.disturb(Disturbance::FlueFouling(0.0));
     let mut last = p.state().flue_c;
     let off = loop {
         let seen = p.step(SCAN_MS, &HIGH_FIRE);
@@ -366,13 +366,13 @@ fn a_fouled_flue_trips_the_flue_limit_which_resets_twenty_kelvin_below() {
 #[test]
 fn a_bouncing_flame_detector_flickers_after_each_change_then_settles() {
     let mut p = boiler();
-    p.apply(&Action::SensorFault(
+    p.install_sensor_fault(
         Input::PilotFlame,
         SensorFault::Bounce {
             for_ms: 50,
             toggle_ms: 10,
         },
-    ));
+    );
     let seen: Vec<bool> = hold(&mut p, GAS_AND_SPARK, 2_100)
         .iter()
         .map(|i| i.pilot_flame)
@@ -389,25 +389,19 @@ fn a_bouncing_flame_detector_flickers_after_each_change_then_settles() {
 fn a_stuck_detector_reads_its_level_from_the_injection_until_cleared() {
     let mut p = boiler();
     hold(&mut p, NOTHING, 1_000);
-    p.apply(&Action::SensorFault(
-        Input::MainFlame,
-        SensorFault::StuckAt(true),
-    ));
+    p.install_sensor_fault(Input::MainFlame, SensorFault::StuckAt(true));
     assert!(hold(&mut p, NOTHING, 5_000).iter().all(|i| i.main_flame));
     assert!(!p.truth().main_flame);
-    p.apply(&Action::SensorFault(Input::MainFlame, SensorFault::None));
+    p.install_sensor_fault(Input::MainFlame, SensorFault::None);
     assert!(!p.inputs().main_flame);
 }
 
 #[test]
 fn a_dropout_reads_zero_for_its_interval_only() {
     let mut p = boiler();
-    p.apply(&Selector::Low.into());
+    p.set_selector(Selector::Low);
     hold(&mut p, NOTHING, 1_000);
-    p.apply(&Action::SensorFault(
-        Input::SelLow,
-        SensorFault::Dropout { for_ms: 300 },
-    ));
+    p.install_sensor_fault(Input::SelLow, SensorFault::Dropout { for_ms: 300 });
     assert!(!p.inputs().sel_low);
     let seen = hold(&mut p, NOTHING, 1_000);
     let back = seen.iter().position(|i| i.sel_low).unwrap();
@@ -418,10 +412,10 @@ fn a_dropout_reads_zero_for_its_interval_only() {
 #[test]
 fn the_operator_panel_sets_the_selector_contacts_and_pulses_reset() {
     let mut p = boiler();
-    p.apply(&Selector::High.into());
+    p.set_selector(Selector::High);
     assert_eq!(p.inputs().selector(), Selector::High);
     assert!(p.inputs().sel_high && !p.inputs().sel_low);
-    p.apply(&Action::Reset);
+    p.press_reset();
     let seen = hold(&mut p, NOTHING, 500);
     assert!(p.truth().sel_high);
     let released = seen.iter().position(|i| !i.reset).unwrap();

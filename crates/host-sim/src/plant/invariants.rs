@@ -67,8 +67,8 @@
 //! Level rules (2, 4, 5, 8) are reported once per episode, at its first
 //! scan; edge rules at every offending edge.
 
+use super::error::PlantError;
 use super::signals::{Input, Inputs, IoMap, Output, Outputs};
-use super::PlantError;
 use crate::inputs::InputRow;
 use crate::trace::TraceRow;
 use codegen::project::Project;

@@ -1,18 +1,22 @@
 //! Plant simulations in closed loop with a controller: the gas-fired
 //! water-bath boiler of SEEDS.md A, and its safety invariants.
 //!
-//! - [`boiler`]: the physics ([`BoilerPlant`], [`BoilerParams`]) with the
-//!   operator panel and the sensor wiring.
+//! - [`physics`]: the plant itself ([`BoilerPlant`], [`BoilerParams`]):
+//!   flames, heat balances, limit switches, the operator panel, and the
+//!   sensor wiring it reads through (the ignition and extinction delays of
+//!   a flame are in `flame`).
 //! - [`signals`]: the boiler's PLC inputs and outputs by name, typed images.
 //! - [`wiring`]: sensor faults (bounce, stuck-at, dropout).
 //! - [`script`]: operator actions and fault injections at times
-//!   ([`Script`]), by hand or from a seed.
+//!   ([`Script`]), by hand or from a seed; it drives the physics, which
+//!   knows nothing of scripts.
 //! - [`controller`]: what runs against the plant ([`BoilerController`]; a
 //!   project on the executor is a [`Plc`]).
 //! - [`record`]: the per-scan record of a run ([`Run`]).
 //! - [`invariants`]: the safety checker ([`Checker`]).
 //! - [`scenarios`]: the named scenarios of `host-sim boiler`.
-//! - [`svg`]: a picture of a run.
+//! - [`svg`]: a picture of a run; [`waveform`]: its VCD.
+//! - [`error`]: what can go wrong ([`PlantError`]).
 //!
 //! One scan of [`run`] / [`run_with`]:
 //!
@@ -36,61 +40,31 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-pub mod boiler;
 pub mod controller;
+pub mod error;
+mod flame;
 pub mod invariants;
+pub mod physics;
 pub mod record;
 pub mod scenarios;
 pub mod script;
 pub mod signals;
 pub mod svg;
+pub mod waveform;
 pub mod wiring;
 
-pub use boiler::{BoilerParams, BoilerPlant, Disturbance, PlantState};
 pub use controller::{BoilerController, ControllerScan, Plc};
+pub use error::PlantError;
 pub use invariants::{
     check_replay, check_rows, Checker, Invariants, ProjectChecker, Rule, Violation,
 };
+pub use physics::{BoilerParams, BoilerPlant, Disturbance, PlantState};
 pub use record::{Run, RunRow};
 pub use script::{Action, Script};
 pub use signals::{Input, Inputs, IoMap, Output, Outputs, Selector};
 pub use wiring::SensorFault;
 
-use crate::sim::{Sim, SimError};
-
-/// A problem running a plant against a controller or checking a record.
-#[derive(Debug, thiserror::Error)]
-pub enum PlantError {
-    /// The project lacks some of the boiler's signals.
-    #[error("project `{project}` lacks the boiler's {}", missing.join(", "))]
-    MissingSignals {
-        /// The project's name.
-        project: String,
-        /// `input `name`` or `output `name`` for each one missing.
-        missing: Vec<String>,
-    },
-    /// Driving the simulation failed (backends diverged, say).
-    #[error(transparent)]
-    Sim(#[from] SimError),
-    /// A raw image of the wrong width.
-    #[error("expected {expected} {what} values, got {got}")]
-    ImageWidth {
-        /// `input` or `output`.
-        what: &'static str,
-        /// Signals of the project.
-        expected: usize,
-        /// Values given.
-        got: usize,
-    },
-    /// A replay with more input rows than trace rows or the reverse.
-    #[error("{inputs} input rows but {trace} trace rows")]
-    RowCount {
-        /// Input rows.
-        inputs: usize,
-        /// Trace rows.
-        trace: usize,
-    },
-}
+use crate::sim::Sim;
 
 /// Runs the project in `sim` against `plant` for `duration_ms` of plant
 /// time with `script`; every boiler signal is looked up by name first.
@@ -123,7 +97,7 @@ pub fn run_with<C: BoilerController + ?Sized>(
             if let Action::Stall { ms } = *action {
                 stall += ms;
             }
-            plant.apply(action);
+            action.apply_to(plant);
             next += 1;
         }
         if stall > 0 {

@@ -2,9 +2,10 @@
 //! wrote and did, and the true state of the plant, with a CSV form for
 //! timelines and plots.
 
-use super::boiler::PlantState;
 use super::invariants::{Checker, Invariants, Violation};
+use super::physics::PlantState;
 use super::signals::{Input, Inputs, Output, Outputs};
+use crate::trace::field;
 use std::fmt::Write as _;
 
 /// One scan of a closed-loop run.
@@ -108,14 +109,5 @@ impl Run {
             );
         }
         out
-    }
-}
-
-/// Quotes a CSV field when it needs it (RFC 4180).
-fn field(text: &str) -> String {
-    if text.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", text.replace('"', "\"\""))
-    } else {
-        text.to_owned()
     }
 }

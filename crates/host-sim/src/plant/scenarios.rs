@@ -1,7 +1,7 @@
 //! The boiler's named scenarios, shared by `host-sim boiler --scenario`
 //! and the documentation: a script and how long to run it.
 
-use super::boiler::Disturbance;
+use super::physics::Disturbance;
 use super::script::{Action, Script};
 use super::signals::{Input, Selector};
 use super::wiring::SensorFault;

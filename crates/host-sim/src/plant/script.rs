@@ -2,10 +2,10 @@
 //! actions, physical disturbances and sensor faults at given plant times,
 //! written by hand or drawn from a seed.
 
-use super::boiler::Disturbance;
+use super::physics::{BoilerPlant, Disturbance};
 use super::signals::{Input, Selector};
 use super::wiring::SensorFault;
-use crate::scenario::Rng;
+use crate::rng::Rng;
 
 /// One thing that happens to the plant.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -27,6 +27,21 @@ pub enum Action {
         /// How long no scan runs.
         ms: u64,
     },
+}
+
+impl Action {
+    /// Applies this action to `plant` now. A [`Action::Stall`] is the
+    /// controller's, not the plant's: it changes nothing here (see
+    /// [`run_with`](super::run_with)).
+    pub fn apply_to(&self, plant: &mut BoilerPlant) {
+        match *self {
+            Action::Selector(position) => plant.set_selector(position),
+            Action::Reset => plant.press_reset(),
+            Action::Disturb(d) => plant.disturb(d),
+            Action::SensorFault(input, fault) => plant.install_sensor_fault(input, fault),
+            Action::Stall { .. } => {}
+        }
+    }
 }
 
 impl From<Selector> for Action {

@@ -5,7 +5,7 @@
 //! in closed loop with the boiler plant exactly when it declares all of
 //! them. Other inputs and outputs of the project are left alone.
 
-use super::PlantError;
+use super::error::PlantError;
 use codegen::project::Project;
 
 /// One of the boiler's PLC inputs.
@@ -120,6 +120,17 @@ pub enum Selector {
     Low,
     /// High fire (`sel_high` closed).
     High,
+}
+
+impl Selector {
+    /// `off`, `low` or `high`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Selector::Off => "off",
+            Selector::Low => "low",
+            Selector::High => "high",
+        }
+    }
 }
 
 /// The boiler's input image (one level per [`Input`]).

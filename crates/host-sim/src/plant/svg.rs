@@ -1,7 +1,7 @@
 //! A picture of a closed-loop run: the boiler's outputs and flames as
 //! digital traces over the bath and flue-gas temperatures, as plain SVG.
 
-use super::record::Run;
+use super::record::{Run, RunRow};
 use super::signals::Output;
 use std::fmt::Write as _;
 
@@ -85,9 +85,9 @@ pub fn render(run: &Run, title: &str) -> String {
         (
             "flue gas",
             "firebrick",
-            (|r: &super::RunRow| r.plant.flue_c) as fn(&super::RunRow) -> f64,
+            (|r: &RunRow| r.plant.flue_c) as fn(&RunRow) -> f64,
         ),
-        ("bath", "darkgreen", |r: &super::RunRow| r.plant.bath_c),
+        ("bath", "darkgreen", |r: &RunRow| r.plant.bath_c),
     ] {
         let mut path = String::new();
         for r in rows.iter().step_by((rows.len() / 2000).max(1)) {

@@ -4,6 +4,8 @@
 
 #![allow(dead_code)]
 
+pub mod waveform;
+
 use host_sim::{Lockstep, TraceRow};
 use std::path::PathBuf;
 

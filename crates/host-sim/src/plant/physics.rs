@@ -9,10 +9,10 @@
 //! ambient. It is deterministic: the only randomness (ignition failures
 //! with a probability) comes from a generator seeded at construction.
 
-use super::script::Action;
-use super::signals::{Inputs, Outputs, Selector};
-use super::wiring::Wiring;
-use crate::scenario::Rng;
+use super::flame::Flame;
+use super::signals::{Input, Inputs, Outputs, Selector};
+use super::wiring::{SensorFault, Wiring};
+use crate::rng::Rng;
 
 /// Specific heat of water per litre (≈ 1 kg/l × 4.186 kJ/(kg·K)).
 const WATER_KJ_PER_L_K: f64 = 4.186;
@@ -175,62 +175,13 @@ pub struct PlantState {
     pub selector: Selector,
 }
 
-/// A flame: it forms after its conditions have held for a while and dies a
-/// while after they go.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-struct Flame {
-    lit: bool,
-    /// Conditions held for this long (while unlit).
-    forming_ms: u64,
-    /// Fuel or air gone for this long (while lit).
-    starving_ms: u64,
-    /// Cannot form before this time.
-    blocked_until_ms: u64,
-}
-
-impl Flame {
-    /// Advances by `dt_ms` from `now_ms`: `can_form` says the ignition
-    /// conditions hold, `fed` that a lit flame keeps its fuel and air.
-    fn step(
-        &mut self,
-        now_ms: u64,
-        dt_ms: u64,
-        can_form: bool,
-        fed: bool,
-        form_ms: u64,
-        die_ms: u64,
-    ) {
-        if self.lit {
-            self.starving_ms = if fed { 0 } else { self.starving_ms + dt_ms };
-            if self.starving_ms >= die_ms {
-                self.lit = false;
-                self.starving_ms = 0;
-            }
-        } else if can_form && now_ms + dt_ms > self.blocked_until_ms {
-            let from = self.blocked_until_ms.max(now_ms);
-            self.forming_ms += now_ms + dt_ms - from;
-            if self.forming_ms >= form_ms {
-                self.lit = true;
-                self.forming_ms = 0;
-            }
-        } else {
-            self.forming_ms = 0;
-        }
-    }
-
-    fn blow_out(&mut self, until_ms: u64) {
-        *self = Flame {
-            blocked_until_ms: until_ms,
-            ..Flame::default()
-        };
-    }
-}
-
 /// The boiler with its operator panel and sensor wiring.
 ///
 /// Each [`BoilerPlant::step`] applies the controller's output image for
-/// `dt_ms` and returns the input image the PLC reads afterwards; operator
-/// actions and faults come in through [`BoilerPlant::apply`].
+/// `dt_ms` and returns the input image the PLC reads afterwards; the
+/// operator acts through [`BoilerPlant::set_selector`] and
+/// [`BoilerPlant::press_reset`], faults come in through
+/// [`BoilerPlant::disturb`] and [`BoilerPlant::install_sensor_fault`].
 #[derive(Debug, Clone)]
 pub struct BoilerPlant {
     params: BoilerParams,
@@ -309,8 +260,8 @@ impl BoilerPlant {
         Inputs {
             sel_high,
             sel_low,
-            pilot_flame: self.pilot.lit,
-            main_flame: self.main.lit,
+            pilot_flame: self.pilot.lit(),
+            main_flame: self.main.lit(),
             bath_hot: self.bath_hot,
             flue_hot: self.flue_hot,
             reset: self.reset_until_ms.is_some(),
@@ -323,8 +274,8 @@ impl BoilerPlant {
             time_ms: self.time_ms,
             bath_c: self.bath_c,
             flue_c: self.flue_c,
-            pilot_flame: self.pilot.lit,
-            main_flame: self.main.lit,
+            pilot_flame: self.pilot.lit(),
+            main_flame: self.main.lit(),
             firing_kw: self.firing_kw,
             load_kw: self.load_kw,
             selector: self.selector,
@@ -336,16 +287,43 @@ impl BoilerPlant {
         self.trials
     }
 
-    /// Applies an operator action, a disturbance or a sensor fault now.
-    pub fn apply(&mut self, action: &Action) {
-        match *action {
-            Action::Selector(position) => self.selector = position,
-            Action::Reset => self.reset_until_ms = Some(self.time_ms + self.params.reset_pulse_ms),
-            Action::Disturb(d) => self.disturb(d),
-            Action::SensorFault(input, fault) => self.wiring.install(input, fault, self.time_ms),
-            // The controller's, not the plant's: see `plant::run_with`.
-            Action::Stall { .. } => {}
+    /// The operator turns the selector to `position` now.
+    pub fn set_selector(&mut self, position: Selector) {
+        self.selector = position;
+        self.settle();
+    }
+
+    /// The operator presses reset now: the contact closes for
+    /// [`BoilerParams::reset_pulse_ms`].
+    pub fn press_reset(&mut self) {
+        self.reset_until_ms = Some(self.time_ms + self.params.reset_pulse_ms);
+        self.settle();
+    }
+
+    /// Injects a physical fault or a change of operating conditions now.
+    pub fn disturb(&mut self, disturbance: Disturbance) {
+        let now = self.time_ms;
+        match disturbance {
+            Disturbance::FailIgnitions(n) => self.failing_next += n,
+            Disturbance::PilotFlameOut { for_ms } => self.pilot.blow_out(now + for_ms),
+            Disturbance::MainFlameOut { for_ms } => self.main.blow_out(now + for_ms),
+            Disturbance::Load(kw) => self.load_kw = kw,
+            Disturbance::BathTemperature(c) => self.bath_c = c,
+            Disturbance::FlueFouling(k) => self.fouling_k = k,
         }
+        self.settle();
+    }
+
+    /// Installs `fault` on the wiring of `input` now, replacing any earlier
+    /// one there ([`SensorFault::None`] clears it).
+    pub fn install_sensor_fault(&mut self, input: Input, fault: SensorFault) {
+        self.wiring.install(input, fault, self.time_ms);
+        self.settle();
+    }
+
+    /// Brings the limit switches and the wiring up to date after a change
+    /// made from outside.
+    fn settle(&mut self) {
         self.limit_switches();
         self.wiring.update(&self.truth(), self.time_ms);
     }
@@ -371,7 +349,7 @@ impl BoilerPlant {
         self.main.step(
             now,
             dt_ms,
-            self.pilot.lit && main_gas && air,
+            self.pilot.lit() && main_gas && air,
             main_gas && air,
             p.main_ignition_ms,
             p.main_extinction_ms,
@@ -382,21 +360,8 @@ impl BoilerPlant {
         if self.reset_until_ms.is_some_and(|end| self.time_ms >= end) {
             self.reset_until_ms = None;
         }
-        self.limit_switches();
-        self.wiring.update(&self.truth(), self.time_ms);
+        self.settle();
         self.inputs()
-    }
-
-    fn disturb(&mut self, disturbance: Disturbance) {
-        let now = self.time_ms;
-        match disturbance {
-            Disturbance::FailIgnitions(n) => self.failing_next += n,
-            Disturbance::PilotFlameOut { for_ms } => self.pilot.blow_out(now + for_ms),
-            Disturbance::MainFlameOut { for_ms } => self.main.blow_out(now + for_ms),
-            Disturbance::Load(kw) => self.load_kw = kw,
-            Disturbance::BathTemperature(c) => self.bath_c = c,
-            Disturbance::FlueFouling(k) => self.fouling_k = k,
-        }
     }
 
     /// A rising edge of the spark starts a trial, which may be doomed.
@@ -405,7 +370,7 @@ impl BoilerPlant {
             self.trials += 1;
             // Draw on every trial so that the sequence of draws does not
             // depend on the other failure sources.
-            let unlucky = unit(&mut self.rng) < self.params.ignition_failure_probability;
+            let unlucky = self.rng.unit() < self.params.ignition_failure_probability;
             let scripted = self.params.failing_trials.contains(&self.trials);
             let injected = self.failing_next > 0;
             if injected {
@@ -419,12 +384,16 @@ impl BoilerPlant {
     /// Burner input with the flames as they are now.
     fn firing(&self, outputs: &Outputs) -> f64 {
         let p = &self.params;
-        let main = match (self.main.lit, outputs.main_valve_hi, outputs.main_valve_lo) {
+        let main = match (
+            self.main.lit(),
+            outputs.main_valve_hi,
+            outputs.main_valve_lo,
+        ) {
             (true, true, _) => p.high_fire_kw,
             (true, false, true) => p.low_fire_kw,
             _ => 0.0,
         };
-        let pilot = if self.pilot.lit && outputs.pilot_valve {
+        let pilot = if self.pilot.lit() && outputs.pilot_valve {
             p.pilot_kw
         } else {
             0.0
@@ -458,7 +427,7 @@ impl BoilerPlant {
     /// plus a rise that grows with the fire, ambient without a flame.
     fn flue_target(&self, outputs: &Outputs) -> f64 {
         let p = &self.params;
-        if self.main.lit && outputs.main_open() {
+        if self.main.lit() && outputs.main_open() {
             let rise = if outputs.main_valve_hi {
                 p.flue_rise_high_k
             } else {
@@ -470,7 +439,7 @@ impl BoilerPlant {
                 0.0
             };
             self.bath_c + rise + excess_air + self.fouling_k
-        } else if self.pilot.lit {
+        } else if self.pilot.lit() {
             self.bath_c + p.flue_rise_pilot_k
         } else {
             p.ambient_c
@@ -502,9 +471,4 @@ fn hysteresis(on: bool, value: f64, limit: f64, band: f64) -> bool {
     } else {
         value >= limit
     }
-}
-
-/// A uniform draw in [0, 1).
-pub(crate) fn unit(rng: &mut Rng) -> f64 {
-    (rng.next_u64() >> 11) as f64 / (1_u64 << 53) as f64
 }
