@@ -13,7 +13,7 @@
 //! Leniency beyond FORMATS.md §2: every list of names (`rising`, `when`,
 //! `set`, `plants`, …) also accepts a single name (`set = "lamp"`).
 //!
-//! `[board]` (not in FORMATS.md §2 yet; see [`super::validate`], "Board")
+//! `[board]` (not in FORMATS.md §2 yet; see [`super::validate::board`])
 //! maps each signal to a pin given as a table (`{ pin = "PA0", pull =
 //! "up", active_low = true }`) or as a bare pin name (`"PA0"`).
 
