@@ -2,14 +2,20 @@
 //! meet inputs, outputs and timers.
 //!
 //! [`load`] reads a project file, [`from_str`] parses one given as text;
-//! both return a validated [`Project`] (see [`validate`] for every rule,
-//! the shared identifier namespace and the order of actions) or the first
-//! error, located at its line and column in the project file. Model files
-//! named by the project are read (and supervisors synthesised) on the way.
+//! both return a validated [`Project`] or the first error, located at its
+//! line and column in the project file. Three stages:
+//!
+//! 1. parsing: the TOML text into raw declarations that keep their spans;
+//! 2. [`sources`]: the model file of every supervisor read, or the
+//!    supervisor synthesised (every file recorded for `rerun-if-changed`);
+//! 3. [`validate`]: the declarations and the supervisors' automata checked
+//!    against each other (every rule, by topic).
 
 pub mod ident;
+mod locate;
 mod model;
 mod parse;
+pub mod sources;
 pub mod validate;
 
 pub use model::*;
@@ -29,5 +35,7 @@ pub fn load(path: &Path) -> Result<Project> {
 /// are relative to its directory (the file itself need not exist).
 pub fn from_str(text: &str, path: &Path) -> Result<Project> {
     let raw = parse::parse(text, path)?;
-    validate::validate(raw, text, path)
+    let file = locate::ProjectFile::new(path, text);
+    let sources = sources::load(&raw.supervisor, &file)?;
+    validate::validate(raw, sources, &file)
 }

@@ -13,7 +13,7 @@
 //! Leniency (docs/formats.md, "PLC project"): every list of names (`rising`, `when`,
 //! `set`, `plants`, …) also accepts a single name (`set = "lamp"`).
 //!
-//! `[board]` (docs/formats.md, "[board]"; see [`super::validate`], "Board")
+//! `[board]` (docs/formats.md, "[board]"; see [`super::validate::board`])
 //! maps each signal to a pin given as a table (`{ pin = "PA0", pull =
 //! "up", active_low = true }`) or as a bare pin name (`"PA0"`).
 

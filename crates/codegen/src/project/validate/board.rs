@@ -1,5 +1,41 @@
-//! The `[board]` section: which MCU pin carries each signal (see the
-//! "Board" section of the parent module for the rules).
+//! Board: which MCU pin carries each signal.
+//!
+//! The optional `[board]` section maps signals to pins of the MCU the
+//! board firmware runs on:
+//!
+//! ```toml
+//! [board]
+//! chip = "STM32F411RETx"            # optional, this is the default
+//! inputs = { auto_pb = { pin = "PC13", pull = "up", active_low = true }, part = "PA1" }
+//! outputs = { down_sol = { pin = "PB0" }, auto_lamp = "PA5" }
+//! ```
+//!
+//! (`[board.inputs]` / `[board.outputs]` tables work as well). A bare
+//! string is the pin with every option at its default: `pull = "none"`,
+//! `active_low = false`. Outputs are push-pull and take no `pull`.
+//!
+//! - `chip` must be an STM32F411 (the firmware's HAL); its package letter
+//!   (`R`: 64 pins, `C`: 48 pins) limits the pins that exist.
+//! - Every key names a declared input (under `inputs`) or output (under
+//!   `outputs`); a pin is `P<port><n>`, ports A–E and H, pins 0–15 (port H:
+//!   PH0 and PH1), case-insensitive. PA13/PA14 (SWD, which flashes the board
+//!   and carries the log) and PH0 (the HSE clock input) are refused.
+//! - No pin carries two signals; `pull` is `up`, `down` or `none`.
+//! - `scan_period_ms` is at most [`MAX_BOARD_SCAN_PERIOD_MS`] (the
+//!   watchdog waits 4 periods and at most 32.7 s).
+//! - Warnings: an input without a pin (the firmware reads 0), an output
+//!   without a pin (computed, not driven), Nucleo-F411RE pins that are
+//!   wired to something else by default (PA2/PA3, PC14/PC15, PC13 as an
+//!   output), and an input whose EXTI line is taken.
+//!
+//! **Edge latching** ([`EdgeLatch`]): the firmware counts the changes of an
+//! input between two samples with an interrupt on both edges of EXTI line
+//! *n* (the pin number); more than one change is a lost edge (docs/semantics.md,
+//! `LostEdge`). A line listens to one port, so the first input in
+//! declaration order with pin number *n* owns it and a later one on
+//! another port is not latched (a warning). Debounced inputs
+//! (`debounce_scans > 1`) are not latched either: their filter drops short
+//! pulses on purpose, so a pulse between samples is not an error there.
 
 use super::super::model::*;
 use super::super::parse::{Name, RawBoard, RawInputPin, RawOutputPin, RawPin};

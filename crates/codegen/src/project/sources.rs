@@ -1,0 +1,425 @@
+//! Supervisor sources: the stage between parsing and validation that reads
+//! the model file of every `[[supervisor]]`, or synthesises it, so that
+//! validation ([`super::validate`]) checks automata that are already
+//! there.
+//!
+//! `file` names any supported automaton file, relative to the project
+//! file's directory. Without `component`, the file must hold exactly one
+//! component of kind supervisor, spec or unspecified; `component` selects
+//! one by automaton name (any kind). `synthesize` expands its glob
+//! patterns relative to the project directory (matches in alphabetical
+//! order, duplicates dropped; a pattern without `*`, `?` or `[` is a plain
+//! path); every pattern must match at least one file. From a file under
+//! `plants` every plant and unspecified component is taken, from a file
+//! under `specs` every spec, supervisor and unspecified component. The
+//! supervisor is `supcon(sync(plants), sync(specs))` (no specs: the plant's
+//! nonblocking controllable part), then `minstate` if `minimize = true`
+//! ([`ops::synthesize`], the pipeline of `codegen synth`).
+//!
+//! A missing or unreadable model file, or one of unknown format, is
+//! reported at the line of the project that names it; errors inside a
+//! model file propagate unchanged (they point into that file). Every file
+//! read is recorded, once, for `rerun-if-changed` ([`Project::files`](super::Project::files)).
+
+use super::locate::ProjectFile;
+use super::model::SupervisorSource;
+use super::parse::{names, Name, RawSupervisor};
+use crate::automaton::{Alphabet, Automaton};
+use crate::error::{Error, Result};
+use crate::formats::{self, Component, Kind};
+use crate::ops;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// An automaton a supervisor was read or synthesised from.
+pub(crate) struct ModelOrigin {
+    /// The model file.
+    pub file: PathBuf,
+    /// The automaton's name in it.
+    pub name: String,
+    /// Its alphabet, with the controllability the file states (if any).
+    pub alphabet: Alphabet,
+}
+
+/// A supervisor's automaton as read or synthesised, not yet checked
+/// against the project.
+pub(crate) struct LoadedSupervisor {
+    /// The automaton to run.
+    pub automaton: Automaton,
+    /// Where it came from.
+    pub source: SupervisorSource,
+    /// The automata it was read or synthesised from.
+    pub origins: Vec<ModelOrigin>,
+}
+
+/// What the files of a project hold.
+pub(crate) struct Sources {
+    /// One per `[[supervisor]]`, in declaration order.
+    pub supervisors: Vec<LoadedSupervisor>,
+    /// Every file the project is built from: the project file, then each
+    /// model file in the order it was first read.
+    pub files: Vec<PathBuf>,
+}
+
+/// Reads (or synthesises) the automaton of every supervisor of the project
+/// `project`.
+pub(crate) fn load(
+    supervisors: &[Spanned<RawSupervisor>],
+    project: &ProjectFile,
+) -> Result<Sources> {
+    let mut loader = Loader {
+        project,
+        dir: project
+            .path()
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default(),
+        files: vec![project.path().to_path_buf()],
+    };
+    let supervisors = supervisors
+        .iter()
+        .map(|sup| loader.supervisor(sup))
+        .collect::<Result<_>>()?;
+    Ok(Sources {
+        supervisors,
+        files: loader.files,
+    })
+}
+
+struct Loader<'a> {
+    project: &'a ProjectFile<'a>,
+    /// The project file's directory, which model paths are relative to.
+    dir: PathBuf,
+    files: Vec<PathBuf>,
+}
+
+fn kind_list(kinds: &[Kind]) -> String {
+    kinds
+        .iter()
+        .map(Kind::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+impl Loader<'_> {
+    fn error(&self, span: &Range<usize>, message: impl Into<String>) -> Error {
+        self.project.error(span, message)
+    }
+
+    /// Records a model file for `rerun-if-changed` (once).
+    fn depend_on(&mut self, file: &Path) {
+        if !self.files.iter().any(|f| f == file) {
+            self.files.push(file.to_path_buf());
+        }
+    }
+
+    /// The automaton `sup` names, where it came from, and the automata of
+    /// its source files.
+    fn supervisor(&mut self, sup: &Spanned<RawSupervisor>) -> Result<LoadedSupervisor> {
+        let header = sup.span();
+        let raw = sup.get_ref();
+        match (&raw.file, &raw.synthesize) {
+            (Some(_), Some(s)) => Err(self.error(
+                &s.span(),
+                "a supervisor has either `file` or `synthesize`, not both",
+            )),
+            (None, None) => Err(self.error(
+                &header,
+                "a supervisor needs `file = \"…\"` or `synthesize = { plants = […], specs = […] }`",
+            )),
+            (Some(file), None) => {
+                let path = self.dir.join(file.get_ref());
+                let components = self.read_model(&path, &file.span())?;
+                let automaton =
+                    self.select(components, raw.component.as_ref(), &path, &file.span())?;
+                let origins = vec![ModelOrigin {
+                    file: path.clone(),
+                    name: automaton.name().to_owned(),
+                    alphabet: automaton.alphabet().clone(),
+                }];
+                Ok(LoadedSupervisor {
+                    automaton,
+                    source: SupervisorSource::File(path),
+                    origins,
+                })
+            }
+            (None, Some(synth)) => {
+                if let Some(c) = &raw.component {
+                    return Err(self.error(
+                        &c.span(),
+                        "`component` selects from a `file`; a synthesised supervisor has none",
+                    ));
+                }
+                self.synthesize(synth)
+            }
+        }
+    }
+
+    /// Synthesises the supervisor of `synthesize = { … }`.
+    fn synthesize(
+        &mut self,
+        synth: &Spanned<super::parse::RawSynthesize>,
+    ) -> Result<LoadedSupervisor> {
+        let s = synth.get_ref();
+        let plant_patterns = names(Some(&s.plants));
+        if plant_patterns.is_empty() {
+            return Err(self.error(&s.plants.span(), "synthesis needs at least one plant"));
+        }
+        let mut origins = Vec::new();
+        let (plants, plant_automata) = self.synthesis_inputs(
+            &plant_patterns,
+            &[Kind::Plant, Kind::Unspecified],
+            "plant",
+            &mut origins,
+        )?;
+        let (specs, spec_automata) = self.synthesis_inputs(
+            &names(s.specs.as_ref()),
+            &[Kind::Spec, Kind::Supervisor, Kind::Unspecified],
+            "specification",
+            &mut origins,
+        )?;
+        let options = ops::SynthesisOptions {
+            minstate: s.minimize,
+            ..ops::SynthesisOptions::default()
+        };
+        let automaton = ops::synthesize(&plant_automata, &spec_automata, options)
+            .map_err(|e| match e {
+                Error::Incompatible(message) => self.error(
+                    &synth.span(),
+                    format!("cannot synthesise the supervisor: {message}"),
+                ),
+                other => other,
+            })?
+            .supervisor;
+        if automaton.is_empty() {
+            return Err(self.error(
+                &synth.span(),
+                "synthesis gave the empty supervisor: the specification cannot be enforced",
+            ));
+        }
+        Ok(LoadedSupervisor {
+            automaton,
+            source: SupervisorSource::Synthesized {
+                plants,
+                specs,
+                minimized: s.minimize,
+            },
+            origins,
+        })
+    }
+
+    /// Reads a model file named at `span`; I/O and format errors are
+    /// reported at that line, errors inside the file propagate unchanged.
+    fn read_model(&mut self, file: &Path, span: &Range<usize>) -> Result<Vec<Component>> {
+        self.depend_on(file);
+        formats::read_file(file).map_err(|e| match e {
+            Error::Io { path, source } => self.error(
+                span,
+                format!("cannot read model file `{}`: {source}", path.display()),
+            ),
+            Error::UnknownFormat { path } => self.error(
+                span,
+                format!(
+                    "`{}`: unknown model format (expected .toml, .gen, .ads or .wmod)",
+                    path.display()
+                ),
+            ),
+            other => other,
+        })
+    }
+
+    /// Picks the supervisor among a file's components.
+    fn select(
+        &self,
+        mut components: Vec<Component>,
+        wanted: Option<&Name>,
+        path: &Path,
+        file_span: &Range<usize>,
+    ) -> Result<Automaton> {
+        let listing = |components: &[Component]| {
+            components
+                .iter()
+                .map(|c| format!("`{}` ({})", c.automaton.name(), c.kind))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        if let Some(name) = wanted {
+            return match components
+                .iter()
+                .position(|c| c.automaton.name() == name.get_ref())
+            {
+                Some(i) => Ok(components.swap_remove(i).automaton),
+                None => Err(self.error(
+                    &name.span(),
+                    format!(
+                        "`{}` has no component `{}` (components: {})",
+                        path.display(),
+                        name.get_ref(),
+                        listing(&components)
+                    ),
+                )),
+            };
+        }
+        let candidates: Vec<usize> = components
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| matches!(c.kind, Kind::Supervisor | Kind::Spec | Kind::Unspecified))
+            .map(|(i, _)| i)
+            .collect();
+        match candidates.as_slice() {
+            [i] => Ok(components.swap_remove(*i).automaton),
+            [] => Err(self.error(
+                file_span,
+                format!(
+                    "`{}` holds no supervisor, spec or unspecified component (components: {}); name the one to run with `component = \"…\"`",
+                    path.display(),
+                    listing(&components)
+                ),
+            )),
+            _ => Err(self.error(
+                file_span,
+                format!(
+                    "`{}` holds several components that could be the supervisor ({}); name one with `component = \"…\"`",
+                    path.display(),
+                    listing(&components)
+                ),
+            )),
+        }
+    }
+
+    /// The files `patterns` (relative to the project directory) match,
+    /// each with the span of the pattern that matched it first.
+    fn expand(&self, patterns: &[Name]) -> Result<Vec<(PathBuf, Range<usize>)>> {
+        let mut files: Vec<(PathBuf, Range<usize>)> = Vec::new();
+        for pattern in patterns {
+            let p = pattern.get_ref();
+            let span = pattern.span();
+            if !p.contains(['*', '?', '[']) {
+                let file = self.dir.join(p);
+                if !files.iter().any(|(f, _)| *f == file) {
+                    files.push((file, span));
+                }
+                continue;
+            }
+            let full = if Path::new(p).is_absolute() || self.dir.as_os_str().is_empty() {
+                p.clone()
+            } else {
+                let dir = self.dir.to_str().ok_or_else(|| {
+                    self.error(
+                        &span,
+                        format!(
+                            "cannot expand `{p}`: the project directory `{}` is not valid UTF-8",
+                            self.dir.display()
+                        ),
+                    )
+                })?;
+                format!("{}/{p}", glob::Pattern::escape(dir))
+            };
+            let matches = glob::glob(&full)
+                .map_err(|e| self.error(&span, format!("invalid file pattern `{p}`: {}", e.msg)))?;
+            let mut any = false;
+            for m in matches {
+                let file = m.map_err(|e| {
+                    self.error(
+                        &span,
+                        format!("cannot expand `{p}`: {}: {}", e.path().display(), e.error()),
+                    )
+                })?;
+                if !file.is_file() {
+                    continue;
+                }
+                any = true;
+                if !files.iter().any(|(f, _)| *f == file) {
+                    files.push((file, span.clone()));
+                }
+            }
+            if !any {
+                return Err(self.error(
+                    &span,
+                    format!(
+                        "`{p}` matches no file (patterns are relative to `{}`)",
+                        if self.dir.as_os_str().is_empty() {
+                            ".".to_owned()
+                        } else {
+                            self.dir.display().to_string()
+                        }
+                    ),
+                ));
+            }
+        }
+        Ok(files)
+    }
+
+    /// The components of `patterns`' files whose kind is in `kinds`, and
+    /// the files, for a synthesis `role` (plant or specification).
+    fn synthesis_inputs(
+        &mut self,
+        patterns: &[Name],
+        kinds: &[Kind],
+        role: &str,
+        origins: &mut Vec<ModelOrigin>,
+    ) -> Result<(Vec<PathBuf>, Vec<Automaton>)> {
+        let mut paths = Vec::new();
+        let mut automata = Vec::new();
+        for (file, span) in self.expand(patterns)? {
+            let before = automata.len();
+            for c in self.read_model(&file, &span)? {
+                if kinds.contains(&c.kind) {
+                    origins.push(ModelOrigin {
+                        file: file.clone(),
+                        name: c.automaton.name().to_owned(),
+                        alphabet: c.automaton.alphabet().clone(),
+                    });
+                    automata.push(c.automaton);
+                }
+            }
+            if automata.len() == before {
+                return Err(self.error(
+                    &span,
+                    format!(
+                        "`{}` holds no component usable as a {role} (kinds: {})",
+                        file.display(),
+                        kind_list(kinds)
+                    ),
+                ));
+            }
+            paths.push(file);
+        }
+        Ok((paths, automata))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::from_str;
+    use std::path::Path;
+
+    #[test]
+    fn a_missing_model_file_is_reported_at_its_line_before_any_declaration_error() {
+        let err = from_str(
+            "[plc]\nname = \"p\"\nreset = \"nowhere\"\n[[supervisor]]\nfile = \"absent.toml\"\n",
+            Path::new("dir/p.plc.toml"),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            err.starts_with("dir/p.plc.toml:5:8: cannot read model file `dir/absent.toml`"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn a_synthesised_supervisor_takes_no_component() {
+        let err = from_str(
+            "[plc]\nname = \"p\"\n[[supervisor]]\nsynthesize = { plants = \"m.toml\" }\ncomponent = \"x\"\n",
+            Path::new("p.plc.toml"),
+        )
+        .unwrap_err()
+        .to_string();
+        assert_eq!(
+            err,
+            "p.plc.toml:5:13: `component` selects from a `file`; a synthesised supervisor has none"
+        );
+    }
+}
