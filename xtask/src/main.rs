@@ -157,6 +157,10 @@ fn ci() -> Result {
         "clippy", "-p", "codegen", "-p", "host-sim", "--lib", "--bins", "--", "-D", "warnings",
     ]))?;
     run(cargo().args(["test", "--workspace", "--exclude", "firmware"]))?;
+    // Doc comments are part of the product: no broken or ambiguous links.
+    run(cargo()
+        .args(["doc", "--workspace", "--exclude", "firmware", "--no-deps"])
+        .env("RUSTDOCFLAGS", "-D warnings"))?;
     // The executor is no_std: prove it builds for the board's instruction
     // set (with defmt, as the firmware uses it) and for Cortex-M0+.
     for (target, features) in [

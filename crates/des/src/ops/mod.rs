@@ -3,14 +3,14 @@
 //! | module | operations |
 //! |---|---|
 //! | [`reach`] | reachable, coreachable, accessible, coaccessible, trim |
-//! | [`sync`] | sync (parallel composition), meet (product) |
-//! | [`selfloop`] | selfloop, inverse projection |
-//! | [`supcon`] | supremal controllable nonblocking sublanguage |
-//! | [`minstate`] | language-preserving minimisation |
-//! | [`condat`] | control data: disabled events per supervisor state |
+//! | [`sync`](mod@sync) | sync (parallel composition), meet (product) |
+//! | [`selfloop`](mod@selfloop) | selfloop, inverse projection |
+//! | [`supcon`](mod@supcon) | supremal controllable nonblocking sublanguage |
+//! | [`minstate`](mod@minstate) | language-preserving minimisation |
+//! | [`condat`](mod@condat) | control data: disabled events per supervisor state |
 //! | [`verify`] | controllability, nonblocking, nonconflict, with witnesses |
 //! | [`equivalence`] | language equality, isomorphism |
-//! | [`synthesis`] | the pipeline supcon(sync(plants), sync(specs)), minstate |
+//! | [`synthesis`](mod@synthesis) | the pipeline supcon(sync(plants), sync(specs)), minstate |
 
 pub mod condat;
 pub mod equivalence;
