@@ -2,6 +2,7 @@
 
 use crate::inputs;
 use crate::memory::{Memory, Ram};
+use crate::pacing::{Pacer, ScanStart};
 use crate::program::{Action, Config, Index, Program, Trigger, UnexpectedPolicy};
 use crate::record::{Counters, Fault, ScanRecord};
 use crate::timers::due;
@@ -59,7 +60,8 @@ impl<P: Program, M: Memory> Controller<P, M> {
         self.fault
     }
 
-    /// Counters of ignored events, overruns, lost edges and faults.
+    /// Counters of ignored events, overruns, skipped periods, lost edges
+    /// and faults.
     pub fn counters(&self) -> Counters {
         self.counters
     }
@@ -93,8 +95,25 @@ impl<P: Program, M: Memory> Controller<P, M> {
         }
     }
 
+    /// Polls the scan schedule `pacer` (built from this program's
+    /// [`Config`]: [`Pacer::for_config`]) at `now_ms`. When a scan is due,
+    /// counts the periods it skipped and, when it starts more than
+    /// `overrun_limit` periods late, reports an overrun
+    /// ([`Controller::report_overrun`]), then returns its start: the caller
+    /// samples the inputs and runs [`Controller::scan`] at
+    /// `start.time_ms`. `None` before the deadline.
+    pub fn scan_due(&mut self, pacer: &mut Pacer, now_ms: u32) -> Option<ScanStart> {
+        let start = pacer.poll(now_ms)?;
+        self.counters.skipped_periods = self.counters.skipped_periods.wrapping_add(start.skipped);
+        if start.overrun {
+            self.report_overrun();
+        }
+        Some(start)
+    }
+
     /// A scan started too late: counted, and a fault from the next scan
-    /// on when the project says so.
+    /// on when the project says so. [`Controller::scan_due`] judges and
+    /// reports overruns; this is for callers that pace scans otherwise.
     pub fn report_overrun(&mut self) {
         self.counters.overruns = self.counters.overruns.wrapping_add(1);
         if self.program.config().overrun_fault {

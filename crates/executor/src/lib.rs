@@ -196,6 +196,8 @@
 //!   image CRC.
 //! - [`memory`]: RAM with sizes in the types ([`memory::StaticMemory`]).
 //! - [`Controller`]: the scan cycle.
+//! - [`pacing`]: when scans start: the fixed grid, skipped periods,
+//!   overruns.
 //!
 //! # Features
 //!
@@ -213,6 +215,7 @@ extern crate alloc;
 mod controller;
 mod inputs;
 pub mod memory;
+pub mod pacing;
 pub mod program;
 mod record;
 #[cfg(feature = "replay")]

@@ -51,6 +51,9 @@ pub struct Counters {
     pub ignored: u32,
     /// Overruns reported.
     pub overruns: u32,
+    /// Scan periods skipped because a scan started late (see
+    /// [`crate::pacing`]).
+    pub skipped_periods: u32,
     /// Lost edges reported.
     pub lost_edges: u32,
     /// Faults entered.

@@ -7,6 +7,7 @@
 extern crate std;
 
 use crate::memory::StaticMemory;
+use crate::pacing::Pacer;
 use crate::program::*;
 use crate::{Controller, Fault};
 use std::boxed::Box;
@@ -305,6 +306,48 @@ fn lost_edges_are_faults_when_configured_and_overruns_only_counted() {
     assert_eq!(c.scan(20, &io(false, false)).fault, Some(Fault::LostEdge));
     let n = c.counters();
     assert_eq!((n.overruns, n.lost_edges, n.faults), (1, 1, 1));
+}
+
+#[test]
+fn a_scan_found_due_late_counts_skipped_periods_and_overruns_beyond_the_limit() {
+    // Period 10 ms, overrun_limit 1: up to 10 ms late is on time.
+    let mut c = plain();
+    let mut pacer = Pacer::for_config(&c.program().config(), 0);
+    assert_eq!(c.scan_due(&mut pacer, 0).map(|s| s.late_ms), Some(0));
+    c.scan(0, &io(false, false));
+    assert_eq!(c.scan_due(&mut pacer, 9), None);
+    let start = c.scan_due(&mut pacer, 20).unwrap();
+    assert_eq!(
+        (start.late_ms, start.skipped, start.overrun),
+        (10, 1, false)
+    );
+    c.scan(start.time_ms, &io(false, false));
+    let start = c.scan_due(&mut pacer, 55).unwrap();
+    assert_eq!((start.late_ms, start.skipped, start.overrun), (25, 2, true));
+    // overrun_fault = false: counted only.
+    assert_eq!(c.scan(55, &io(false, false)).fault, None);
+    let n = c.counters();
+    assert_eq!((n.skipped_periods, n.overruns, n.faults), (3, 1, 0));
+}
+
+#[test]
+fn an_overrun_is_a_fault_from_its_own_scan_when_configured() {
+    let mut c = controller(Config {
+        overrun_fault: true,
+        ..config(0, UnexpectedPolicy::Fault, None)
+    });
+    let mut pacer = Pacer::for_config(&c.program().config(), 0);
+    c.scan_due(&mut pacer, 0).unwrap();
+    c.scan(0, &io(false, false));
+    assert!(!c.scan_due(&mut pacer, 20).unwrap().overrun);
+    assert_eq!(c.scan(20, &io(false, false)).fault, None);
+    assert!(c.scan_due(&mut pacer, 41).unwrap().overrun);
+    assert_eq!(c.fault(), Some(Fault::Overrun));
+    let r = c.scan(41, &io(false, false));
+    assert_eq!(
+        (r.fault, r.outputs),
+        (Some(Fault::Overrun), &[false, true][..])
+    );
 }
 
 #[test]

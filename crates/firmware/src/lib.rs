@@ -4,14 +4,15 @@
 //! the board's timing and edge bookkeeping as plain logic that the host
 //! tests (`cargo test -p firmware --lib`):
 //!
-//! - [`pacing`]: the fixed-rate scan schedule, overruns, the watchdog
-//!   timeout;
+//! - [`watchdog`]: the watchdog timeout for a scan period;
 //! - [`edges`]: change counts of edge-latched inputs, lost edges, the EXTI
 //!   line map;
 //! - [`levels`]: active-low pins.
 //!
 //! No control logic lives here or in the binaries: every decision is the
-//! executor's.
+//! executor's, including when scans start (`executor::pacing`: the fixed
+//! grid, skipped periods, overruns), which host-sim's virtual clock
+//! follows too.
 
 #![cfg_attr(not(test), no_std)]
 #![warn(missing_docs)]
@@ -19,7 +20,7 @@
 
 pub mod edges;
 pub mod levels;
-pub mod pacing;
+pub mod watchdog;
 
 /// The generated program: `PROGRAM`, `Memory`, `CONFIG`, the name
 /// modules (`input`, `output`, `event`, `supervisor`, `states`) and, for a

@@ -4,8 +4,10 @@
 //!
 //! Every `scan_period_ms` (SysTick millisecond clock) the loop
 //!
-//! 1. reports an overrun when the scan starts more than `overrun_limit`
-//!    periods late (`Controller::report_overrun`);
+//! 1. waits (`wfi`) until the executor's schedule says a scan is due
+//!    (`Controller::scan_due`: the grid of `executor::pacing`, periods a
+//!    late scan missed skipped, an overrun reported when it starts more
+//!    than `overrun_limit` periods late) and logs an overrun;
 //! 2. samples the pins (active-low inverted) together with the change
 //!    counts the EXTI interrupts latched, and reports a lost edge for each
 //!    edge-latched input that changed more than once since the previous
@@ -41,9 +43,10 @@ const STATUS_PERIOD_MS: u32 = 10_000;
 fn main() -> ! {
     use board::{clocks, edges, pins, time, watchdog};
     use defmt_rtt as _;
+    use executor::pacing::Pacer;
     use executor::Controller;
-    use firmware::pacing::{watchdog_timeout_ms, Pacer, WATCHDOG_MAX_MS};
     use firmware::program::{self, CONFIG};
+    use firmware::watchdog::{watchdog_timeout_ms, WATCHDOG_MAX_MS};
     use panic_probe as _;
     use stm32f4xx_hal::gpio::GpioExt;
     use stm32f4xx_hal::pac;
@@ -89,14 +92,14 @@ fn main() -> ! {
 
     let mut watchdog = watchdog::start(dp.IWDG, &dp.DBGMCU, WATCHDOG_MS);
     let now = time::now_ms();
-    let mut pacer = Pacer::new(now, CONFIG.scan_period_ms, CONFIG.overrun_limit);
+    let mut pacer = Pacer::for_config(&CONFIG, now);
     let mut status = Pacer::new(now.wrapping_add(STATUS_PERIOD_MS), STATUS_PERIOD_MS, 0);
     let mut stats = report::ScanTimes::default();
     let mut fault = controller.fault();
 
     loop {
         let start = loop {
-            if let Some(start) = pacer.poll(time::now_ms()) {
+            if let Some(start) = controller.scan_due(&mut pacer, time::now_ms()) {
                 break start;
             }
             cortex_m::asm::wfi();
@@ -104,7 +107,6 @@ fn main() -> ! {
         let began = cortex_m::peripheral::DWT::cycle_count();
 
         if start.overrun {
-            controller.report_overrun();
             report::overrun(controller.next_scan(), &start, pacer.period_ms());
         }
         let (raw, changes) = edges::sample(&io);

@@ -10,9 +10,9 @@
 use crate::board::clocks::Source;
 use crate::board::watchdog::ResetCause;
 use executor::memory::Memory;
+use executor::pacing::ScanStart;
 use executor::program::Index;
 use executor::{Controller, Fault, Program, ScanRecord};
-use firmware::pacing::ScanStart;
 use firmware::program::{event, input, supervisor, CONFIG};
 
 /// The name of event `e`.

@@ -61,10 +61,10 @@ impl Lockstep {
         Ok(row)
     }
 
-    /// [`Sim::stall`] on both; whether it was an overrun.
-    pub fn stall(&mut self, ms: u64) -> bool {
+    /// [`Sim::stall`] on both: they hang for `ms` after their last scan.
+    pub fn stall(&mut self, ms: u64) {
         self.logic.stall(ms);
-        self.table.stall(ms)
+        self.table.stall(ms);
     }
 
     /// `scans` scans; their rows.

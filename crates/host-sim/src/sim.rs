@@ -1,11 +1,20 @@
 //! Running a project on the host: a virtual clock, the executor, and the
 //! trace.
+//!
+//! The clock follows the executor's scan schedule ([`executor::pacing`]),
+//! as the firmware's loop does: scans start on the grid of
+//! `scan_period_ms` from time 0, and scans take no time. A stall
+//! ([`Sim::stall`]) holds the controller right after its last scan; the
+//! next scan starts when the stall ends if a deadline has passed by then
+//! (else at the deadline), the periods it missed are skipped, and the grid
+//! resumes in phase.
 
 use crate::trace::TraceRow;
 use codegen::emit::Backend;
 use codegen::image::TableImage;
 use codegen::project::{self, Project};
 use executor::memory::HeapMemory;
+use executor::pacing::{Pacer, ScanStart};
 use executor::program::{Config, Index, Program};
 use executor::Controller;
 use std::path::Path;
@@ -86,7 +95,13 @@ pub struct Sim {
     project: Project,
     controller: Controller<RuntimeProgram, HeapMemory>,
     inputs: Vec<bool>,
-    time_ms: u64,
+    /// The controller's clock: when its last scan, or the stall after it,
+    /// ended.
+    clock_ms: u64,
+    /// Stalled since the last scan.
+    stalled_ms: u64,
+    pacer: Pacer,
+    last_start: Option<ScanStart>,
     trace: Vec<TraceRow>,
 }
 
@@ -100,13 +115,18 @@ impl Sim {
     pub fn new(project: Project, backend: Backend) -> Result<Sim, SimError> {
         let program = RuntimeProgram::new(&project, backend)?;
         let memory = HeapMemory::for_config(&program.config());
+        // Validation keeps `scan_period_ms` in 1..2^31, as the pacer needs.
+        let pacer = Pacer::for_config(&program.config(), 0);
         let controller = Controller::new(program, memory)
             .expect("memory is sized from the program's own configuration");
         Ok(Sim {
             inputs: vec![false; project.inputs.len()],
             project,
             controller,
-            time_ms: 0,
+            clock_ms: 0,
+            stalled_ms: 0,
+            pacer,
+            last_start: None,
             trace: Vec::new(),
         })
     }
@@ -126,9 +146,17 @@ impl Sim {
         &mut self.controller
     }
 
-    /// The virtual time of the next scan.
+    /// The virtual time of the next scan: its deadline, or the end of a
+    /// stall that passed it.
     pub fn time_ms(&self) -> u64 {
-        self.time_ms
+        // The clock's low 32 bits are the controller's millisecond clock.
+        self.clock_ms + u64::from(self.pacer.due_in(self.clock_ms as u32))
+    }
+
+    /// How the last scan of [`Sim::scan`] started on the schedule (how
+    /// late, periods skipped, overrun); `None` before the first.
+    pub fn last_start(&self) -> Option<ScanStart> {
+        self.last_start
     }
 
     /// Sets the raw value of input `name` for the following scans.
@@ -150,31 +178,51 @@ impl Sim {
         Ok(self.inputs[i])
     }
 
-    /// Runs one scan at the current virtual time with the current inputs,
-    /// then advances the clock by the scan period.
+    /// Runs the next scan when the schedule says it is due
+    /// ([`Sim::time_ms`]) with the current inputs. A scan that starts more
+    /// than `overrun_limit` periods after its deadline is an overrun,
+    /// reported to the controller first (SEMANTICS, faults: counted, and a
+    /// fault from this scan on when the project sets `overrun_fault`).
     pub fn scan(&mut self) -> &TraceRow {
-        let (time, inputs) = (self.time_ms, self.inputs.clone());
-        self.time_ms += u64::from(self.project.scan_period_ms);
+        let time = self.time_ms();
+        let start = self
+            .controller
+            .scan_due(&mut self.pacer, time as u32)
+            .expect("a scan is due at its own time");
+        self.clock_ms = time;
+        self.stalled_ms = 0;
+        self.last_start = Some(start);
+        let inputs = self.inputs.clone();
         self.scan_with(time, &inputs)
             .expect("the input image has one value per input")
     }
 
-    /// The controller hangs for `ms`: no scan runs and the virtual clock
-    /// jumps, so the next scan starts `ms` late. More than `overrun_limit`
-    /// scan periods late is an overrun (docs/semantics.md, "Scan pacing": counted, and a
-    /// fault when the project sets `overrun_fault`), as the firmware's
-    /// pacing judges it. Returns whether it was one.
-    pub fn stall(&mut self, ms: u64) -> bool {
-        self.time_ms += ms;
-        let limit = u64::from(self.project.overrun_limit) * u64::from(self.project.scan_period_ms);
-        let overrun = ms > limit;
-        if overrun {
-            self.controller.report_overrun();
-        }
-        overrun
+    /// The controller hangs for `ms` right after its last scan (before the
+    /// first scan: from time 0), as a scan that overruns into a hang on
+    /// the board: no scan runs until the hang ends. The next scan then
+    /// starts at once if a deadline passed meanwhile (how late it is, and
+    /// whether that is an overrun, is judged by the schedule when it
+    /// starts), else at its deadline; the grid keeps its phase. Stalls add
+    /// up until the next scan.
+    ///
+    /// # Panics
+    ///
+    /// When the stalls since the last scan add up to 2^31 ms (24.8 days:
+    /// the horizon of the controller's wrapping millisecond clock; the
+    /// board's watchdog resets long before).
+    pub fn stall(&mut self, ms: u64) {
+        let stalled = self.stalled_ms.saturating_add(ms);
+        assert!(
+            stalled < 1 << 31,
+            "a stall must be shorter than 2^31 ms, got {stalled} ms"
+        );
+        self.stalled_ms = stalled;
+        self.clock_ms += ms;
     }
 
-    /// Runs one scan at `time_ms` with the raw image `raw`.
+    /// Runs one scan at `time_ms` with the raw image `raw`, outside the
+    /// schedule (replays of recorded inputs give their own times); the
+    /// virtual clock does not move.
     pub fn scan_with(&mut self, time_ms: u64, raw: &[bool]) -> Result<&TraceRow, SimError> {
         if raw.len() != self.project.inputs.len() {
             return Err(SimError::InputCount {
@@ -200,8 +248,8 @@ impl Sim {
     /// Runs scans until the virtual clock has advanced by at least `ms`.
     pub fn run_for(&mut self, ms: u64) -> &[TraceRow] {
         let start = self.trace.len();
-        let until = self.time_ms + ms;
-        while self.time_ms < until {
+        let until = self.time_ms() + ms;
+        while self.time_ms() < until {
             self.scan();
         }
         &self.trace[start..]

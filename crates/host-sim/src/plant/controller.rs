@@ -23,10 +23,18 @@ pub trait BoilerController {
     /// One scan with the input image `inputs`.
     fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, PlantError>;
 
-    /// The controller hangs for `ms` (no scans, outputs held); the next
-    /// scan starts that late. Default: nothing to note.
+    /// The controller hangs for `ms` right after the scan it just ran (no
+    /// scans, outputs held), which delays its next scan
+    /// ([`BoilerController::next_scan_in_ms`]). Default: a controller that
+    /// does not hang.
     fn stall(&mut self, ms: u64) {
         let _ = ms;
+    }
+
+    /// Time from the scan just run to the next one (ms); the plant runs
+    /// that long under its outputs. Default: one period.
+    fn next_scan_in_ms(&self) -> u64 {
+        u64::from(self.scan_period_ms())
     }
 }
 
@@ -126,10 +134,13 @@ impl BoilerController for Plc<'_> {
     }
 
     fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, PlantError> {
-        // A fault may start between scans (an overrun after a stall), so
-        // the record of the previous scan does not tell.
-        let faulted = self.sim().controller().fault().is_some();
+        // A fault may start as the scan starts (an overrun after a stall)
+        // and end in it (a reset edge), so the records do not tell: a
+        // fault entered counts.
+        let controller = self.sim().controller();
+        let (faulted, faults) = (controller.fault().is_some(), controller.counters().faults);
         let row = self.scan_row(inputs)?;
+        let faulted = faulted || self.sim().controller().counters().faults != faults;
         let mut outputs = Outputs::default();
         for output in Output::ALL {
             outputs.set(output, row.outputs[self.io.output(output)]);
@@ -144,10 +155,17 @@ impl BoilerController for Plc<'_> {
         })
     }
 
+    /// [`Sim::stall`]: the hang starts right after the last scan; the
+    /// schedule then decides when the next scan starts.
     fn stall(&mut self, ms: u64) {
         match &mut self.target {
             Target::Sim(sim) => sim.stall(ms),
             Target::Lockstep(ls) => ls.stall(ms),
-        };
+        }
+    }
+
+    fn next_scan_in_ms(&self) -> u64 {
+        let sim = self.sim();
+        sim.time_ms() - sim.last().map_or(0, |row| row.time_ms)
     }
 }

@@ -20,12 +20,13 @@
 //!
 //! One scan of [`run`] / [`run_with`]:
 //!
-//! 1. script actions due at the plant's time (`at <= now`) are applied; a
-//!    controller stall ([`Action::Stall`]) then runs the plant on the held
-//!    outputs for its length, with no scans and no rows;
+//! 1. script actions due at the plant's time (`at <= now`) are applied;
 //! 2. the controller scans the input image the plant shows (sensor faults
-//!    applied);
-//! 3. the plant advances one scan period under the controller's outputs.
+//!    applied); a controller stall among those actions ([`Action::Stall`])
+//!    hangs it right after this scan;
+//! 3. the plant advances under the scan's outputs until the controller's
+//!    next scan: one period, or as its schedule says after a stall (the
+//!    late scan when the stall ends, then the grid in phase again).
 //!
 //! ```no_run
 //! use codegen::emit::Backend;
@@ -100,19 +101,17 @@ pub fn run_with<C: BoilerController + ?Sized>(
             action.apply_to(plant);
             next += 1;
         }
-        if stall > 0 {
-            let held = rows.last().map(|r: &RunRow| r.outputs).unwrap_or_default();
-            let until = plant.time_ms() + stall;
-            while plant.time_ms() < until {
-                plant.step(period.min(until - plant.time_ms()), &held);
-            }
-            controller.stall(stall);
-            continue;
-        }
         let state = plant.state();
         let inputs = plant.inputs();
         let scan = controller.scan(&inputs)?;
-        plant.step(period, &scan.outputs);
+        if stall > 0 {
+            controller.stall(stall);
+        }
+        // In steps of at most a period, so a stall is simulated as finely.
+        let until = plant.time_ms() + controller.next_scan_in_ms().max(1);
+        while plant.time_ms() < until {
+            plant.step(period.min(until - plant.time_ms()), &scan.outputs);
+        }
         rows.push(RunRow {
             scan: rows.len() as u64,
             time_ms: scan.time_ms,

@@ -1,14 +1,22 @@
-//! Scan pacing (docs/semantics.md, "Scan pacing": `Overrun`): scans are due every
-//! `scan_period_ms` on a fixed grid, and a scan that starts more than
-//! `overrun_limit` periods after its deadline is an overrun.
+//! Scan pacing (docs/semantics.md, "Scan pacing"): when scans start, the
+//! one rule for the board, QEMU and host-sim.
 //!
-//! Times are the board's millisecond clock (`u32`, wrapping); every
+//! Scans are due on a fixed grid: a deadline at the first time, then every
+//! `scan_period_ms`. The caller polls the schedule with its clock
+//! ([`Controller::scan_due`](crate::Controller::scan_due), or
+//! [`Pacer::poll`]) and a scan starts when it is found due, at its
+//! deadline or later. A late scan does not make the schedule catch up with
+//! a burst of scans at one instant (they would all sample the same
+//! inputs): the deadlines that passed while it waited are skipped and the
+//! next deadline is the first grid point after its start, so the grid
+//! keeps its phase. A scan that starts more than `overrun_limit × period`
+//! after its deadline is an overrun.
+//!
+//! Times are the controller's millisecond clock (`u32`, wrapping); every
 //! comparison is wrap-safe (a difference read as `i32`), so the schedule
 //! runs through the 49.7-day wrap like any other millisecond.
-//!
-//! A late scan does not make the schedule catch up with a burst of scans
-//! at the same instant (they would all sample the same inputs): the
-//! periods it missed are skipped and the grid keeps its phase.
+
+use crate::program::Config;
 
 /// When a due scan starts and how late it is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -17,13 +25,15 @@ pub struct ScanStart {
     pub time_ms: u32,
     /// How long after its deadline it starts (ms).
     pub late_ms: u32,
-    /// Whole periods skipped because the scan was that late.
+    /// Later deadlines that passed before it started (`late_ms / period`):
+    /// the periods skipped.
     pub skipped: u32,
     /// Late by more than `overrun_limit` periods.
     pub overrun: bool,
 }
 
-/// A fixed-rate schedule: a deadline every `period_ms`.
+/// A fixed-rate schedule: a deadline every `period_ms`, and the overrun
+/// limit the lateness of a scan is judged by.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Pacer {
     period_ms: u32,
@@ -32,14 +42,24 @@ pub struct Pacer {
 }
 
 impl Pacer {
+    /// The schedule of a program: every `scan_period_ms` from `first_ms`,
+    /// overruns beyond `overrun_limit` periods.
+    ///
+    /// # Panics
+    ///
+    /// When `scan_period_ms` is not in `1..2^31` (project validation
+    /// guarantees it).
+    pub const fn for_config(config: &Config<'_>, first_ms: u32) -> Pacer {
+        Pacer::new(first_ms, config.scan_period_ms, config.overrun_limit)
+    }
+
     /// A schedule whose first deadline is `first_ms`, then every
     /// `period_ms`; a start more than `overrun_limit × period_ms` late is an
     /// overrun (`overrun_limit = 0`: any lateness).
     ///
     /// # Panics
     ///
-    /// When `period_ms` is 0 or not below 2^31 (validation guarantees
-    /// `1..2^31` for `scan_period_ms`).
+    /// When `period_ms` is 0 or not below 2^31.
     pub const fn new(first_ms: u32, period_ms: u32, overrun_limit: u16) -> Pacer {
         assert!(
             period_ms > 0 && period_ms < 1 << 31,
@@ -62,15 +82,32 @@ impl Pacer {
         self.period_ms
     }
 
-    /// `Some` when a scan is due at `now_ms` (the deadline has passed); the
-    /// schedule then moves to the next deadline after `now_ms`. `None`
-    /// before the deadline. A start more than 2^31 ms late looks early (the
-    /// watchdog has long reset the board by then).
-    pub fn poll(&mut self, now_ms: u32) -> Option<ScanStart> {
+    /// How long a scan may start after its deadline without being an
+    /// overrun (ms).
+    pub const fn overrun_limit_ms(&self) -> u64 {
+        self.limit_ms
+    }
+
+    /// Milliseconds from `now_ms` until the next scan is due; 0 when it is
+    /// due now (the deadline has passed).
+    pub const fn due_in(&self, now_ms: u32) -> u32 {
         let late = now_ms.wrapping_sub(self.deadline);
         if late >= 1 << 31 {
+            late.wrapping_neg()
+        } else {
+            0
+        }
+    }
+
+    /// `Some` when a scan is due at `now_ms` (the deadline has passed); the
+    /// schedule then moves to the first deadline of the grid after
+    /// `now_ms`. `None` before the deadline. A start more than 2^31 ms late
+    /// looks early (on the board the watchdog has long reset the chip).
+    pub fn poll(&mut self, now_ms: u32) -> Option<ScanStart> {
+        if self.due_in(now_ms) > 0 {
             return None;
         }
+        let late = now_ms.wrapping_sub(self.deadline);
         let skipped = late / self.period_ms;
         // (skipped + 1) × period ≤ late + period < 2^32: no overflow.
         self.deadline = self.deadline.wrapping_add((skipped + 1) * self.period_ms);
@@ -83,23 +120,6 @@ impl Pacer {
     }
 }
 
-/// The independent watchdog's timeout for a scan period: four periods, at
-/// least 50 ms (so a 1 ms scan tolerates a slow log line).
-pub const fn watchdog_timeout_ms(scan_period_ms: u32) -> u32 {
-    let four = scan_period_ms.saturating_mul(4);
-    if four < 50 {
-        50
-    } else {
-        four
-    }
-}
-
-/// The longest timeout the STM32's independent watchdog can count (LSI
-/// 32 kHz, prescaler 256, 12-bit reload; the HAL refuses 32 768 ms and
-/// more). `[board]` validation keeps scan periods at or below 8 s, so
-/// [`watchdog_timeout_ms`] stays at or below 32 000 ms.
-pub const WATCHDOG_MAX_MS: u32 = 32_767;
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -111,9 +131,12 @@ mod tests {
     #[test]
     fn scans_are_due_on_a_fixed_grid() {
         let mut p = Pacer::new(100, 10, 1);
+        assert_eq!(p.due_in(99), 1);
         assert_eq!(start(&mut p, 99), None);
+        assert_eq!(p.due_in(100), 0);
         assert_eq!(start(&mut p, 100), Some((0, 0, false)));
         assert_eq!(p.deadline(), 110);
+        assert_eq!(p.due_in(105), 5);
         assert_eq!(start(&mut p, 105), None);
         // 3 ms late: the next deadline stays on the grid.
         assert_eq!(start(&mut p, 113), Some((3, 0, false)));
@@ -144,6 +167,36 @@ mod tests {
     }
 
     #[test]
+    fn the_limit_and_period_come_from_the_program() {
+        let config = Config {
+            name: "paced",
+            scan_period_ms: 20,
+            max_commands_per_scan: 0,
+            unexpected: crate::program::UnexpectedPolicy::Fault,
+            reset: None,
+            overrun_limit: 3,
+            overrun_fault: true,
+            lost_edge_fault: false,
+            inputs: &[],
+            outputs: &[],
+            timers: &[],
+            events: &[],
+            supervisors: &[],
+            input_lists: &[],
+            actions: &[],
+            memberships: &[],
+            state_map: &[],
+        };
+        let mut p = Pacer::for_config(&config, 7);
+        assert_eq!((p.period_ms(), p.overrun_limit_ms()), (20, 60));
+        assert_eq!(start(&mut p, 7), Some((0, 0, false)));
+        // 60 ms late is within 3 periods; 61 ms is not.
+        assert_eq!(start(&mut p, 87), Some((60, 3, false)));
+        assert_eq!(p.deadline(), 107);
+        assert_eq!(start(&mut p, 168), Some((61, 3, true)));
+    }
+
+    #[test]
     fn the_schedule_runs_through_the_clock_wrap() {
         let mut p = Pacer::new(u32::MAX - 14, 10, 1);
         assert_eq!(start(&mut p, u32::MAX - 14), Some((0, 0, false)));
@@ -152,9 +205,14 @@ mod tests {
         assert_eq!(start(&mut p, u32::MAX - 4), Some((0, 0, false)));
         assert_eq!(p.deadline(), 5);
         // Wrapped past zero, still before the deadline.
+        assert_eq!(p.due_in(u32::MAX), 6);
         assert_eq!(start(&mut p, 2), None);
         assert_eq!(start(&mut p, 7), Some((2, 0, false)));
         assert_eq!(p.deadline(), 15);
+        // Late across the wrap: skipped periods counted, phase kept.
+        let mut p = Pacer::new(u32::MAX - 4, 10, 1);
+        assert_eq!(start(&mut p, 20), Some((25, 2, true)));
+        assert_eq!(p.deadline(), 25);
     }
 
     #[test]
@@ -163,7 +221,23 @@ mod tests {
         let mut p = Pacer::new(0, period, u16::MAX);
         assert_eq!(start(&mut p, 0), Some((0, 0, false)));
         assert_eq!(p.deadline(), period);
+        assert_eq!(p.due_in(0), period);
         assert_eq!(start(&mut p, period + 5), Some((5, 0, false)));
+        assert_eq!(
+            p.overrun_limit_ms(),
+            u64::from(u16::MAX) * u64::from(period)
+        );
+    }
+
+    #[test]
+    fn a_start_more_than_half_the_clock_late_looks_early() {
+        let mut p = Pacer::new(0, 10, 1);
+        assert_eq!(p.due_in(1 << 31), 1 << 31);
+        assert_eq!(start(&mut p, 1 << 31), None);
+        assert_eq!(
+            start(&mut p, (1 << 31) - 1),
+            Some(((1 << 31) - 1, 214_748_364, true))
+        );
     }
 
     #[test]
@@ -173,13 +247,8 @@ mod tests {
     }
 
     #[test]
-    fn the_watchdog_waits_four_periods_and_at_least_50_ms() {
-        assert_eq!(watchdog_timeout_ms(1), 50);
-        assert_eq!(watchdog_timeout_ms(10), 50);
-        assert_eq!(watchdog_timeout_ms(13), 52);
-        assert_eq!(watchdog_timeout_ms(100), 400);
-        assert_eq!(watchdog_timeout_ms(8000), 32_000);
-        assert!(watchdog_timeout_ms(8000) <= WATCHDOG_MAX_MS);
-        assert_eq!(watchdog_timeout_ms(u32::MAX), u32::MAX);
+    #[should_panic(expected = "the period must be in 1..2^31 ms")]
+    fn a_period_of_half_the_clock_is_refused() {
+        let _ = Pacer::new(0, 1 << 31, 1);
     }
 }
