@@ -670,6 +670,16 @@ fn separate_items(code: &str) -> String {
 /// Generates the Rust source of `project`. `regenerate` is the command
 /// line the header tells users to run.
 pub fn generate(project: &Project, backend: Backend, regenerate: &str) -> Result<Generated> {
+    generate_with_progress(project, backend, regenerate, &())
+}
+
+/// [`generate`], telling `progress` what the logic backend is minimising.
+pub fn generate_with_progress(
+    project: &Project,
+    backend: Backend,
+    regenerate: &str,
+    progress: &dyn crate::ops::Progress,
+) -> Result<Generated> {
     let pools = ConfigPools::from_project(project)?;
     let mut e = Emitter {
         project,
@@ -695,7 +705,7 @@ pub fn generate(project: &Project, backend: Backend, regenerate: &str) -> Result
             (e.tables(&image), image.crc)
         }
         Backend::Logic => {
-            let image = LogicImage::new(project)?;
+            let image = LogicImage::with_progress(project, progress)?;
             (e.logic(&image.supervisors, image.crc), image.crc)
         }
         Backend::Match => {

@@ -5,6 +5,10 @@
 //! and uncontrollable ones dashed. Several events between the same two
 //! states share one edge when they share the line style. Every name is
 //! written as a quoted, escaped DOT string, so no name can break the graph.
+//!
+//! [`DotOptions`] adapt the drawing to large automata: the layout engine
+//! the graph asks for (Graphviz honours a graph's `layout` attribute
+//! whichever command reads it) and edges without event names.
 
 use crate::automaton::Automaton;
 use std::collections::BTreeMap;
@@ -28,11 +32,56 @@ pub fn quote(text: &str) -> String {
     out
 }
 
-/// The automaton as a DOT digraph.
+/// The Graphviz layout engine a graph asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Layout {
+    /// Layered drawing (`dot`), left to right: the clearest for small
+    /// automata, slow (minutes) for hundreds of states with thousands of
+    /// edges.
+    #[default]
+    Dot,
+    /// Scalable force-directed drawing (`sfdp`): seconds for such graphs.
+    Sfdp,
+    /// Force-directed drawing (`neato`).
+    Neato,
+}
+
+/// How [`to_dot_with`] draws an automaton.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DotOptions {
+    /// Write the events on the edges (otherwise only the line style tells
+    /// controllable from uncontrollable).
+    pub edge_labels: bool,
+    /// The layout engine the graph asks for.
+    pub layout: Layout,
+}
+
+impl Default for DotOptions {
+    fn default() -> Self {
+        DotOptions {
+            edge_labels: true,
+            layout: Layout::Dot,
+        }
+    }
+}
+
+/// The automaton as a DOT digraph, drawn with the default options.
 pub fn to_dot(a: &Automaton) -> String {
+    to_dot_with(a, &DotOptions::default())
+}
+
+/// The automaton as a DOT digraph.
+pub fn to_dot_with(a: &Automaton, options: &DotOptions) -> String {
     let mut out = String::new();
     writeln!(out, "digraph {} {{", quote(a.name())).unwrap();
-    out.push_str("  rankdir=LR;\n  node [shape=circle];\n");
+    out.push_str(match options.layout {
+        Layout::Dot => "  rankdir=LR;\n",
+        // Without `overlap=false` the force-directed engines let nodes
+        // overlap; straight edges keep the routing fast.
+        Layout::Sfdp => "  layout=sfdp;\n  overlap=false;\n  splines=false;\n",
+        Layout::Neato => "  layout=neato;\n  overlap=false;\n  splines=false;\n",
+    });
+    out.push_str("  node [shape=circle];\n");
     if let Some(init) = a.initial() {
         out.push_str("  __initial [shape=point, label=\"\"];\n");
         writeln!(out, "  __initial -> s{};", init.0).unwrap();
@@ -62,14 +111,18 @@ pub fn to_dot(a: &Automaton) -> String {
                 .push(a.alphabet().name(t.event));
         }
         for ((target, uncontrollable), labels) in grouped {
-            let style = if uncontrollable { ", style=dashed" } else { "" };
-            writeln!(
-                out,
-                "  s{} -> s{target} [label={}{style}];",
-                s.0,
-                quote(&labels.join(", "))
-            )
-            .unwrap();
+            let mut attributes = Vec::new();
+            if options.edge_labels {
+                attributes.push(format!("label={}", quote(&labels.join(", "))));
+            }
+            if uncontrollable {
+                attributes.push("style=dashed".to_owned());
+            }
+            write!(out, "  s{} -> s{target}", s.0).unwrap();
+            if !attributes.is_empty() {
+                write!(out, " [{}]", attributes.join(", ")).unwrap();
+            }
+            out.push_str(";\n");
         }
     }
     out.push_str("}\n");
