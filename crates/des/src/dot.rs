@@ -159,6 +159,29 @@ mod tests {
     }
 
     #[test]
+    fn large_graph_options_choose_the_engine_and_drop_edge_labels() {
+        let g = auto(
+            "M",
+            &[("start", true), ("finish", false)],
+            &[("0", "start", "1"), ("1", "finish", "0")],
+            &["0"],
+        );
+        let options = DotOptions {
+            edge_labels: false,
+            layout: Layout::Sfdp,
+        };
+        let dot = to_dot_with(&g, &options);
+        assert!(dot.contains("  layout=sfdp;\n"), "{dot}");
+        assert!(!dot.contains("rankdir"), "{dot}");
+        assert!(dot.contains("  s0 -> s1;\n"), "{dot}");
+        assert!(dot.contains("  s1 -> s0 [style=dashed];\n"), "{dot}");
+        // States keep their names.
+        assert!(dot.contains("s1 [label=\"1\"];"), "{dot}");
+        assert_eq!(to_dot(&g), to_dot_with(&g, &DotOptions::default()));
+        assert!(to_dot(&g).contains("rankdir=LR;"));
+    }
+
+    #[test]
     fn hostile_names_stay_inside_their_strings() {
         let g = auto("x\"];evil", &[("a\\\"", true)], &[("0", "a\\\"", "0")], &[]);
         let dot = to_dot(&g);

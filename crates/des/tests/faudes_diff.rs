@@ -854,7 +854,7 @@ fn supcon_and_minstate_agree_with_libfaudes() {
             continue;
         }
         let OurSynthesis { g, e, sup, min } = our;
-        issues.size("plant sync", size(&g), answer.plant_size);
+        issues.size("plant sync", size(g), answer.plant_size);
         let e_ext = inverse_projection(e, g.alphabet()).unwrap();
         issues.size(
             "spec sync + inverse projection",

@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The default `--max-states`.
-const MAX_STATES: usize = 150;
+const MAX_STATES: usize = 100;
 
 /// Arguments of `codegen dot`.
 #[derive(Debug, clap::Args)]
@@ -55,13 +55,14 @@ components needs --component NAME or --output-dir.
 
 Drawing: controllable events solid, uncontrollable dashed, marked states
 as double circles, an arrow into the initial state. Events between the
-same two states share one edge (dashed when all are uncontrollable);
-self-loops are listed inside their state instead of drawn as loops.
+same two states share one edge per line style.
 
-Large automata: `dot -Tsvg` takes minutes beyond a hundred or two states
-with thousands of edges. Such automata are refused unless --max-states
-allows them; --layout sfdp then draws them in seconds (force-directed, no
-ranks), and --no-labels makes a dense graph readable as a shape.
+Large automata: `dot -Tsvg` spends minutes ordering the ranks of a graph
+with a hundred states or more and a thousand edges (a 144-state boiler
+supervisor: over two minutes; its 406-state one: not done after ten).
+Such automata are refused unless --max-states allows them; --layout sfdp
+then draws them in well under a second (force-directed, no ranks), and
+--no-labels leaves only the shape of a dense graph.
 
 Example:
   codegen dot sup.gen -o sup.dot && dot -Tsvg sup.dot -o sup.svg
