@@ -698,6 +698,7 @@ fn dot_refuses_a_large_automaton_unless_allowed_and_offers_a_scalable_drawing() 
     for needle in [
         "`sup_pilot_seq` has 406 states",
         "--max-states 406",
+        "--quick",
         "--layout sfdp",
         "--no-labels",
     ] {
@@ -709,6 +710,22 @@ fn dot_refuses_a_large_automaton_unless_allowed_and_offers_a_scalable_drawing() 
     assert!(run.stdout.contains("layout=sfdp;"), "{}", run.stdout);
     assert!(!run.stdout.contains("rankdir"), "sfdp has no ranks");
     assert!(run.stdout.contains("label=\"idle\""));
+
+    let run = run_codegen(["dot", big, "--max-states", "406", "--quick"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stdout.contains("rankdir=LR;\n  nslimit=1;\n"),
+        "{}",
+        run.stdout
+    );
+    assert!(run.stdout.contains("[xlabel=\""), "{}", run.stdout);
+    assert!(
+        run.stdout
+            .lines()
+            .filter(|l| l.contains(" -> "))
+            .all(|l| !l.contains("[label=")),
+        "edge labels float"
+    );
 
     let run = run_codegen(["dot", big, "--max-states", "0", "--no-labels"]);
     assert_eq!(run.code, 0, "{}", run.stderr);

@@ -8,7 +8,15 @@
 //!
 //! [`DotOptions`] adapt the drawing to large automata: the layout engine
 //! the graph asks for (Graphviz honours a graph's `layout` attribute
-//! whichever command reads it) and edges without event names.
+//! whichever command reads it), edges without event names, and a quick
+//! layered layout. Measured with Graphviz 2.43 on a 144-state boiler
+//! supervisor (1,337 edges), `dot` spends 20 s ordering the ranks and then
+//! does not finish placing them: every edge label is a node of its own,
+//! which doubles the ranks (258), and the long edges become 144,536
+//! virtual nodes for the network simplex that places them. The quick
+//! layout writes the labels as `xlabel`s (placed after the layout instead
+//! of taking part in it) and bounds the network simplex (`nslimit=1`) and
+//! the crossing minimisation (`mclimit=0.1`): 4 s. `sfdp`: 0.1 s.
 
 use crate::automaton::Automaton;
 use std::collections::BTreeMap;
@@ -54,6 +62,9 @@ pub struct DotOptions {
     pub edge_labels: bool,
     /// The layout engine the graph asks for.
     pub layout: Layout,
+    /// With [`Layout::Dot`]: edge labels placed after the layout, and the
+    /// layout's optimisation bounded (see the module docs).
+    pub quick: bool,
 }
 
 impl Default for DotOptions {
@@ -61,6 +72,7 @@ impl Default for DotOptions {
         DotOptions {
             edge_labels: true,
             layout: Layout::Dot,
+            quick: false,
         }
     }
 }
@@ -74,7 +86,9 @@ pub fn to_dot(a: &Automaton) -> String {
 pub fn to_dot_with(a: &Automaton, options: &DotOptions) -> String {
     let mut out = String::new();
     writeln!(out, "digraph {} {{", quote(a.name())).unwrap();
+    let quick = options.quick && options.layout == Layout::Dot;
     out.push_str(match options.layout {
+        Layout::Dot if quick => "  rankdir=LR;\n  nslimit=1;\n  mclimit=0.1;\n",
         Layout::Dot => "  rankdir=LR;\n",
         // Without `overlap=false` the force-directed engines let nodes
         // overlap; straight edges keep the routing fast.
@@ -113,7 +127,8 @@ pub fn to_dot_with(a: &Automaton, options: &DotOptions) -> String {
         for ((target, uncontrollable), labels) in grouped {
             let mut attributes = Vec::new();
             if options.edge_labels {
-                attributes.push(format!("label={}", quote(&labels.join(", "))));
+                let key = if quick { "xlabel" } else { "label" };
+                attributes.push(format!("{key}={}", quote(&labels.join(", "))));
             }
             if uncontrollable {
                 attributes.push("style=dashed".to_owned());
@@ -169,6 +184,7 @@ mod tests {
         let options = DotOptions {
             edge_labels: false,
             layout: Layout::Sfdp,
+            quick: false,
         };
         let dot = to_dot_with(&g, &options);
         assert!(dot.contains("  layout=sfdp;\n"), "{dot}");
@@ -179,6 +195,18 @@ mod tests {
         assert!(dot.contains("s1 [label=\"1\"];"), "{dot}");
         assert_eq!(to_dot(&g), to_dot_with(&g, &DotOptions::default()));
         assert!(to_dot(&g).contains("rankdir=LR;"));
+
+        let quick = DotOptions {
+            quick: true,
+            ..DotOptions::default()
+        };
+        let dot = to_dot_with(&g, &quick);
+        assert!(dot.contains("  nslimit=1;\n  mclimit=0.1;\n"), "{dot}");
+        assert!(dot.contains("  s0 -> s1 [xlabel=\"start\"];\n"), "{dot}");
+        assert!(
+            dot.contains("  s1 -> s0 [xlabel=\"finish\", style=dashed];\n"),
+            "{dot}"
+        );
     }
 
     #[test]

@@ -46,6 +46,11 @@ pub struct DotArgs {
     /// controllable from uncontrollable).
     #[arg(long)]
     no_labels: bool,
+    /// A quicker layered layout for large automata: edge labels placed
+    /// after the layout (`xlabel`) and Graphviz's optimisation bounded
+    /// (`nslimit=1`, `mclimit=0.1`).
+    #[arg(long)]
+    quick: bool,
 }
 
 const AFTER_HELP: &str = "\
@@ -57,17 +62,21 @@ Drawing: controllable events solid, uncontrollable dashed, marked states
 as double circles, an arrow into the initial state. Events between the
 same two states share one edge per line style.
 
-Large automata: `dot -Tsvg` spends minutes ordering the ranks of a graph
-with a hundred states or more and a thousand edges (a 144-state boiler
-supervisor: over two minutes; its 406-state one: not done after ten).
-Such automata are refused unless --max-states allows them; --layout sfdp
-then draws them in well under a second (force-directed, no ranks), and
---no-labels leaves only the shape of a dense graph.
+Large automata: `dot -Tsvg` needs minutes for a graph with a hundred
+states or more and a thousand edges (a 144-state boiler supervisor: over
+two and a half minutes; its 406-state one: not done after ten), because
+every edge label becomes a node of the layered layout. Such automata are
+refused unless --max-states allows them. Then --quick keeps the layered
+drawing with floating edge labels and a bounded optimisation (4 s and
+25 s for those two), and --layout sfdp draws them in well under a second
+(force-directed, no ranks); --no-labels leaves only the shape of a dense
+graph.
 
 Example:
   codegen dot sup.gen -o sup.dot && dot -Tsvg sup.dot -o sup.svg
   codegen dot plant.wmod --output-dir graphs/
-  codegen dot big.gen --max-states 0 --layout sfdp | dot -Tsvg > big.svg";
+  codegen dot big.gen --max-states 0 --quick -o big.dot && dot -Tsvg big.dot -o big.svg
+  codegen dot big.gen --max-states 0 --layout sfdp -o big.dot";
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 enum EngineArg {
@@ -83,6 +92,7 @@ impl DotArgs {
     fn options(&self) -> DotOptions {
         DotOptions {
             edge_labels: !self.no_labels,
+            quick: self.quick,
             layout: match self.layout {
                 EngineArg::Dot => Layout::Dot,
                 EngineArg::Sfdp => Layout::Sfdp,
@@ -144,8 +154,9 @@ fn check_size(args: &DotArgs, c: &Component) -> Result<(), Error> {
     Err(Error::Incompatible(format!(
         "{}: `{}` has {} states and {} transitions, more than --max-states {} \
          (Graphviz `dot` takes minutes on graphs this size): draw it anyway with \
-         --max-states {} (or 0), preferably with --layout sfdp, which draws it in \
-         seconds; --no-labels helps a dense graph",
+         --max-states {} (or 0), with --quick (a layered drawing in seconds) or \
+         --layout sfdp (force-directed, under a second); --no-labels helps a dense \
+         graph",
         args.file.display(),
         a.name(),
         a.num_states(),
