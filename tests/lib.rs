@@ -37,11 +37,6 @@ pub fn codegen() -> Command {
     cmd
 }
 
-/// The path of the `codegen` binary the tests run.
-pub fn codegen_path() -> PathBuf {
-    PathBuf::from(codegen().get_program())
-}
-
 /// What a finished command printed, decoded.
 pub struct Run {
     /// Exit code (-1 if killed by a signal).
