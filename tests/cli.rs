@@ -3,7 +3,7 @@
 
 use codegen::formats::read_automaton;
 use codegen::ops;
-use e2e::{model, run_codegen, run_json};
+use e2e::{model, run_codegen, run_json, run_with_closed_stdout};
 use std::path::Path;
 
 const SMALL_FACTORY_PLANTS: [&str; 2] = [
@@ -551,4 +551,357 @@ fn gen_reports_project_errors_with_file_and_line_and_exit_2() {
         "{}",
         run.stderr
     );
+}
+
+#[test]
+fn a_reader_that_stops_early_ends_every_verb_quietly_with_its_exit_code() {
+    // `codegen … | head`: the pipe closes before the output is written.
+    // Every verb that prints must stop without a panic and without a
+    // word on stderr, and still exit with its result (check: 1).
+    let dir = tempfile::tempdir().unwrap();
+    let tmp = |name: &str| dir.path().join(name).display().to_string();
+    let mut synth = vec!["synth".to_owned(), "-o".to_owned(), tmp("sup.gen")];
+    synth.push("--plant".into());
+    synth.extend(SMALL_FACTORY_PLANTS.map(String::from));
+    synth.push("--spec".into());
+    synth.extend(SMALL_FACTORY_SPECS.map(String::from));
+    let mut check = vec!["check".to_owned(), "--plant".to_owned()];
+    check.extend(SMALL_FACTORY_PLANTS.map(String::from));
+    check.extend(["--sup".to_owned(), SMALL_FACTORY_SPECS[0].to_owned()]);
+    let mut condat = vec!["condat".to_owned(), "--plant".to_owned()];
+    condat.extend(SMALL_FACTORY_PLANTS.map(String::from));
+    condat.extend(["--sup".to_owned(), SMALL_FACTORY_SPECS[0].to_owned()]);
+    let words = |ws: &[&str]| ws.iter().map(|w| w.to_string()).collect::<Vec<_>>();
+    let cases: Vec<(Vec<String>, i32)> = vec![
+        (words(&["info", SMALL_FACTORY_PLANTS[0]]), 0),
+        (synth, 0),
+        (check, 1),
+        (condat, 0),
+        (
+            words(&[
+                "convert",
+                "models/bench/transferline/TU.gen",
+                &tmp("tu.wmod"),
+            ]),
+            0,
+        ),
+        (words(&["dot", "models/boiler/sup/sup_pilot.toml"]), 0),
+        (words(&["gen", "models/press.plc.toml"]), 0),
+        (words(&["gen", "models/press.plc.toml", "--stats"]), 0),
+        (words(&["wiring", "models/press.plc.toml"]), 0),
+        (words(&["--help"]), 0),
+        (words(&["dot", "--help"]), 0),
+    ];
+    for (args, code) in cases {
+        for json in [false, true] {
+            let mut args = args.clone();
+            if json {
+                if args[0].starts_with("--") || args.contains(&"--help".to_owned()) {
+                    continue;
+                }
+                args.insert(0, "--json".into());
+            }
+            let what = args.join(" ");
+            let open = run_codegen(&args);
+            assert_eq!(open.code, code, "{what}: {}", open.stderr);
+            assert!(!open.stdout.is_empty(), "{what}: prints nothing to cut");
+            let closed = run_with_closed_stdout(&args);
+            assert!(
+                !closed.stderr.contains("panicked"),
+                "{what}: {}",
+                closed.stderr
+            );
+            assert_eq!(closed.stderr, "", "{what}");
+            assert_eq!(closed.code, code, "{what}");
+        }
+    }
+    // An error still reaches stderr (and exit code 2) when stdout is gone.
+    let closed = run_with_closed_stdout(["--json", "info", "no/such/file.gen"]);
+    assert_eq!(closed.code, 2);
+    assert!(closed.stderr.starts_with("error: "), "{}", closed.stderr);
+    assert!(!closed.stderr.contains("panicked"), "{}", closed.stderr);
+}
+
+#[test]
+fn dot_writes_one_graph_per_file_and_names_the_files_after_the_components() {
+    let module = "crates/des/tests/fixtures/formats/smallfactory.wmod";
+    // Several graphs in one stream are not a Graphviz file: refused, with
+    // the two ways out.
+    let run = run_codegen(["dot", module]);
+    assert_eq!(run.code, 2, "{}", run.stdout);
+    assert_eq!(run.stdout, "");
+    for needle in [
+        "3 automata",
+        "MACH1, BUFSPEC, NEVER_E20_FIRST",
+        "--component NAME",
+        "--output-dir DIR",
+    ] {
+        assert!(run.stderr.contains(needle), "{needle}: {}", run.stderr);
+    }
+
+    let dir = tempfile::tempdir().unwrap();
+    let graphs = dir.path().join("graphs");
+    let run = run_codegen(["dot", module, "--output-dir", graphs.to_str().unwrap()]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let mut files: Vec<String> = std::fs::read_dir(&graphs)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    files.sort();
+    assert_eq!(files, ["BUFSPEC.dot", "MACH1.dot", "NEVER_E20_FIRST.dot"]);
+    for file in &files {
+        let text = std::fs::read_to_string(graphs.join(file)).unwrap();
+        let name = file.trim_end_matches(".dot");
+        assert!(
+            text.starts_with(&format!("digraph \"{name}\" {{")),
+            "{file}: {text}"
+        );
+        assert_eq!(text.matches("digraph").count(), 1, "{file}");
+        assert!(
+            run.stdout.contains(&format!("{file} ({name})")),
+            "{}",
+            run.stdout
+        );
+    }
+
+    // One component: to stdout, or to a file with -o.
+    let run = run_codegen(["dot", module, "--component", "BUFSPEC"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(
+        run.stdout,
+        std::fs::read_to_string(graphs.join("BUFSPEC.dot")).unwrap()
+    );
+    let out = dir.path().join("mach1.dot");
+    let run = run_codegen([
+        "dot",
+        module,
+        "--component",
+        "MACH1",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(
+        std::fs::read_to_string(&out).unwrap(),
+        std::fs::read_to_string(graphs.join("MACH1.dot")).unwrap()
+    );
+}
+
+#[test]
+fn dot_refuses_a_large_automaton_unless_allowed_and_offers_a_scalable_drawing() {
+    // 406 states, 5,525 transitions: Graphviz `dot` does not finish in
+    // minutes.
+    let big = "models/boiler/sup/sup_pilot_seq.toml";
+    let run = run_codegen(["dot", big]);
+    assert_eq!(run.code, 2);
+    assert_eq!(run.stdout, "");
+    for needle in [
+        "`sup_pilot_seq` has 406 states",
+        "--max-states 406",
+        "--quick",
+        "--layout sfdp",
+        "--no-labels",
+    ] {
+        assert!(run.stderr.contains(needle), "{needle}: {}", run.stderr);
+    }
+
+    let run = run_codegen(["dot", big, "--max-states", "406", "--layout", "sfdp"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("layout=sfdp;"), "{}", run.stdout);
+    assert!(!run.stdout.contains("rankdir"), "sfdp has no ranks");
+    assert!(run.stdout.contains("label=\"idle\""));
+
+    let run = run_codegen(["dot", big, "--max-states", "406", "--quick"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stdout.contains("rankdir=LR;\n  nslimit=1;\n"),
+        "{}",
+        run.stdout
+    );
+    assert!(run.stdout.contains("[xlabel=\""), "{}", run.stdout);
+    assert!(
+        run.stdout
+            .lines()
+            .filter(|l| l.contains(" -> "))
+            .all(|l| !l.contains("[label=")),
+        "edge labels float"
+    );
+
+    let run = run_codegen(["dot", big, "--max-states", "0", "--no-labels"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let edges: Vec<&str> = run.stdout.lines().filter(|l| l.contains(" -> s")).collect();
+    assert!(edges.len() > 406, "{}", edges.len());
+    assert!(edges.iter().all(|e| !e.contains("label")), "{edges:?}");
+    assert!(edges.iter().any(|e| e.contains("style=dashed")));
+}
+
+#[test]
+fn check_gives_the_components_of_every_composite_state() {
+    let mut args = vec!["check", "--plant"];
+    args.extend(SMALL_FACTORY_PLANTS);
+    args.extend(["--sup", SMALL_FACTORY_SPECS[0]]);
+    let run = run_codegen(&args);
+    assert!(
+        run.stdout
+            .contains("the plant (in state 1.0 = (MACH1 1, MACH2 0)) can do uncontrollable `e10`"),
+        "{}",
+        run.stdout
+    );
+    let (_, report) = run_json(&args);
+    let w = &report["supervisors"][0]["uncontrollable"];
+    assert_eq!(w["plant_state"], "1.0");
+    assert_eq!(
+        w["plant_components"],
+        serde_json::json!({ "MACH1": "1", "MACH2": "0" })
+    );
+    // JSON objects keep the composition order.
+    let text = serde_json::to_string(&w["plant_components"]).unwrap();
+    assert!(text.find("MACH1") < text.find("MACH2"), "{text}");
+}
+
+#[test]
+fn check_keys_a_blocking_closed_loop_state_by_plant_and_supervisors() {
+    let dir = tempfile::tempdir().unwrap();
+    let plant = write(
+        dir.path(),
+        "g.toml",
+        "name = \"g\"\ninitial = \"0\"\ncontrollable = [\"a\", \"b\"]\nuncontrollable = []\n\
+         transitions = [[\"0\", \"a\", \"1\"], [\"0\", \"b\", \"2\"], [\"1\", \"b\", \"3\"], [\"2\", \"a\", \"3\"]]\n\
+         marked = [\"3\"]\n",
+    );
+    // After `a` the supervisor stops everything: the closed loop blocks.
+    let stop = write(
+        dir.path(),
+        "stop.toml",
+        "name = \"stop\"\ninitial = \"go\"\ncontrollable = [\"a\", \"b\"]\nuncontrollable = []\n\
+         transitions = [[\"go\", \"a\", \"stopped\"], [\"go\", \"b\", \"done\"], [\"done\", \"a\", \"done\"]]\n\
+         marked = [\"done\"]\n",
+    );
+    let (code, report) = run_json(["check", "--plant", &plant, "--sup", &stop]);
+    assert_eq!(code, 1, "{report}");
+    let b = &report["supervisors"][0]["blocking"];
+    assert_eq!(b["path"], serde_json::json!(["a"]));
+    assert_eq!(b["state"], "1.stopped");
+    assert_eq!(
+        b["components"],
+        serde_json::json!({ "g": "1", "stop": "stopped" })
+    );
+    let run = run_codegen(["check", "--plant", &plant, "--sup", &stop]);
+    assert!(
+        run.stdout
+            .contains("the closed loop is in state 1.stopped = (g 1, stop stopped)"),
+        "{}",
+        run.stdout
+    );
+}
+
+#[test]
+fn synth_and_condat_give_the_key_to_the_supervisors_state_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sup.gen");
+    let (code, report) = synth_small_factory(&out, &[]);
+    assert_eq!(code, 0, "{report}");
+    assert_eq!(
+        report["state_names"],
+        serde_json::json!(["MACH1", "MACH2", "BUFSPEC", "BRSPEC"])
+    );
+    let mut args = vec!["synth".to_owned(), "--plant".to_owned()];
+    args.extend(SMALL_FACTORY_PLANTS.map(String::from));
+    args.push("--spec".into());
+    args.extend(SMALL_FACTORY_SPECS.map(String::from));
+    args.extend(["-o".into(), out.display().to_string()]);
+    let run = run_codegen(&args);
+    assert!(
+        run.stdout
+            .contains("states:     named MACH1.MACH2.BUFSPEC.BRSPEC\n"),
+        "{}",
+        run.stdout
+    );
+
+    let mut args = vec!["condat", "--plant"];
+    args.extend(SMALL_FACTORY_PLANTS);
+    let out_str = out.display().to_string();
+    args.extend(["--sup", &out_str]);
+    let (code, rows) = run_json(&args);
+    assert_eq!(code, 0);
+    // A synthesised supervisor's state is one plant state, and the key
+    // matches the first positions of its name.
+    for row in rows.as_array().unwrap() {
+        let plant = row["plant"].as_array().unwrap();
+        assert_eq!(plant.len(), 1, "{row}");
+        let key = format!(
+            "{}.{}.",
+            plant[0]["MACH1"].as_str().unwrap(),
+            plant[0]["MACH2"].as_str().unwrap()
+        );
+        assert!(row["state"].as_str().unwrap().starts_with(&key), "{row}");
+    }
+    let run = run_codegen(&args);
+    assert!(
+        run.stdout
+            .starts_with("sup: controllable events disabled per state, with the plant state (MACH1, MACH2) it occurs with\n"),
+        "{}",
+        run.stdout
+    );
+    assert!(
+        run.stdout.contains("\n  0.0.0.0 (0, 0): e21\n"),
+        "{}",
+        run.stdout
+    );
+}
+
+#[test]
+fn convert_keeps_the_kind_of_every_component() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = |name: &str| dir.path().join(name).display().to_string();
+    let (code, _) = synth_small_factory(dir.path().join("sup.gen").as_path(), &[]);
+    assert_eq!(code, 0);
+    // A supervisor stays one through every format.
+    let mut current = path("sup.gen");
+    for next in ["sup.ads", "sup.toml", "sup2.gen", "sup.wmod", "sup3.toml"] {
+        let next = path(next);
+        let (code, report) = run_json(["convert", &current, &next]);
+        assert_eq!(code, 0, "{report}");
+        assert_eq!(report["components"][0]["kind"], "supervisor", "{next}");
+        let (_, info) = run_json(["info", &next]);
+        assert_eq!(info[0]["kind"], "supervisor", "{next}");
+        current = next;
+    }
+    let wmod = std::fs::read_to_string(path("sup.wmod")).unwrap();
+    assert!(
+        wmod.contains("<SimpleComponent Kind=\"SUPERVISOR\" Name=\"sup\">"),
+        "{wmod}"
+    );
+
+    // The components of a module keep theirs through single-automaton
+    // formats.
+    let module = "crates/des/tests/fixtures/formats/smallfactory.wmod";
+    for (component, kind) in [
+        ("BUFSPEC", "SPEC"),
+        ("NEVER_E20_FIRST", "PROPERTY"),
+        ("MACH1", "PLANT"),
+    ] {
+        let gen = path(&format!("{component}.gen"));
+        let back = path(&format!("{component}.wmod"));
+        assert_eq!(
+            run_codegen(["convert", module, &gen, "--component", component]).code,
+            0
+        );
+        assert_eq!(run_codegen(["convert", &gen, &back]).code, 0);
+        let text = std::fs::read_to_string(&back).unwrap();
+        assert!(
+            text.contains(&format!(
+                "<SimpleComponent Kind=\"{kind}\" Name=\"{component}\">"
+            )),
+            "{component}: {text}"
+        );
+    }
+
+    // A file that states no kind gets one with --kind.
+    let spec = path("bufspec.wmod");
+    let run = run_codegen(["convert", SMALL_FACTORY_SPECS[0], &spec, "--kind", "spec"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("BUFSPEC (spec)"), "{}", run.stdout);
+    let text = std::fs::read_to_string(&spec).unwrap();
+    assert!(text.contains("Kind=\"SPEC\""), "{text}");
 }

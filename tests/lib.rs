@@ -86,3 +86,23 @@ where
         .unwrap_or_else(|e| panic!("not JSON ({e}):\n{}\nstderr:\n{}", run.stdout, run.stderr));
     (run.code, value)
 }
+
+/// Runs `codegen` with `args` as `codegen … | head -0` would: the reader
+/// of its standard output is gone before it prints anything.
+pub fn run_with_closed_stdout<I, S>(args: I) -> Run
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<std::ffi::OsStr>,
+{
+    let mut child = codegen()
+        .args(args)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("codegen starts");
+    // Closing the only read end makes every write to the pipe fail with
+    // EPIPE (Rust programs ignore SIGPIPE, so they see the error).
+    drop(child.stdout.take());
+    child.wait_with_output().expect("codegen finishes").into()
+}

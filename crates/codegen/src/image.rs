@@ -7,9 +7,10 @@
 //! [`Program`] with the very decoder the target uses, or through
 //! [`LogicImage`], which evaluates the minimised CMSSM covers.
 
-use crate::backend::logic::{Encoding, LogicSupervisor};
+use crate::backend::logic::{Encoding, LogicSupervisor, Minimisation};
 use crate::backend::table::EncodedTable;
 use crate::error::{Error, Result};
+use crate::ops::Progress;
 use crate::project::{Action, Drive, Project, Trigger, Unexpected};
 use executor::program::{self as ex, Config, Index, Program, Span};
 use executor::table::{config_crc, image_crc, SupervisorTable};
@@ -318,16 +319,24 @@ pub struct LogicImage {
 impl LogicImage {
     /// Synthesises (and verifies) the logic of every supervisor.
     pub fn new(project: &Project) -> Result<LogicImage> {
+        Self::with_progress(project, &())
+    }
+
+    /// [`LogicImage::new`], telling `progress` which supervisor and phase
+    /// it is working on.
+    pub fn with_progress(project: &Project, progress: &dyn Progress) -> Result<LogicImage> {
         let pools = ConfigPools::from_project(project)?;
         let supervisors = project
             .supervisors
             .iter()
             .map(|s| {
                 let local: Vec<_> = s.local_events.iter().map(|&(_, id)| id).collect();
-                LogicSupervisor::synthesize(
+                LogicSupervisor::synthesize_reporting(
                     &s.automaton,
                     &local,
                     Encoding::binary(s.automaton.num_states()),
+                    Minimisation::PerFunction,
+                    progress,
                 )
                 .map_err(|e| Error::Incompatible(format!("supervisor `{}`: {e}", s.name)))
             })

@@ -16,6 +16,14 @@
 //! A second test minimises random automata on both sides (sizes equal,
 //! results isomorphic, languages kept).
 //!
+//! Both tests also write every automaton of ours they compare (plant
+//! composition, supervisor, minimal supervisor; minimal automaton) as a
+//! `.gen` file with our writer and have libFAUDES read it: libFAUDES must
+//! accept it and read back the same states (by name), events,
+//! controllability, transitions, initial and marked states. Composite
+//! state names such as `0.0` once went out unquoted, which libFAUDES reads
+//! as a number and refuses.
+//!
 //! The generators are tuned for a healthy mix (see the tallies printed at
 //! the end); with 100 cases or more the synthesis test insists on at least
 //! 5% empty supervisors and 20% supervisors that control restricts below
@@ -36,6 +44,7 @@
 //! When run without the package they fail: a skipped oracle must not look
 //! like a pass.
 
+use des::formats::gen;
 use des::ops::{
     accessible, inverse_projection, is_trim, isomorphic, language_difference, minstate, supcon,
     sync, trim,
@@ -98,10 +107,15 @@ enum Problem {
         id: usize,
         plant: Vec<JsonAutomaton>,
         spec: Vec<JsonAutomaton>,
+        /// Our `.gen` files of this case, for libFAUDES to read.
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        gen: Vec<GenFile>,
     },
     Minimize {
         id: usize,
         minimize: JsonAutomaton,
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        gen: Vec<GenFile>,
     },
 }
 
@@ -110,6 +124,86 @@ impl Problem {
         match self {
             Problem::Synthesis { id, .. } | Problem::Minimize { id, .. } => *id,
         }
+    }
+
+    fn gen_mut(&mut self) -> &mut Vec<GenFile> {
+        match self {
+            Problem::Synthesis { gen, .. } | Problem::Minimize { gen, .. } => gen,
+        }
+    }
+}
+
+/// A `.gen` file written by us: `what` it holds, and its text.
+#[derive(Debug, Clone, Serialize)]
+struct GenFile {
+    what: String,
+    text: String,
+}
+
+impl GenFile {
+    fn of(what: &str, a: &Automaton) -> GenFile {
+        GenFile {
+            what: what.to_owned(),
+            text: gen::write(a),
+        }
+    }
+}
+
+/// What libFAUDES read from one of our `.gen` files; states by name (an
+/// unnamed state by its libFAUDES index).
+#[derive(Debug, Clone, Default, PartialEq, Eq, Deserialize)]
+struct GenRead {
+    what: String,
+    error: Option<String>,
+    #[serde(default)]
+    states: Vec<String>,
+    #[serde(default)]
+    initial: Vec<String>,
+    #[serde(default)]
+    marked: Vec<String>,
+    #[serde(default)]
+    events: Vec<(String, bool)>,
+    #[serde(default)]
+    transitions: Vec<(String, String, String)>,
+}
+
+impl GenRead {
+    /// What libFAUDES should read from our file of `a`, sorted like
+    /// [`GenRead::sorted`]. Our writer numbers unnamed states from 1.
+    fn expected(what: &str, a: &Automaton) -> GenRead {
+        let name = |s: StateId| {
+            if a.has_state_names() {
+                a.state_name(s).into_owned()
+            } else {
+                (s.0 + 1).to_string()
+            }
+        };
+        let al = a.alphabet();
+        GenRead {
+            what: what.to_owned(),
+            error: None,
+            states: a.states().map(name).collect(),
+            initial: a.initial().map(name).into_iter().collect(),
+            marked: a.marked_states().map(name).collect(),
+            events: al
+                .iter()
+                .map(|(_, e)| (e.name.clone(), e.controllable))
+                .collect(),
+            transitions: a
+                .iter_transitions()
+                .map(|(s, e, t)| (name(s), al.name(e).to_owned(), name(t)))
+                .collect(),
+        }
+        .sorted()
+    }
+
+    fn sorted(mut self) -> GenRead {
+        self.states.sort();
+        self.initial.sort();
+        self.marked.sort();
+        self.events.sort();
+        self.transitions.sort();
+        self
     }
 }
 
@@ -126,6 +220,9 @@ struct Answer {
     sup_trim: Option<bool>,
     min: Option<JsonAutomaton>,
     min_size: Option<(usize, usize)>,
+    /// libFAUDES's reading of each of our `.gen` files, in order.
+    #[serde(default)]
+    gen_read: Vec<GenRead>,
 }
 
 // ---------------------------------------------------------------------
@@ -459,7 +556,12 @@ fn synthesis_problem(seed: u64, id: usize) -> Problem {
         );
         spec.push(random_automaton(&mut rng, &format!("E{j}"), &events, shape));
     }
-    Problem::Synthesis { id, plant, spec }
+    Problem::Synthesis {
+        id,
+        plant,
+        spec,
+        gen: Vec::new(),
+    }
 }
 
 /// An accessible random automaton for minimisation. Half of them are
@@ -518,7 +620,11 @@ fn minimize_problem(seed: u64, id: usize, raw: bool) -> Problem {
     } else {
         a = to_json(&accessible(&a.build()), "A");
     }
-    Problem::Minimize { id, minimize: a }
+    Problem::Minimize {
+        id,
+        minimize: a,
+        gen: Vec::new(),
+    }
 }
 
 fn to_json(a: &Automaton, name: &str) -> JsonAutomaton {
@@ -563,6 +669,26 @@ impl Issues {
         }
     }
 
+    /// libFAUDES must read our `.gen` of `a` back as `a`.
+    fn gen_read_back(&mut self, what: &str, a: &Automaton, read: Option<&GenRead>) {
+        let Some(read) = read else {
+            self.add(format!("libFAUDES did not read our .gen of the {what}"));
+            return;
+        };
+        if let Some(e) = &read.error {
+            self.add(format!("libFAUDES refuses our .gen of the {what}: {e}"));
+            return;
+        }
+        let expected = GenRead::expected(what, a);
+        let read = read.clone().sorted();
+        if read != expected {
+            self.add(format!(
+                "libFAUDES reads our .gen of the {what} differently: ours {expected:?}, \
+                 libFAUDES {read:?}"
+            ));
+        }
+    }
+
     fn language(&mut self, what: &str, ours: &Automaton, theirs: &Automaton) {
         if let Some(d) = language_difference(ours, theirs) {
             let side = if d.in_first { "ours" } else { "libFAUDES's" };
@@ -599,7 +725,7 @@ impl Report {
         if self.failed.len() < SHOWN {
             eprintln!(
                 "MISMATCH {test} seed={seed:#x} case={id}: {what}\n  reproduce: \
-                 FAUDES_DIFF_SEED={seed:#x} FAUDES_DIFF_ONLY={id} cargo test -p codegen \
+                 FAUDES_DIFF_SEED={seed:#x} FAUDES_DIFF_ONLY={id} cargo test --release -p des \
                  --test faudes_diff -- --ignored {test}\n  problem: {json}",
                 test = self.test,
                 seed = self.seed,
@@ -643,68 +769,121 @@ fn percent(part: usize, whole: usize) -> f64 {
     100.0 * part as f64 / whole.max(1) as f64
 }
 
+/// Our side of one synthesis problem.
+struct OurSynthesis {
+    /// The plant composition.
+    g: Automaton,
+    /// The specification composition.
+    e: Automaton,
+    sup: Automaton,
+    min: Automaton,
+}
+
+impl OurSynthesis {
+    fn of(problem: &Problem) -> OurSynthesis {
+        let Problem::Synthesis { plant, spec, .. } = problem else {
+            unreachable!()
+        };
+        let plants: Vec<Automaton> = plant.iter().map(JsonAutomaton::build).collect();
+        let specs: Vec<Automaton> = spec.iter().map(JsonAutomaton::build).collect();
+        let g = sync(&plants.iter().collect::<Vec<_>>()).unwrap();
+        let e = sync(&specs.iter().collect::<Vec<_>>()).unwrap();
+        let sup = supcon(&g, &e).unwrap();
+        let min = minstate(&sup);
+        OurSynthesis { g, e, sup, min }
+    }
+
+    /// The automata libFAUDES reads back from our `.gen` files: state
+    /// names composed by `sync` and `supcon` (`0.1`), merged by minstate.
+    fn written(&self) -> [(&'static str, &Automaton); 3] {
+        [
+            ("plant composition", &self.g),
+            ("supervisor", &self.sup),
+            ("minimal supervisor", &self.min),
+        ]
+    }
+}
+
+/// Attaches to each problem our `.gen` files of `written(i)`.
+fn attach_gen_files<'a>(
+    problems: &mut [Problem],
+    written: impl Fn(usize) -> Vec<(&'static str, &'a Automaton)>,
+) {
+    for (i, p) in problems.iter_mut().enumerate() {
+        let files = written(i).into_iter().map(|(what, a)| GenFile::of(what, a));
+        p.gen_mut().extend(files);
+    }
+}
+
+/// Compares libFAUDES's reading of each `.gen` file with what we wrote.
+fn check_gen_files(issues: &mut Issues, written: &[(&'static str, &Automaton)], answer: &Answer) {
+    for (i, (what, a)) in written.iter().enumerate() {
+        let read = answer.gen_read.get(i);
+        assert!(
+            read.is_none_or(|r| r.what == *what),
+            "oracle answers out of order"
+        );
+        issues.gen_read_back(what, a, read);
+    }
+}
+
 #[test]
 #[ignore = "needs python3 with faudes (pip install faudes); run by cargo xtask ci"]
 fn supcon_and_minstate_agree_with_libfaudes() {
     require_faudes();
     let settings = Settings::from_env();
     let start = Instant::now();
-    let problems: Vec<Problem> = settings
+    let mut problems: Vec<Problem> = settings
         .ids()
         .into_iter()
         .map(|id| synthesis_problem(settings.seed, id))
         .collect();
+    let ours: Vec<OurSynthesis> = problems.iter().map(OurSynthesis::of).collect();
+    attach_gen_files(&mut problems, |i| ours[i].written().to_vec());
     let answers = ask_oracle(&problems);
     let oracle_time = start.elapsed();
 
     let mut report = Report::new(settings.seed, "supcon_and_minstate_agree_with_libfaudes");
     let mut tally = Tally::default();
-    for (problem, answer) in problems.iter().zip(&answers) {
-        let Problem::Synthesis { plant, spec, .. } = problem else {
-            unreachable!()
-        };
+    for ((problem, answer), our) in problems.iter().zip(&answers).zip(&ours) {
         let mut issues = Issues::default();
+        check_gen_files(&mut issues, &our.written(), answer);
         if let Some(e) = &answer.error {
             issues.add(format!("libFAUDES threw: {e}"));
             report.case(problem, issues);
             continue;
         }
-        let plants: Vec<Automaton> = plant.iter().map(JsonAutomaton::build).collect();
-        let specs: Vec<Automaton> = spec.iter().map(JsonAutomaton::build).collect();
-        let g = sync(&plants.iter().collect::<Vec<_>>()).unwrap();
-        let e = sync(&specs.iter().collect::<Vec<_>>()).unwrap();
-        issues.size("plant sync", size(&g), answer.plant_size);
-        let e_ext = inverse_projection(&e, g.alphabet()).unwrap();
+        let OurSynthesis { g, e, sup, min } = our;
+        issues.size("plant sync", size(g), answer.plant_size);
+        let e_ext = inverse_projection(e, g.alphabet()).unwrap();
         issues.size(
             "spec sync + inverse projection",
             size(&e_ext),
             answer.spec_size,
         );
 
-        let sup = supcon(&g, &e).unwrap();
         let their_sup = answer.sup.as_ref().expect("sup").build();
-        issues.language("supcon", &sup, &their_sup);
-        issues.size("supcon", size(&sup), answer.sup_size);
+        issues.language("supcon", sup, &their_sup);
+        issues.size("supcon", size(sup), answer.sup_size);
         if answer.sup_trim != Some(true) {
             issues.add("libFAUDES's supervisor is not trim".into());
         }
 
-        let min = minstate(&sup);
         let their_min = answer.min.as_ref().expect("min").build();
-        issues.size("minstate(supcon)", size(&min), answer.min_size);
-        if !isomorphic(&min, &their_min) {
+        issues.size("minstate(supcon)", size(min), answer.min_size);
+        if !isomorphic(min, &their_min) {
             issues.add("minimal supervisors are not isomorphic".into());
         }
         report.case(problem, issues);
 
-        let trim_product = trim(&sync(&[&g, &e]).unwrap());
+        let trim_product = trim(&sync(&[g, e]).unwrap());
         if sup.is_empty() {
             if trim_product.is_empty() {
                 tally.empty_by_blocking += 1;
             } else {
                 tally.empty_by_control += 1;
             }
-        } else if language_difference(&sup, &trim_product).is_some() {
+        } else if language_difference(sup, &trim_product).is_some() {
             tally.restricted += 1;
         } else {
             tally.unrestricted += 1;
@@ -756,34 +935,41 @@ fn minstate_agrees_with_libfaudes_statemin() {
     // marking and by which events lead into which block, absent
     // transitions staying absent (no completion with a dump state); ours
     // does the same, so both classes must agree.
-    let problems: Vec<Problem> = settings
+    let mut problems: Vec<Problem> = settings
         .ids()
         .into_iter()
         .map(|id| minimize_problem(settings.seed, id, id % 2 == 1))
         .collect();
+    let inputs: Vec<Automaton> = problems
+        .iter()
+        .map(|p| match p {
+            Problem::Minimize { minimize, .. } => minimize.build(),
+            Problem::Synthesis { .. } => unreachable!(),
+        })
+        .collect();
+    let minimal: Vec<Automaton> = inputs.iter().map(minstate).collect();
+    let written = |i: usize| vec![("input", &inputs[i]), ("minimal automaton", &minimal[i])];
+    attach_gen_files(&mut problems, written);
     let answers = ask_oracle(&problems);
     let mut report = Report::new(settings.seed, "minstate_agrees_with_libfaudes_statemin");
     let (mut shrunk, mut blocking, mut inaccessible) = (0, 0, 0);
-    for (problem, answer) in problems.iter().zip(&answers) {
-        let Problem::Minimize { minimize, .. } = problem else {
-            unreachable!()
-        };
+    for (i, (problem, answer)) in problems.iter().zip(&answers).enumerate() {
         let mut issues = Issues::default();
+        check_gen_files(&mut issues, &written(i), answer);
         if let Some(e) = &answer.error {
             issues.add(format!("libFAUDES threw: {e}"));
             report.case(problem, issues);
             continue;
         }
-        let a = minimize.build();
-        let ours = minstate(&a);
+        let (a, ours) = (&inputs[i], &minimal[i]);
         let theirs = answer.min.as_ref().expect("min").build();
-        issues.size("minstate", size(&ours), answer.min_size);
-        if !isomorphic(&ours, &theirs) {
+        issues.size("minstate", size(ours), answer.min_size);
+        if !isomorphic(ours, &theirs) {
             issues.add("minimal automata are not isomorphic".into());
         }
-        issues.language("minstate against its input", &ours, &a);
+        issues.language("minstate against its input", ours, a);
         report.case(problem, issues);
-        let acc = accessible(&a);
+        let acc = accessible(a);
         if ours.num_states() < acc.num_states() {
             shrunk += 1;
         }

@@ -713,6 +713,106 @@ proptest! {
 }
 
 // ---------------------------------------------------------------------
+// Names libFAUDES would misread, and kinds
+
+/// Names that libFAUDES's tokenizer reads as numbers (`0.0`, `2.0` as
+/// reals, `0x1F` as a hexadecimal index, `inf`), as an attribute (`+1`) or
+/// as an index (`12`): composite state names from `sync` look like the
+/// first two.
+const NUMBER_LIKE: [&str; 10] = [
+    "0.0", "2.0", "1.5", ".5", "5.", "0x1F", "inf", "-inf", "+1", "12",
+];
+
+fn number_like_names() -> Automaton {
+    let mut b = AutomatonBuilder::new("numbers");
+    let e = b.add_event("2.0", true).unwrap();
+    let states: Vec<StateId> = NUMBER_LIKE.iter().map(|n| b.add_state(n)).collect();
+    b.set_initial(states[0]).unwrap();
+    b.mark(states[1]);
+    for pair in states.windows(2) {
+        b.add_transition(pair[0], e, pair[1], 0);
+    }
+    b.build().unwrap()
+}
+
+#[test]
+fn gen_quotes_every_name_libfaudes_would_read_as_a_number() {
+    let a = number_like_names();
+    let text = gen::write(&a);
+    for name in NUMBER_LIKE {
+        assert!(
+            text.contains(&format!("\n\"{name}\"\n")),
+            "{name} unquoted:\n{text}"
+        );
+    }
+    assert!(text.contains("\n\"2.0\" +C+\n"), "{text}");
+    assert_eq!(gen::read(&text, Path::new("n.gen")).unwrap(), a);
+    // Names that start with a letter or `_` stay bare; sync's composite
+    // names of such states too.
+    let mut b = AutomatonBuilder::new("plain");
+    let go = b.add_event("go", true).unwrap();
+    let s = b.add_state("idle.busy");
+    let t = b.add_state("_x-1");
+    b.set_initial(s).unwrap();
+    b.add_transition(s, go, t, 0);
+    let text = gen::write(&b.build().unwrap());
+    assert!(text.contains("\nidle.busy go _x-1\n"), "{text}");
+}
+
+fn supervisor(kind: Kind) -> Component {
+    Component {
+        kind,
+        automaton: bench("smallfactory", "MACH1"),
+    }
+}
+
+#[test]
+fn every_format_keeps_the_kind_of_a_component() {
+    for kind in [Kind::Plant, Kind::Spec, Kind::Supervisor, Kind::Property] {
+        for format in all_formats() {
+            let c = supervisor(kind);
+            let text = formats::write_string(format, std::slice::from_ref(&c)).unwrap();
+            let back = read_str(&text, format, Path::new("k")).unwrap();
+            let context = format!("{kind} through {format:?}:\n{text}");
+            assert_eq!(back.len(), 1, "{context}");
+            assert_eq!(back[0].kind, kind, "{context}");
+            assert_same(&back[0].automaton, &c.automaton, &context);
+        }
+    }
+    // Unstated stays unstated (and a .gen looks as before).
+    let c = supervisor(Kind::Unspecified);
+    let text = formats::write_string(Format::Gen, std::slice::from_ref(&c)).unwrap();
+    assert!(
+        text.starts_with("<Generator name=\"MACH1\" ftype=\"System\">\n"),
+        "{text}"
+    );
+    assert_eq!(
+        read_str(&text, Format::Gen, Path::new("k")).unwrap()[0].kind,
+        Kind::Unspecified
+    );
+    let text = formats::write_string(Format::Gen, &[supervisor(Kind::Supervisor)]).unwrap();
+    assert!(
+        text.starts_with("<Generator name=\"MACH1\" ftype=\"System\" kind=\"supervisor\">\n"),
+        "{text}"
+    );
+    let text = formats::write_string(Format::Ads, &[supervisor(Kind::Spec)]).unwrap();
+    assert!(text.contains("\n# kind = \"spec\"\n"), "{text}");
+}
+
+#[test]
+fn an_unknown_kind_is_an_error_at_its_line() {
+    let gen_text = "% a comment\n<Generator name=\"m\" kind=\"plantt\">\n<Alphabet> a </Alphabet>\n</Generator>\n";
+    let e = read_str(gen_text, Format::Gen, Path::new("m.gen")).unwrap_err();
+    assert_eq!(location(&e).0, 2, "{e}");
+    assert!(e.to_string().contains("unknown kind `plantt`"), "{e}");
+    let ads_text =
+        ads::write(&bench("smallfactory", "MACH1")).replacen('\n', "\n# kind = \"boss\"\n", 1);
+    let e = read_str(&ads_text, Format::Ads, Path::new("m.ads")).unwrap_err();
+    assert_eq!(location(&e).0, 2, "{e}");
+    assert!(e.to_string().contains("unknown kind \"boss\""), "{e}");
+}
+
+// ---------------------------------------------------------------------
 // Compatibility and speed (need the outside world or release mode)
 
 /// libFAUDES (Python package `faudes`) reads what we write. Skipped when
@@ -745,12 +845,13 @@ fn libfaudes_reads_our_gen_files() {
     b.add_transition(s, go, t, 0);
     b.add_transition(t, x, s, 0);
     cases.push(b.build().unwrap());
+    cases.push(number_like_names());
     let mut script = String::from("import faudes\n");
     for (i, a) in cases.iter().enumerate() {
         let path = dir.path().join(format!("case{i}.gen"));
         std::fs::write(&path, gen::write(a)).unwrap();
         script.push_str(&format!(
-            "g = faudes.System({:?})\nprint(g.Size(), g.TransRelSize(), g.InitStatesSize(), g.MarkedStatesSize(), g.Alphabet().Size(), g.ControllableEvents().Size(), g.Name())\n",
+            "g = faudes.System({:?})\nprint(g.Size(), g.TransRelSize(), g.InitStatesSize(), g.MarkedStatesSize(), g.Alphabet().Size(), g.ControllableEvents().Size(), g.Name(), '|'.join(sorted(g.StateName(s) for s in g.States())))\n",
             path.to_str().unwrap()
         ));
     }
@@ -771,15 +872,27 @@ fn libfaudes_reads_our_gen_files() {
         .collect();
     assert_eq!(lines.len(), cases.len(), "{stdout}");
     for (a, line) in cases.iter().zip(lines) {
+        let mut names: Vec<String> = a
+            .states()
+            .map(|s| {
+                if a.has_state_names() {
+                    a.state_name(s).into_owned()
+                } else {
+                    String::new()
+                }
+            })
+            .collect();
+        names.sort();
         let expected = format!(
-            "{} {} {} {} {} {} {}",
+            "{} {} {} {} {} {} {} {}",
             a.num_states(),
             a.num_transitions(),
             usize::from(a.initial().is_some()),
             a.marked_states().count(),
             a.alphabet().len(),
             a.alphabet().controllable_count(),
-            a.name()
+            a.name(),
+            names.join("|")
         );
         assert_eq!(line, expected);
     }

@@ -67,6 +67,7 @@
 //! mathematical notation.
 
 use crate::automaton::{Automaton, EventId, StateId};
+use crate::ops::Progress;
 use std::collections::HashSet;
 use std::fmt;
 
@@ -538,6 +539,19 @@ impl LogicSupervisor {
         encoding: Encoding,
         how: Minimisation,
     ) -> Result<LogicSupervisor, LogicError> {
+        Self::synthesize_reporting(a, local, encoding, how, &())
+    }
+
+    /// [`LogicSupervisor::synthesize_with`] that tells `progress` which
+    /// phase it is in (minimising `ω`, minimising `φ`, verifying): on large
+    /// supervisors each can take minutes.
+    pub fn synthesize_reporting(
+        a: &Automaton,
+        local: &[EventId],
+        encoding: Encoding,
+        how: Minimisation,
+        progress: &dyn Progress,
+    ) -> Result<LogicSupervisor, LogicError> {
         if !AVAILABLE {
             return Err(LogicError::Unavailable);
         }
@@ -634,6 +648,13 @@ impl LogicSupervisor {
                 }
             }
         }
+        let phase = |what: &str| {
+            progress.report(
+                &format!("supervisor `{}` ({n} states): {what}", a.name()),
+                0,
+            );
+        };
+        phase(&format!("minimising ω, the next-state logic ({l} bits)"));
         let next = next.minimise(how)?;
 
         // Φ: inputs = code bits only; one row per state.
@@ -654,6 +675,7 @@ impl LogicSupervisor {
                 }
             }
         }
+        phase(&format!("minimising φ, the enabling logic ({m} events)"));
         let defined = defined.minimise(how)?;
 
         let supervisor = LogicSupervisor {
@@ -663,6 +685,7 @@ impl LogicSupervisor {
             next,
             defined,
         };
+        phase("verifying the logic against the automaton");
         supervisor.verify(a, local, &supervisor.encoding)?;
         Ok(supervisor)
     }

@@ -1,48 +1,76 @@
-//! `codegen convert` and `codegen dot`.
+//! `codegen convert`: between model formats.
 
-use super::{load_components, print_json, Outcome};
-use codegen::formats;
+use super::output::{outln, Out};
+use super::{load_components, Outcome};
+use codegen::formats::{self, Kind};
 use codegen::Error;
-use std::path::Path;
+use std::path::PathBuf;
 
-pub fn convert(
-    input: &Path,
-    output: &Path,
-    component: Option<&str>,
-    json: bool,
-) -> Result<Outcome, Error> {
-    let components = load_components(input, component)?;
-    formats::write_file(output, &components)?;
-    if json {
-        let names: Vec<&str> = components.iter().map(|c| c.automaton.name()).collect();
-        print_json(&serde_json::json!({
-            "input": input.display().to_string(),
-            "output": output.display().to_string(),
-            "components": names,
-        }));
-    } else {
-        println!("wrote {} ({} automata)", output.display(), components.len());
-    }
-    Ok(Outcome::Holds)
+/// Arguments of `codegen convert`.
+#[derive(Debug, clap::Args)]
+pub struct ConvertArgs {
+    /// Input file.
+    input: PathBuf,
+    /// Output file; its extension picks the format.
+    output: PathBuf,
+    /// Only this component (for files holding several).
+    #[arg(long)]
+    component: Option<String>,
+    /// Give the written components this kind. By default each keeps the
+    /// kind its file states; one that states none (libFAUDES or TCT files
+    /// from elsewhere) stays unstated, which a `.wmod` must write as PLANT.
+    #[arg(long, value_enum)]
+    kind: Option<KindArg>,
 }
 
-pub fn dot(file: &Path, component: Option<&str>, json: bool) -> Result<Outcome, Error> {
-    let components = load_components(file, component)?;
-    if json {
-        let graphs: Vec<_> = components
-            .iter()
-            .map(|c| {
-                serde_json::json!({
-                    "name": c.automaton.name(),
-                    "dot": codegen::dot::to_dot(&c.automaton),
-                })
-            })
-            .collect();
-        print_json(&graphs);
-    } else {
-        for c in &components {
-            print!("{}", codegen::dot::to_dot(&c.automaton));
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+enum KindArg {
+    Plant,
+    Spec,
+    Supervisor,
+    Property,
+}
+
+impl From<KindArg> for Kind {
+    fn from(k: KindArg) -> Kind {
+        match k {
+            KindArg::Plant => Kind::Plant,
+            KindArg::Spec => Kind::Spec,
+            KindArg::Supervisor => Kind::Supervisor,
+            KindArg::Property => Kind::Property,
         }
+    }
+}
+
+pub fn run(args: &ConvertArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+    let mut components = load_components(&args.input, args.component.as_deref())?;
+    if let Some(kind) = args.kind {
+        for c in &mut components {
+            c.kind = kind.into();
+        }
+    }
+    formats::write_file(&args.output, &components)?;
+    if json {
+        let written: Vec<_> = components
+            .iter()
+            .map(|c| serde_json::json!({ "name": c.automaton.name(), "kind": c.kind }))
+            .collect();
+        out.json(&serde_json::json!({
+            "input": args.input.display().to_string(),
+            "output": args.output.display().to_string(),
+            "components": written,
+        }));
+    } else {
+        let written: Vec<String> = components
+            .iter()
+            .map(|c| format!("{} ({})", c.automaton.name(), c.kind))
+            .collect();
+        outln!(
+            out,
+            "wrote {}: {}",
+            args.output.display(),
+            written.join(", ")
+        );
     }
     Ok(Outcome::Holds)
 }

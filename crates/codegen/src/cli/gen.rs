@@ -1,8 +1,10 @@
 //! `codegen gen`: the generated Rust source of a project, for humans.
 
-use super::{print_json, Outcome};
+use super::output::{outln, Out};
+use super::progress::Spinner;
+use super::Outcome;
 use codegen::backend::table::EncodedTable;
-use codegen::emit::{generate, Backend, SupervisorStats};
+use codegen::emit::{generate_with_progress, Backend, SupervisorStats};
 use codegen::formats;
 use codegen::{project, Error};
 use std::path::{Path, PathBuf};
@@ -41,18 +43,19 @@ fn is_project(path: &Path) -> bool {
         .is_some_and(|n| n.ends_with(".plc.toml"))
 }
 
-pub fn run(args: &GenArgs, json: bool) -> Result<Outcome, Error> {
+pub fn run(args: &GenArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> {
     if !is_project(&args.project) {
-        return automaton_stats(args, json);
+        return automaton_stats(args, json, out);
     }
+    let spinner = Spinner::new(&format!("loading {}", args.project.display()));
     let project = project::load(&args.project)?;
     for w in &project.warnings {
-        eprintln!(
+        spinner.warn(format_args!(
             "warning: {}:{}: {}",
             args.project.display(),
             w.line,
             w.message
-        );
+        ));
     }
     let (backend, name) = match args.backend {
         BackendArg::Table => (Backend::Table, "table"),
@@ -60,25 +63,27 @@ pub fn run(args: &GenArgs, json: bool) -> Result<Outcome, Error> {
         BackendArg::Match => (Backend::Match, "match"),
     };
     let regenerate = format!("codegen gen {} --backend {name}", args.project.display());
-    let generated = generate(&project, backend, &regenerate)?;
+    spinner.phase("generating");
+    let generated = generate_with_progress(&project, backend, &regenerate, &spinner)?;
+    drop(spinner);
     if args.stats {
         if json {
-            print_json(&generated.stats);
+            out.json(&generated.stats);
             return Ok(Outcome::Holds);
         }
-        print_stats(&args.project, &generated.stats, backend);
+        print_stats(out, &args.project, &generated.stats, backend);
         return Ok(Outcome::Holds);
     }
     match &args.output {
         Some(path) => write(path, &generated.code)?,
-        None => print!("{}", generated.code),
+        None => out.push_str(&generated.code),
     }
     Ok(Outcome::Holds)
 }
 
 /// `--stats` of a plain automaton file: the table each automaton would
 /// get as a supervisor of a project.
-fn automaton_stats(args: &GenArgs, json: bool) -> Result<Outcome, Error> {
+fn automaton_stats(args: &GenArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> {
     if !args.stats || !matches!(args.backend, BackendArg::Table) {
         return Err(Error::Incompatible(format!(
             "{}: not a project file (`*.plc.toml`); automaton files only take `--stats` with the table backend",
@@ -94,9 +99,9 @@ fn automaton_stats(args: &GenArgs, json: bool) -> Result<Outcome, Error> {
         })
         .collect();
     if json {
-        print_json(&stats);
+        out.json(&stats);
     } else {
-        print_stats(&args.project, &stats, Backend::Table);
+        print_stats(out, &args.project, &stats, Backend::Table);
     }
     Ok(Outcome::Holds)
 }
@@ -105,19 +110,27 @@ fn write(path: &Path, code: &str) -> Result<(), Error> {
     std::fs::write(path, code).map_err(|e| Error::io(path, e))
 }
 
-fn print_stats(project: &Path, stats: &[SupervisorStats], backend: Backend) {
-    println!("{}:", project.display());
+fn print_stats(out: &mut Out, project: &Path, stats: &[SupervisorStats], backend: Backend) {
+    outln!(out, "{}:", project.display());
     match backend {
         Backend::Table => {
-            println!(
+            outln!(
+                out,
                 "  {:<24} {:>7} {:>7} {:>7} {:>10} {:>10} {:>7}",
-                "supervisor", "states", "events", "layout", "bytes", "naive", "ratio"
+                "supervisor",
+                "states",
+                "events",
+                "layout",
+                "bytes",
+                "naive",
+                "ratio"
             );
             let (mut ours, mut naive) = (0, 0);
             for s in stats {
                 ours += s.table_bytes;
                 naive += s.naive_bytes;
-                println!(
+                outln!(
+                    out,
                     "  {:<24} {:>7} {:>7} {:>7} {:>10} {:>10} {:>6.2}x",
                     s.name,
                     s.states,
@@ -131,7 +144,8 @@ fn print_stats(project: &Path, stats: &[SupervisorStats], backend: Backend) {
                     s.naive_bytes as f64 / s.table_bytes.max(1) as f64
                 );
             }
-            println!(
+            outln!(
+                out,
                 "  {:<24} {:>7} {:>7} {:>7} {:>10} {:>10} {:>6.2}x",
                 "total",
                 "",
@@ -141,17 +155,27 @@ fn print_stats(project: &Path, stats: &[SupervisorStats], backend: Backend) {
                 naive,
                 naive as f64 / ours.max(1) as f64
             );
-            println!("  (naive: one u16 per state × event pair)");
+            outln!(out, "  (naive: one u16 per state × event pair)");
         }
         Backend::Logic | Backend::Match => {
-            println!(
+            outln!(
+                out,
                 "  {:<24} {:>7} {:>7} {:>7} {:>9}",
-                "supervisor", "states", "events", "cubes", "literals"
+                "supervisor",
+                "states",
+                "events",
+                "cubes",
+                "literals"
             );
             for s in stats {
-                println!(
+                outln!(
+                    out,
                     "  {:<24} {:>7} {:>7} {:>7} {:>9}",
-                    s.name, s.states, s.events, s.cubes, s.literals
+                    s.name,
+                    s.states,
+                    s.events,
+                    s.cubes,
+                    s.literals
                 );
             }
         }

@@ -1,6 +1,7 @@
 //! `codegen info`: sizes and properties of automata.
 
-use super::{print_json, Outcome, Size};
+use super::output::{outln, Out};
+use super::{Outcome, Size};
 use codegen::formats;
 use codegen::ops;
 use codegen::Error;
@@ -22,7 +23,7 @@ struct Info {
     nonblocking: bool,
 }
 
-pub fn run(files: &[PathBuf], json: bool) -> Result<Outcome, Error> {
+pub fn run(files: &[PathBuf], json: bool, out: &mut Out) -> Result<Outcome, Error> {
     let mut infos = Vec::new();
     for file in files {
         for c in formats::read_file(file)? {
@@ -47,16 +48,17 @@ pub fn run(files: &[PathBuf], json: bool) -> Result<Outcome, Error> {
         }
     }
     if json {
-        print_json(&infos);
+        out.json(&infos);
         return Ok(Outcome::Holds);
     }
     for i in &infos {
         let yes = |b: bool| if b { "yes" } else { "no" };
-        println!("{} ({}, {}):", i.name, i.kind, i.file);
-        println!("  {}", i.size);
-        println!("  marked states: {}", i.marked);
-        println!("  deterministic: yes");
-        println!(
+        outln!(out, "{} ({}, {}):", i.name, i.kind, i.file);
+        outln!(out, "  {}", i.size);
+        outln!(out, "  marked states: {}", i.marked);
+        outln!(out, "  deterministic: yes");
+        outln!(
+            out,
             "  reachable:     {} of {}{}",
             i.reachable,
             i.size.states,
@@ -66,9 +68,14 @@ pub fn run(files: &[PathBuf], json: bool) -> Result<Outcome, Error> {
                 " (no initial state)"
             }
         );
-        println!("  coreachable:   {} of {}", i.coreachable, i.size.states);
-        println!("  trim:          {}", yes(i.trim));
-        println!("  nonblocking:   {}", yes(i.nonblocking));
+        outln!(
+            out,
+            "  coreachable:   {} of {}",
+            i.coreachable,
+            i.size.states
+        );
+        outln!(out, "  trim:          {}", yes(i.trim));
+        outln!(out, "  nonblocking:   {}", yes(i.nonblocking));
     }
     Ok(Outcome::Holds)
 }

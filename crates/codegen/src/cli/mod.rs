@@ -1,13 +1,17 @@
 //! Command-line interface: argument parsing, model loading and output.
 //!
 //! Exit codes: 0 = done and every checked property holds; 1 = a checked
-//! property fails; 2 = bad input or usage.
+//! property fails; 2 = bad input or usage. A closed standard output (`|
+//! head`) ends the output quietly and keeps the exit code (see [`output`]).
 
 mod check;
 mod condat;
 mod convert;
+mod dot;
 mod gen;
 mod info;
+mod key;
+mod output;
 mod progress;
 mod synth;
 mod wiring;
@@ -15,6 +19,7 @@ mod wiring;
 use clap::{Parser, Subcommand};
 use codegen::formats::{self, Component, Kind};
 use codegen::{Automaton, Error};
+use output::{warn, Out};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -61,16 +66,9 @@ enum Command {
         #[arg(long = "sup", required = true)]
         sup: PathBuf,
     },
-    /// Convert between formats (by extension).
-    Convert {
-        /// Input file.
-        input: PathBuf,
-        /// Output file.
-        output: PathBuf,
-        /// Only this component (for files holding several).
-        #[arg(long)]
-        component: Option<String>,
-    },
+    /// Convert between formats (by extension), keeping each component's
+    /// kind.
+    Convert(convert::ConvertArgs),
     /// Rust source of a PLC project (what the build script writes), or
     /// its sizes with `--stats`.
     Gen(gen::GenArgs),
@@ -80,14 +78,8 @@ enum Command {
         /// The project file (`*.plc.toml`).
         project: PathBuf,
     },
-    /// Graphviz text of an automaton on stdout.
-    Dot {
-        /// Model file.
-        file: PathBuf,
-        /// Only this component (for files holding several).
-        #[arg(long)]
-        component: Option<String>,
-    },
+    /// Graphviz drawing of an automaton: DOT text on stdout or in files.
+    Dot(dot::DotArgs),
 }
 
 /// How a command ended when it did not fail outright.
@@ -98,35 +90,38 @@ pub enum Outcome {
     Fails,
 }
 
-/// Parses the arguments, runs the command, prints errors.
+/// Parses the arguments, runs the command, prints its output and errors.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let json = cli.json;
+    let mut out = Out::default();
     let result = match cli.command {
-        Command::Info { files } => info::run(&files, json),
-        Command::Synth(args) => synth::run(&args, json),
-        Command::Check { plants, sups } => check::run(&plants, &sups, json),
-        Command::Condat { plants, sup } => condat::run(&plants, &sup, json),
-        Command::Convert {
-            input,
-            output,
-            component,
-        } => convert::convert(&input, &output, component.as_deref(), json),
-        Command::Gen(args) => gen::run(&args, json),
-        Command::Dot { file, component } => convert::dot(&file, component.as_deref(), json),
-        Command::Wiring { project } => wiring::run(&project, json),
+        Command::Info { files } => info::run(&files, json, &mut out),
+        Command::Synth(args) => synth::run(&args, json, &mut out),
+        Command::Check { plants, sups } => check::run(&plants, &sups, json, &mut out),
+        Command::Condat { plants, sup } => condat::run(&plants, &sup, json, &mut out),
+        Command::Convert(args) => convert::run(&args, json, &mut out),
+        Command::Gen(args) => gen::run(&args, json, &mut out),
+        Command::Dot(args) => dot::run(&args, json, &mut out),
+        Command::Wiring { project } => wiring::run(&project, json, &mut out),
     };
-    match result {
+    let code = match &result {
         Ok(Outcome::Holds) => ExitCode::SUCCESS,
         Ok(Outcome::Fails) => ExitCode::from(1),
         Err(e) => {
+            out.clear();
             if json {
-                println!("{}", serde_json::json!({ "error": e.to_string() }));
+                out.json(&serde_json::json!({ "error": e.to_string() }));
             }
-            eprintln!("error: {e}");
+            warn(format_args!("error: {e}"));
             ExitCode::from(2)
         }
+    };
+    if let Err(e) = out.flush_to_stdout() {
+        warn(format_args!("error: writing standard output: {e}"));
+        return ExitCode::from(2);
     }
+    code
 }
 
 /// The role a file plays on the command line; for files that hold several
@@ -240,12 +235,4 @@ impl std::fmt::Display for Size {
             self.states, self.transitions, self.events, self.controllable
         )
     }
-}
-
-/// Prints `value` as one line of JSON.
-pub fn print_json(value: &impl serde::Serialize) {
-    println!(
-        "{}",
-        serde_json::to_string_pretty(value).expect("plain data serialises")
-    );
 }

@@ -1,5 +1,6 @@
 //! A spinner on stderr for long operations, silent when stderr is not a
-//! terminal (pipes, CI logs).
+//! terminal (pipes, CI logs). It shows what `des::ops` (synthesis) and the
+//! logic backend report through [`codegen::ops::Progress`].
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
@@ -32,6 +33,11 @@ impl Spinner {
     pub fn phase(&self, message: &str) {
         self.bar.set_message(message.to_owned());
     }
+
+    /// Prints a line on stderr without tearing the spinner.
+    pub fn warn(&self, text: std::fmt::Arguments<'_>) {
+        self.bar.suspend(|| super::output::warn(text));
+    }
 }
 
 impl codegen::ops::Progress for Spinner {
@@ -47,5 +53,53 @@ impl codegen::ops::Progress for Spinner {
 impl Drop for Spinner {
     fn drop(&mut self) {
         self.bar.finish_and_clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use codegen::backend::logic::{Encoding, LogicSupervisor, Minimisation};
+    use codegen::formats::{read_str, Format};
+    use codegen::ops::Progress;
+    use std::cell::RefCell;
+    use std::path::Path;
+
+    /// Keeps every phase it is told.
+    #[derive(Default)]
+    struct Recorder(RefCell<Vec<String>>);
+
+    impl Progress for Recorder {
+        fn report(&self, phase: &str, _done: usize) {
+            self.0.borrow_mut().push(phase.to_owned());
+        }
+    }
+
+    #[test]
+    fn the_logic_backend_reports_which_supervisor_and_phase_it_is_working_on() {
+        let text = "name = \"press\"\ninitial = \"idle\"\ncontrollable = [\"down\"]\n\
+                    uncontrollable = [\"bottom\", \"top\"]\ntransitions = [[\"idle\", \"down\", \"pressing\"], \
+                    [\"pressing\", \"bottom\", \"rising\"], [\"rising\", \"top\", \"idle\"]]\n";
+        let a = read_str(text, Format::Toml, Path::new("press.toml"))
+            .unwrap()
+            .remove(0)
+            .automaton;
+        let local: Vec<_> = a.alphabet().ids().collect();
+        let recorder = Recorder::default();
+        LogicSupervisor::synthesize_reporting(
+            &a,
+            &local,
+            Encoding::binary(3),
+            Minimisation::PerFunction,
+            &recorder,
+        )
+        .unwrap();
+        assert_eq!(
+            recorder.0.into_inner(),
+            [
+                "supervisor `press` (3 states): minimising ω, the next-state logic (2 bits)",
+                "supervisor `press` (3 states): minimising φ, the enabling logic (3 events)",
+                "supervisor `press` (3 states): verifying the logic against the automaton",
+            ]
+        );
     }
 }

@@ -1,11 +1,12 @@
 //! `codegen synth`: supervisor synthesis from plants and specifications.
 
+use super::output::{outln, Out};
 use super::progress::Spinner;
-use super::{load, print_json, Outcome, Role, Size};
+use super::{load, Outcome, Role, Size};
 use codegen::formats::{self, Component, Kind};
 use codegen::ops::synthesis::Synthesis;
 use codegen::ops::{self, ComposeOptions, SynthesisOptions};
-use codegen::Error;
+use codegen::{Automaton, Error};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -41,6 +42,10 @@ struct Report {
     supervisor: Size,
     empty: bool,
     minimised: Option<Size>,
+    /// The components the supervisor's state names are made of, in order
+    /// (plants, then specifications): `0.1.2` is the state of the first
+    /// component, then of the second, … `None` with `--no-state-names`.
+    state_names: Option<Vec<String>>,
     output: String,
     milliseconds: Timings,
     /// Peak resident memory of this process (Linux only).
@@ -69,7 +74,20 @@ fn ms(since: Instant) -> f64 {
     since.elapsed().as_secs_f64() * 1e3
 }
 
-pub fn run(args: &SynthArgs, json: bool) -> Result<Outcome, Error> {
+/// The components whose states make up the supervisor's state names:
+/// `supcon` names its states `plant.spec` after the two compositions,
+/// which name theirs after their components (a lone automaton keeps its
+/// own names; no specification is one state named `0`).
+fn state_name_key(plants: &[Automaton], specs: &[Automaton]) -> Vec<String> {
+    let mut key: Vec<String> = plants.iter().map(|a| a.name().to_owned()).collect();
+    if specs.is_empty() {
+        key.push("(no specification)".to_owned());
+    }
+    key.extend(specs.iter().map(|a| a.name().to_owned()));
+    key
+}
+
+pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> {
     let start = Instant::now();
     let mut t = Timings::default();
     let spinner = Spinner::new("loading");
@@ -86,6 +104,7 @@ pub fn run(args: &SynthArgs, json: bool) -> Result<Outcome, Error> {
     let plants = load(&args.plants, Role::Plant)?;
     let specs = load(&args.specs, Role::Spec)?;
     t.load = ms(mark);
+    let state_names = (!args.no_state_names).then(|| state_name_key(&plants, &specs));
 
     let Synthesis {
         plant,
@@ -131,40 +150,67 @@ pub fn run(args: &SynthArgs, json: bool) -> Result<Outcome, Error> {
         supervisor,
         empty: sup.is_empty(),
         minimised,
+        state_names,
         output: args.output.display().to_string(),
         milliseconds: t,
         peak_rss_kib: peak_rss_kib(),
     };
     if json {
-        print_json(&report);
+        out.json(&report);
         return Ok(Outcome::Holds);
     }
-    println!(
+    outln!(
+        out,
         "plant:      {} ({:.1} ms)",
-        report.plant, report.milliseconds.compose_plant
+        report.plant,
+        report.milliseconds.compose_plant
     );
     if let Some(s) = &report.spec {
-        println!(
+        outln!(
+            out,
             "spec:       {} ({:.1} ms)",
-            s, report.milliseconds.compose_spec
+            s,
+            report.milliseconds.compose_spec
         );
     }
-    println!(
+    outln!(
+        out,
         "supervisor: {} ({:.1} ms)",
-        report.supervisor, report.milliseconds.supcon
+        report.supervisor,
+        report.milliseconds.supcon
     );
     if let Some(m) = &report.minimised {
-        println!("minstate:   {} ({:.1} ms)", m, report.milliseconds.minstate);
+        outln!(
+            out,
+            "minstate:   {} ({:.1} ms)",
+            m,
+            report.milliseconds.minstate
+        );
+    }
+    if let (Some(key), false) = (&report.state_names, report.empty) {
+        outln!(
+            out,
+            "states:     named {}{}",
+            key.join("."),
+            if args.minstate {
+                " (a merged state: {…,…} of such names)"
+            } else {
+                ""
+            }
+        );
     }
     if report.empty {
-        println!(
+        outln!(
+            out,
             "the supervisor is EMPTY: no controllable, nonblocking behaviour of the plant \
              meets the specification (written anyway, an automaton with no states)"
         );
     }
-    println!(
+    outln!(
+        out,
         "wrote {} ({:.1} ms total)",
-        report.output, report.milliseconds.total
+        report.output,
+        report.milliseconds.total
     );
     Ok(Outcome::Holds)
 }

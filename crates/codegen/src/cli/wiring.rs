@@ -1,15 +1,21 @@
 //! `codegen wiring`: which pin carries each signal of a project's
 //! `[board]` section, as a Markdown table (or JSON rows).
 
-use super::{print_json, Outcome};
+use super::output::{warn, Out};
+use super::Outcome;
 use codegen::board::{wiring_rows, wiring_table};
 use codegen::{project, Error};
 use std::path::Path;
 
-pub fn run(path: &Path, json: bool) -> Result<Outcome, Error> {
+pub fn run(path: &Path, json: bool, out: &mut Out) -> Result<Outcome, Error> {
     let project = project::load(path)?;
     for w in &project.warnings {
-        eprintln!("warning: {}:{}: {}", path.display(), w.line, w.message);
+        warn(format_args!(
+            "warning: {}:{}: {}",
+            path.display(),
+            w.line,
+            w.message
+        ));
     }
     let (Some(board), Some(rows)) = (&project.board, wiring_rows(&project)) else {
         return Err(Error::Incompatible(format!(
@@ -18,13 +24,13 @@ pub fn run(path: &Path, json: bool) -> Result<Outcome, Error> {
         )));
     };
     if json {
-        print_json(&serde_json::json!({
+        out.json(&serde_json::json!({
             "project": project.name,
             "chip": board.chip,
             "signals": rows,
         }));
     } else {
-        print!("{}", wiring_table(&project));
+        out.push_str(&wiring_table(&project));
     }
     Ok(Outcome::Holds)
 }

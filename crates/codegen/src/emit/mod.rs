@@ -269,7 +269,11 @@ struct Unformatted {
 
 /// Writes the program of `project`: the configuration, the board and the
 /// supervisors in `backend`'s representation, not yet laid out.
-fn write_program(project: &Project, backend: Backend) -> Result<Unformatted> {
+fn write_program(
+    project: &Project,
+    backend: Backend,
+    progress: &dyn crate::ops::Progress,
+) -> Result<Unformatted> {
     let pools = ConfigPools::from_project(project)?;
     let mut e = Emitter {
         project,
@@ -295,7 +299,7 @@ fn write_program(project: &Project, backend: Backend) -> Result<Unformatted> {
             (e.tables(&image), image.crc)
         }
         Backend::Logic => {
-            let image = LogicImage::new(project)?;
+            let image = LogicImage::with_progress(project, progress)?;
             (e.logic(&image.supervisors, image.crc), image.crc)
         }
         Backend::Match => {
@@ -325,7 +329,17 @@ fn format_rust(text: &str) -> Result<String> {
 /// Generates the Rust source of `project`. `regenerate` is the command
 /// line the header tells users to run.
 pub fn generate(project: &Project, backend: Backend, regenerate: &str) -> Result<Generated> {
-    let program = write_program(project, backend)?;
+    generate_with_progress(project, backend, regenerate, &())
+}
+
+/// [`generate`], telling `progress` what the logic backend is minimising.
+pub fn generate_with_progress(
+    project: &Project,
+    backend: Backend,
+    regenerate: &str,
+    progress: &dyn crate::ops::Progress,
+) -> Result<Generated> {
+    let program = write_program(project, backend, progress)?;
     let body = format_rust(&program.text)?;
     let backend_name = backend.name();
     let header = format!(
@@ -370,7 +384,7 @@ mod tests {
         for name in SEEDS {
             let project = seed(name);
             for &backend in backends {
-                let written = write_program(&project, backend).unwrap().text;
+                let written = write_program(&project, backend, &()).unwrap().text;
                 let laid_out = format_rust(&written).unwrap();
                 let kept: HashSet<&str> = laid_out.lines().map(str::trim).collect();
                 for line in written.lines().map(str::trim) {

@@ -27,7 +27,10 @@
 //! - `# event 11 = "e11"` — label 11 is the event `e11`;
 //! - `# state 3 = "working"` — state 3 is called `working`;
 //! - `# name = "my plant"` — the automaton's name, when the name line
-//!   cannot hold it (empty, multi-line, looks like a comment or a header).
+//!   cannot hold it (empty, multi-line, looks like a comment or a header);
+//! - `# kind = "supervisor"` — the component's kind (`plant`, `spec`,
+//!   `supervisor` or `property`, as in the native TOML format), written by
+//!   [`write_component`] when it is known.
 //!
 //! TCT ignores these comments, so files stay valid TCT input; files
 //! written by TCT carry none and read with numeric event names.
@@ -49,6 +52,7 @@
 //! is written as the empty automaton (state size 0). State sizes above
 //! [`MAX_STATES`] are refused (TCT itself stops at 2,000,000).
 
+use super::{parse_kind, Component, Kind, KINDS};
 use crate::automaton::{Automaton, AutomatonBuilder, BuildError, EventId, StateId};
 use crate::error::{line_column, Error, Location, Result};
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -100,9 +104,11 @@ enum Mapping {
     Event(u64, String),
     State(u64, String),
     Name(String),
+    Kind(String),
 }
 
-/// Recognises `# event N = "…"`, `# state N = "…"` and `# name = "…"`.
+/// Recognises `# event N = "…"`, `# state N = "…"`, `# name = "…"` and
+/// `# kind = "…"`.
 /// `Ok(None)` for ordinary comments; an error for a mapping comment
 /// whose JSON string is malformed.
 fn parse_mapping(line: &str) -> std::result::Result<Option<Mapping>, String> {
@@ -114,11 +120,16 @@ fn parse_mapping(line: &str) -> std::result::Result<Option<Mapping>, String> {
         serde_json::from_str::<String>(rest.trim())
             .map_err(|e| format!("expected a quoted name (a JSON string) after `=`: {e}"))
     };
-    if let Some(rest) = body.strip_prefix("name") {
-        return match rest.trim_start().strip_prefix('=') {
-            Some(v) => json(v).map(|n| Some(Mapping::Name(n))),
-            None => Ok(None),
-        };
+    for (kw, mapping) in [
+        ("name", Mapping::Name as fn(String) -> Mapping),
+        ("kind", Mapping::Kind),
+    ] {
+        if let Some(rest) = body.strip_prefix(kw) {
+            return match rest.trim_start().strip_prefix('=') {
+                Some(v) => json(v).map(|n| Some(mapping(n))),
+                None => Ok(None),
+            };
+        }
     }
     for (kw, is_event) in [("event", true), ("state", false)] {
         let Some(rest) = body.strip_prefix(kw) else {
@@ -217,6 +228,12 @@ impl<'a> Reader<'a> {
 
 /// Parses a TCT `.ads` file; `origin` names the file in errors.
 pub fn read(text: &str, origin: &Path) -> Result<Automaton> {
+    read_component(text, origin).map(|c| c.automaton)
+}
+
+/// [`read`], with the kind of a `# kind` comment ([`Kind::Unspecified`]
+/// without).
+pub fn read_component(text: &str, origin: &Path) -> Result<Component> {
     let r = Reader { text, origin };
     let mut lines = Vec::new();
     let mut offset = 0;
@@ -236,11 +253,20 @@ pub fn read(text: &str, origin: &Path) -> Result<Automaton> {
     let mut event_names: Vec<(u64, String, usize)> = Vec::new();
     let mut state_names: FxHashMap<u64, (String, usize)> = FxHashMap::default();
     let mut name_comment: Option<String> = None;
+    let mut kind = Kind::Unspecified;
     let mut named_labels: FxHashSet<u64> = FxHashSet::default();
     for l in lines.iter().filter(|l| l.is_comment()) {
         match parse_mapping(l.text).map_err(|m| r.syntax(l.offset, m))? {
             None => {}
             Some(Mapping::Name(n)) => name_comment = Some(n),
+            Some(Mapping::Kind(k)) => {
+                kind = parse_kind(&k).ok_or_else(|| {
+                    r.syntax(
+                        l.offset,
+                        format!("unknown kind {} (expected {KINDS})", json(&k)),
+                    )
+                })?;
+            }
             Some(Mapping::Event(label, _)) if !named_labels.insert(label) => {
                 return Err(r.syntax(l.offset, format!("event label {label} is named twice")));
             }
@@ -476,7 +502,7 @@ pub fn read(text: &str, origin: &Path) -> Result<Automaton> {
         _ => Error::model(Location::file(origin), e.to_string()),
     })?;
     super::gen::drop_index_names(&mut a);
-    Ok(a)
+    Ok(Component { kind, automaton: a })
 }
 
 /// The TCT label of each event (indexed by event id); see the module docs.
@@ -529,6 +555,15 @@ fn json(s: &str) -> String {
 
 /// Renders `a` as a TCT `.ads` file (see the module docs for names).
 pub fn write(a: &Automaton) -> String {
+    write_with_kind(a, Kind::Unspecified)
+}
+
+/// [`write`], recording the component's kind in a `# kind` comment.
+pub fn write_component(c: &Component) -> String {
+    write_with_kind(&c.automaton, c.kind)
+}
+
+fn write_with_kind(a: &Automaton, kind: Kind) -> String {
     let n = if a.initial().is_some() {
         a.num_states()
     } else {
@@ -550,6 +585,9 @@ pub fn write(a: &Automaton) -> String {
     out.push_str("# TCT ADS file written by codegen\n");
     if !plain_name(a.name()) {
         let _ = writeln!(out, "# name = {}", json(a.name()));
+    }
+    if kind != Kind::Unspecified {
+        let _ = writeln!(out, "# kind = {}", json(&kind.to_string()));
     }
     // Event comments: needed unless every label is the event's own name,
     // every event occurs (in n > 0 transitions) and the order of first

@@ -17,7 +17,9 @@
 //! - comments from `%` to the end of the line.
 //!
 //! A generator consists of an optional name (the `name` attribute, or a
-//! string right after an attribute-less `<Generator>`) and the sections
+//! string right after an attribute-less `<Generator>`), an optional
+//! `kind` attribute of ours (`plant`, `spec`, `supervisor` or `property`,
+//! as in the native TOML format; libFAUDES ignores it) and the sections
 //! `<Alphabet>` (events, each optionally followed by an attribute: an
 //! event is controllable when its attribute contains an upper-case `C`),
 //! `<States>` (state names or indices; `name#7` gives the state `name`
@@ -48,14 +50,24 @@
 //! [`write()`] produces the plain-token style current libFAUDES versions
 //! read: `<Generator name="…">`, one event per line with `+C+` for
 //! controllable events, then the states, transitions, initial and marked
-//! states. Unnamed automata are written with indices starting at 1 (index
-//! 0 is invalid in libFAUDES). Names that are not plain symbols are
-//! quoted and XML-escaped, and names that merely look like numbers are
-//! quoted so that they stay names. libFAUDES refuses some names however
-//! they are written (those with spaces, `"`, `#` or non-ASCII
-//! characters): such names are still written, quoted, and this reader
-//! gets them back, but libFAUDES will reject the file.
+//! states. [`write_component`] adds the component's `kind`. Unnamed
+//! automata are written with indices starting at 1 (index 0 is invalid in
+//! libFAUDES).
+//!
+//! A name is written bare only when libFAUDES reads it back as the same
+//! symbol: it starts with an ASCII letter or `_`, every character is a
+//! plain one ([`is_plain_symbol`]), and it is not `inf`. Everything else
+//! is quoted and XML-escaped. libFAUDES's tokenizer reads bare digits as
+//! a state index (`12`), `0x1F` as a hexadecimal index, digits around one
+//! dot as a real number (`0.0`, `2.0`, `.5`, `1.`; composite state names
+//! such as `0.0` became the invalid index 0 or an unnamed state 2), `inf`
+//! and `-inf` as reals, and `+…` as an attribute; names starting with a
+//! letter are none of these. libFAUDES refuses some names however they
+//! are written (those with spaces, `"`, `#` or non-ASCII characters):
+//! such names are still written, quoted, and this reader gets them back,
+//! but libFAUDES will reject the file.
 
+use super::{parse_kind, Component, Kind, KINDS};
 use crate::automaton::{Automaton, AutomatonBuilder, BuildError, StateId};
 use crate::error::{line_column, Error, Location, Result};
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -71,6 +83,11 @@ pub const MAX_RANGE_STATES: u64 = 1 << 22;
 /// Parses the text of a libFAUDES `.gen` file (token or XML flavour);
 /// `origin` names the file in errors.
 pub fn read(text: &str, origin: &Path) -> Result<Automaton> {
+    read_component(text, origin).map(|c| c.automaton)
+}
+
+/// [`read`], with the `kind` attribute ([`Kind::Unspecified`] without).
+pub fn read_component(text: &str, origin: &Path) -> Result<Component> {
     if looks_like_xml(text) {
         return read_xml(text, origin);
     }
@@ -79,16 +96,28 @@ pub fn read(text: &str, origin: &Path) -> Result<Automaton> {
 
 /// Renders `a` in the plain-token style of libFAUDES 2.x.
 pub fn write(a: &Automaton) -> String {
+    write_with_kind(a, Kind::Unspecified)
+}
+
+/// [`write`], recording the component's kind in a `kind` attribute.
+pub fn write_component(c: &Component) -> String {
+    write_with_kind(&c.automaton, c.kind)
+}
+
+fn write_with_kind(a: &Automaton, kind: Kind) -> String {
     let mut out = String::with_capacity(64 + a.num_transitions() * 16 + a.num_states() * 8);
     out.push_str("<Generator name=\"");
     escape_into(&mut out, a.name());
+    out.push('"');
     // `ftype="System"` states controllability (even with no +C+ at all);
     // a plain generator leaves it to the automata it meets.
-    out.push_str(if a.alphabet().controllability_stated() {
-        "\" ftype=\"System\">\n"
-    } else {
-        "\">\n"
-    });
+    if a.alphabet().controllability_stated() {
+        out.push_str(" ftype=\"System\"");
+    }
+    if kind != Kind::Unspecified {
+        let _ = write!(out, " kind=\"{kind}\"");
+    }
+    out.push_str(">\n");
     let _ = writeln!(
         out,
         "% {} states, {} events, {} transitions",
@@ -171,10 +200,13 @@ fn is_plain_char(c: char) -> bool {
     c.is_ascii_alphanumeric() || "_.-:[]()/,;=@$!?*^~|".contains(c)
 }
 
-/// `true` when `name` can be written without quotes and reads back as
-/// the same name (not as an index, not as an attribute).
+/// `true` when `name` can be written without quotes and libFAUDES reads
+/// it back as the same name: not as an index, a real number or an
+/// attribute (see the module docs).
 fn is_plain_symbol(name: &str) -> bool {
-    !name.is_empty() && name.chars().all(is_plain_char) && !name.bytes().all(|b| b.is_ascii_digit())
+    name.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+        && name.chars().all(is_plain_char)
+        && name != "inf"
 }
 
 /// Writes `name` as a symbol, quoted when necessary.
@@ -754,8 +786,9 @@ impl<'a> Parser<'a> {
         t.map_or(self.end_pos(), |t| t.pos)
     }
 
-    fn generator(mut self) -> Result<Automaton> {
+    fn generator(mut self) -> Result<Component> {
         let first = self.lx.next()?;
+        let tag_pos = self.pos_of(first.as_ref());
         let (attrs, empty) = match first.map(|t| t.tok) {
             Some(Tok::Begin {
                 name: "Generator",
@@ -771,6 +804,15 @@ impl<'a> Parser<'a> {
         };
         let mut name = attribute(attrs, "name").map(Cow::into_owned);
         let system = attribute(attrs, "ftype").is_some_and(|t| t == "System");
+        let kind = match attribute(attrs, "kind") {
+            None => Kind::Unspecified,
+            Some(k) => parse_kind(&k).ok_or_else(|| {
+                self.model(
+                    tag_pos,
+                    format!("unknown kind `{}` (expected {KINDS})", shorten(&k)),
+                )
+            })?,
+        };
         if !empty {
             if let Some(t) = self.lx.peek()? {
                 if let Tok::Quoted(_) | Tok::Symbol(_) = t.tok {
@@ -802,7 +844,7 @@ impl<'a> Parser<'a> {
         let origin = self.origin;
         let mut a = self.b.build().map_err(|e| build_error(e, text, origin))?;
         drop_index_names(&mut a);
-        Ok(a)
+        Ok(Component { kind, automaton: a })
     }
 
     fn value(&self, t: &Token<'a>) -> Cow<'a, str> {
@@ -1206,7 +1248,7 @@ impl<'a> Parser<'a> {
 // ---------------------------------------------------------------------
 // The XML flavour
 
-fn read_xml(text: &str, origin: &Path) -> Result<Automaton> {
+fn read_xml(text: &str, origin: &Path) -> Result<Component> {
     let doc = super::parse_xml(text, origin)?;
     let at = |node: roxmltree::Node<'_, '_>| {
         let p = doc.text_pos_at(node.range().start);
@@ -1252,6 +1294,15 @@ fn read_xml(text: &str, origin: &Path) -> Result<Automaton> {
     // As in the token format: without `ftype="System"` and without any
     // event property, controllability is not stated.
     let system = root.attribute("ftype") == Some("System");
+    let kind = match root.attribute("kind") {
+        None => Kind::Unspecified,
+        Some(k) => parse_kind(k).ok_or_else(|| {
+            Error::model(
+                at(root),
+                format!("unknown kind `{}` (expected {KINDS})", shorten(k)),
+            )
+        })?,
+    };
     let mut attributed = false;
     let mut decls: Vec<StateDecl<'_>> = Vec::new();
     let mut transitions = Vec::new();
@@ -1371,7 +1422,7 @@ fn read_xml(text: &str, origin: &Path) -> Result<Automaton> {
     }
     let mut a = b.build().map_err(|e| build_error(e, text, origin))?;
     drop_index_names(&mut a);
-    Ok(a)
+    Ok(Component { kind, automaton: a })
 }
 
 #[cfg(test)]

@@ -86,6 +86,16 @@ impl fmt::Display for Kind {
     }
 }
 
+/// The kinds a file may state, as they are written in `kind` fields.
+pub(crate) const KINDS: &str = "plant, spec, supervisor or property";
+
+/// The kind written `name` (as [`Kind`]'s `Display` writes it), if any.
+pub(crate) fn parse_kind(name: &str) -> Option<Kind> {
+    [Kind::Plant, Kind::Spec, Kind::Supervisor, Kind::Property]
+        .into_iter()
+        .find(|k| k.to_string() == name)
+}
+
 /// An automaton with the role its file gives it.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Component {
@@ -109,8 +119,8 @@ impl Component {
 pub fn read_str(text: &str, format: Format, origin: &Path) -> Result<Vec<Component>> {
     match format {
         Format::Toml => toml::read(text, origin).map(|c| vec![c]),
-        Format::Gen => gen::read(text, origin).map(|a| vec![Component::unspecified(a)]),
-        Format::Ads => ads::read(text, origin).map(|a| vec![Component::unspecified(a)]),
+        Format::Gen => gen::read_component(text, origin).map(|c| vec![c]),
+        Format::Ads => ads::read_component(text, origin).map(|c| vec![c]),
         Format::Wmod => wmod::read(text, origin),
     }
 }
@@ -153,8 +163,8 @@ pub fn write_string(format: Format, components: &[Component]) -> Result<String> 
     }
     Ok(match format {
         Format::Toml => toml::write(&components[0]),
-        Format::Gen => gen::write(&components[0].automaton),
-        Format::Ads => ads::write(&components[0].automaton),
+        Format::Gen => gen::write_component(&components[0]),
+        Format::Ads => ads::write_component(&components[0]),
         Format::Wmod => wmod::write(components),
     })
 }

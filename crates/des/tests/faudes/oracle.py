@@ -20,6 +20,15 @@ with states numbered 0..n-1. Problems come in two kinds:
 - minimisation: {"id", "minimize": automaton}. Result: {"id", "min":
   automaton, "min_size": [states, transitions]}.
 
+Either kind may carry "gen": [{"what": str, "text": str}, ...], files in
+libFAUDES's .gen format as our writer produced them. Each is read with
+libFAUDES itself (System.FromString) and the result lists what libFAUDES
+read, in "gen_read": [{"what", "states": [name, ...], "initial": [name,
+...], "marked": [name, ...], "events": [[name, controllable], ...],
+"transitions": [[source name, event, target name], ...]}, ...], a state
+without a name standing as its index ("7"); or {"what", "error": message}
+when libFAUDES refuses the file.
+
 A problem on which libFAUDES throws gives {"id", "error": message}.
 
 Results are automata with states renumbered densely in libFAUDES's state
@@ -54,11 +63,14 @@ def main():
         pid = problem.get("id")
         try:
             if "minimize" in problem:
-                results.append(minimize(faudes, problem))
+                result = minimize(faudes, problem)
             else:
-                results.append(synthesise(faudes, problem))
+                result = synthesise(faudes, problem)
         except Exception as e:  # libFAUDES throws plain Exceptions
-            results.append({"id": pid, "error": f"{type(e).__name__}: {e}"})
+            result = {"id": pid, "error": f"{type(e).__name__}: {e}"}
+        if "gen" in problem:
+            result["gen_read"] = [read_gen(faudes, f) for f in problem["gen"]]
+        results.append(result)
     sys.stdout.flush()
     json.dump(results, out)
     out.write("\n")
@@ -140,6 +152,36 @@ def to_json(g, controllable, name):
         "initial": initial[0] if initial else None,
         "marked": marked,
         "transitions": transitions,
+    }
+
+
+def read_gen(faudes, file):
+    """What libFAUDES reads from the .gen text `file["text"]`."""
+    g = faudes.System()
+    try:
+        g.FromString(file["text"])
+    except Exception as e:  # libFAUDES throws plain Exceptions
+        return {"what": file["what"], "error": f"{type(e).__name__}: {e}"}
+
+    def state(index):
+        return g.StateName(index) or str(index)
+
+    def states(begin, end):
+        return [state(it.Index()) for it in iterate(begin, end)]
+
+    return {
+        "what": file["what"],
+        "states": states(g.StatesBegin(), g.StatesEnd()),
+        "initial": states(g.InitStatesBegin(), g.InitStatesEnd()),
+        "marked": states(g.MarkedStatesBegin(), g.MarkedStatesEnd()),
+        "events": [
+            [g.EventName(it.Index()), bool(g.Controllable(it.Index()))]
+            for it in iterate(g.AlphabetBegin(), g.AlphabetEnd())
+        ],
+        "transitions": [
+            [state(it.X1()), g.EventName(it.Ev()), state(it.X2())]
+            for it in iterate(g.TransRelBegin(), g.TransRelEnd())
+        ],
     }
 
 
