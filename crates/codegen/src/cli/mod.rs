@@ -213,6 +213,10 @@ pub struct Size {
     pub transitions: usize,
     pub events: usize,
     pub controllable: usize,
+    /// The file says which events are controllable (a plain libFAUDES
+    /// generator may not; its events then take the controllability of the
+    /// automata they meet).
+    pub controllability_stated: bool,
 }
 
 impl Size {
@@ -223,6 +227,7 @@ impl Size {
             transitions: a.num_transitions(),
             events: a.alphabet().len(),
             controllable: a.alphabet().controllable_count(),
+            controllability_stated: a.alphabet().controllability_stated(),
         }
     }
 }
@@ -231,8 +236,13 @@ impl std::fmt::Display for Size {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{} states, {} transitions, {} events ({} controllable)",
-            self.states, self.transitions, self.events, self.controllable
-        )
+            "{} states, {} transitions, {} events",
+            self.states, self.transitions, self.events
+        )?;
+        if self.controllability_stated || self.controllable > 0 {
+            write!(f, " ({} controllable)", self.controllable)
+        } else {
+            f.write_str(" (controllability not stated)")
+        }
     }
 }
