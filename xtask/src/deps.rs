@@ -31,7 +31,7 @@ const CLEAN: [Entry; 4] = [
         args: &["-p", "codegen"],
     },
     Entry {
-        what: "the board firmware (`cargo run -p firmware --release --target thumbv7em-none-eabihf`) and its build script",
+        what: "the board firmware and its build script (`cargo run -p firmware --release --target thumbv7em-none-eabihf`)",
         args: &["-p", "firmware", "--target", "thumbv7em-none-eabihf"],
     },
     Entry {
@@ -94,9 +94,9 @@ pub fn run_task(_args: &[String]) -> Result {
         let found = bound(&tree);
         if found.is_empty() {
             eprintln!(
-                "xtask: deps: {} builds without {}",
-                entry.what,
-                SYSTEM_BOUND.join(" or ")
+                "xtask: deps: no {} in {}",
+                SYSTEM_BOUND.join(" or "),
+                entry.what
             );
         } else {
             failures.push(format!(
