@@ -558,7 +558,7 @@ pub fn write(a: &Automaton) -> String {
     write_with_kind(a, Kind::Unspecified)
 }
 
-/// [`write`], recording the component's kind in a `# kind` comment.
+/// [`write()`], recording the component's kind in a `# kind` comment.
 pub fn write_component(c: &Component) -> String {
     write_with_kind(&c.automaton, c.kind)
 }

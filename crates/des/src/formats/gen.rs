@@ -56,7 +56,7 @@
 //!
 //! A name is written bare only when libFAUDES reads it back as the same
 //! symbol: it starts with an ASCII letter or `_`, every character is a
-//! plain one ([`is_plain_symbol`]), and it is not `inf`. Everything else
+//! plain one (`is_plain_symbol`), and it is not `inf`. Everything else
 //! is quoted and XML-escaped. libFAUDES's tokenizer reads bare digits as
 //! a state index (`12`), `0x1F` as a hexadecimal index, digits around one
 //! dot as a real number (`0.0`, `2.0`, `.5`, `1.`; composite state names
@@ -99,7 +99,7 @@ pub fn write(a: &Automaton) -> String {
     write_with_kind(a, Kind::Unspecified)
 }
 
-/// [`write`], recording the component's kind in a `kind` attribute.
+/// [`write()`], recording the component's kind in a `kind` attribute.
 pub fn write_component(c: &Component) -> String {
     write_with_kind(&c.automaton, c.kind)
 }
