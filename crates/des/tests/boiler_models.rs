@@ -1,4 +1,4 @@
-//! The boiler of SEEDS.md A (`models/boiler/`): plant and specification
+//! The boiler of docs/seeds.md A (`models/boiler/`): plant and specification
 //! models reconstructed from the thesis's requirements, synthesised here
 //! and checked against `models/boiler/README.md` and the committed
 //! supervisors in `models/boiler/sup/`.

@@ -1,4 +1,4 @@
-//! The boiler's scenario suite (SEEDS.md A, issue "The boiler"): the PLC
+//! The boiler's scenario suite (docs/seeds.md A, issue "The boiler"): the PLC
 //! project `models/boiler/boiler.plc.toml` (seven modular supervisors) in
 //! closed loop with the plant simulation, every scan checked by the safety
 //! invariants, and every scenario run again on the monolithic variant

@@ -1,4 +1,4 @@
-//! The conveyor of the Structured-Text paper (SEEDS.md E): the belt starts
+//! The conveyor of the Structured-Text paper (docs/seeds.md E): the belt starts
 //! on the rising edge of the light sensor and stops when the 1 s virtual
 //! sensor (a timer started by the falling edge) expires; a new part
 //! cancels the run-on. The supervisor is synthesised at build time.

@@ -1,4 +1,4 @@
-//! Crane 1 of Leduc and Wonham's testbed (SEEDS.md B) with a
+//! Crane 1 of Leduc and Wonham's testbed (docs/seeds.md B) with a
 //! collision-protection section: two modular supervisors run side by side
 //! and share `run_t1` / `run_t2`, so a train leaves the crane only when
 //! both allow it. The paper's enable outputs are Moore outputs.

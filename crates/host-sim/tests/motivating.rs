@@ -1,4 +1,4 @@
-//! The motivating example of the ladder-logic thesis (SEEDS.md A, its
+//! The motivating example of the ladder-logic thesis (docs/seeds.md A, its
 //! Table 3.1): every transition of the table exercised, the choice among
 //! controllable events (declaration order, request input), the priority of
 //! uncontrollable events, fault on an unexpected event and reset.

@@ -1,4 +1,4 @@
-//! The stamping press of the sequence-control lesson (SEEDS.md C): the
+//! The stamping press of the sequence-control lesson (docs/seeds.md C): the
 //! work cycle with its Moore output table, the stop/reset path, the
 //! lesson's known weaknesses (auto ignored away from the top; a stuck limit
 //! switch deadlocks), its state-7 variant (same code, other model), part

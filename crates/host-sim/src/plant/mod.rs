@@ -1,5 +1,5 @@
 //! Plant simulations in closed loop with a controller: the gas-fired
-//! water-bath boiler of SEEDS.md A, and its safety invariants.
+//! water-bath boiler of docs/seeds.md A, and its safety invariants.
 //!
 //! - [`physics`]: the plant itself ([`BoilerPlant`], [`BoilerParams`]):
 //!   flames, heat balances, limit switches, the operator panel, and the

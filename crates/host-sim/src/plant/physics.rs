@@ -1,4 +1,4 @@
-//! The gas-fired water-bath boiler (SEEDS.md A, thesis chapter 4) as a
+//! The gas-fired water-bath boiler (docs/seeds.md A, thesis chapter 4) as a
 //! physical plant: pilot and main flames, the bath and flue-gas
 //! temperatures with their limit switches, the operator panel, and the
 //! sensor wiring with its faults.

@@ -1,7 +1,7 @@
 //! The boiler's signals as the PLC sees them: seven inputs, eight outputs,
 //! typed images of both, and their binding to a project by name.
 //!
-//! The names are fixed (SEEDS.md A and the boiler project): a project runs
+//! The names are fixed (docs/seeds.md A and the boiler project): a project runs
 //! in closed loop with the boiler plant exactly when it declares all of
 //! them. Other inputs and outputs of the project are left alone.
 
