@@ -20,9 +20,11 @@ pub enum Action {
     /// A fault on one input's wiring (replacing any earlier one there).
     SensorFault(Input, SensorFault),
     /// The controller hangs for `ms` (a blocking driver, an interrupt
-    /// storm): no scans, its outputs hold, the plant goes on; the next scan
-    /// starts late, an overrun if more than the project's `overrun_limit`
-    /// periods.
+    /// storm) right after the first scan at or after the action's time:
+    /// no scans, its outputs hold, the plant goes on. The next scan starts
+    /// when the hang ends, `ms` minus one period after its deadline, and is
+    /// an overrun when that is more than the project's `overrun_limit`
+    /// periods (docs/semantics.md, "Scan pacing").
     Stall {
         /// How long no scan runs.
         ms: u64,
