@@ -36,6 +36,10 @@ pub struct ConfigPools {
     pub lost_edge_fault: bool,
     /// Inputs.
     pub inputs: Vec<ex::InputSpec>,
+    /// The debounced inputs, in order.
+    pub debounced: Vec<Index>,
+    /// Mask of the debounced inputs.
+    pub debounce_mask: Span,
     /// Outputs.
     pub outputs: Vec<ex::OutputSpec>,
     /// Timers.
@@ -44,8 +48,12 @@ pub struct ConfigPools {
     pub events: Vec<ex::EventSpec>,
     /// Supervisors.
     pub supervisors: Vec<ex::SupervisorSpec>,
-    /// Pool of input lists.
-    pub input_lists: Vec<Index>,
+    /// Pool of input masks, each [`ex::words`]`(inputs)` words; equal
+    /// masks are stored once.
+    pub input_masks: Vec<u32>,
+    /// Pool of the events each input's edges and each timer's expiry can
+    /// raise.
+    pub raised: Vec<Index>,
     /// Pool of actions.
     pub actions: Vec<ex::Action>,
     /// Pool of memberships.
@@ -74,10 +82,42 @@ fn push_span<T: Clone>(pool: &mut Vec<T>, items: &[T], what: &str) -> Result<Spa
     Ok(Span::new(start, len))
 }
 
+/// The pool of input masks under construction: each distinct mask once.
+struct MaskPool {
+    /// Words per mask.
+    words: usize,
+    pool: Vec<u32>,
+}
+
+impl MaskPool {
+    /// The span of the mask of `inputs` (an empty list: [`Span::EMPTY`]).
+    fn span(&mut self, inputs: &[usize]) -> Result<Span> {
+        if inputs.is_empty() {
+            return Ok(Span::EMPTY);
+        }
+        let mut mask = vec![0u32; self.words];
+        for &i in inputs {
+            mask[i / 32] |= 1 << (i % 32);
+        }
+        let at = match self.pool.chunks(self.words).position(|m| m == mask) {
+            Some(found) => found * self.words,
+            None => {
+                self.pool.extend_from_slice(&mask);
+                self.pool.len() - self.words
+            }
+        };
+        index(at + self.words, "input masks")?;
+        Ok(Span::new(index(at, "input masks")?, index(self.words, "input words")?))
+    }
+}
+
 impl ConfigPools {
     /// Lays out `project`.
     pub fn from_project(project: &Project) -> Result<ConfigPools> {
-        let mut input_lists: Vec<Index> = Vec::new();
+        let mut masks = MaskPool {
+            words: ex::words(project.inputs.len()),
+            pool: Vec::new(),
+        };
         let mut actions = Vec::new();
         let mut memberships = Vec::new();
         let mut state_map = Vec::new();
@@ -100,28 +140,12 @@ impl ConfigPools {
         for (e, ev) in project.events.iter().enumerate() {
             let trigger = match &ev.trigger {
                 Trigger::Command => ex::Trigger::Command,
-                Trigger::Rising(list) => ex::Trigger::Rising(push_span(
-                    &mut input_lists,
-                    &to_indices(list, "inputs")?,
-                    "input references",
-                )?),
-                Trigger::Falling(list) => ex::Trigger::Falling(push_span(
-                    &mut input_lists,
-                    &to_indices(list, "inputs")?,
-                    "input references",
-                )?),
+                Trigger::Rising(list) => ex::Trigger::Rising(masks.span(list)?),
+                Trigger::Falling(list) => ex::Trigger::Falling(masks.span(list)?),
                 Trigger::Expired(t) => ex::Trigger::Expired(index(*t, "timers")?),
             };
-            let when = push_span(
-                &mut input_lists,
-                &to_indices(&ev.when, "inputs")?,
-                "input references",
-            )?;
-            let unless = push_span(
-                &mut input_lists,
-                &to_indices(&ev.unless, "inputs")?,
-                "input references",
-            )?;
+            let when = masks.span(&ev.when)?;
+            let unless = masks.span(&ev.unless)?;
             let acts: Vec<ex::Action> = ev
                 .actions
                 .iter()
@@ -171,6 +195,43 @@ impl ConfigPools {
             });
         }
 
+        // The events each input's edges and each timer's expiry can raise.
+        let mut raised = Vec::new();
+        let mut raises_of = |bound: &dyn Fn(&Trigger) -> bool| -> Result<Span> {
+            let events: Vec<Index> = project
+                .events
+                .iter()
+                .enumerate()
+                .filter(|(_, ev)| bound(&ev.trigger))
+                .map(|(e, _)| index(e, "events"))
+                .collect::<Result<_>>()?;
+            push_span(&mut raised, &events, "raised events")
+        };
+        let mut inputs = Vec::with_capacity(project.inputs.len());
+        for (i, input) in project.inputs.iter().enumerate() {
+            let raises = raises_of(&|t| match t {
+                Trigger::Rising(list) | Trigger::Falling(list) => list.contains(&i),
+                Trigger::Command | Trigger::Expired(_) => false,
+            })?;
+            inputs.push(ex::InputSpec {
+                debounce_scans: input.debounce_scans,
+                raises,
+            });
+        }
+        let mut timers = Vec::with_capacity(project.timers.len());
+        for (t, timer) in project.timers.iter().enumerate() {
+            let raises = raises_of(&|trigger| *trigger == Trigger::Expired(t))?;
+            timers.push(ex::TimerSpec {
+                preset_ms: timer.preset_ms,
+                raises,
+            });
+        }
+        let debounced_inputs: Vec<usize> = (0..project.inputs.len())
+            .filter(|&i| project.inputs[i].debounce_scans >= 2)
+            .collect();
+        let debounce_mask = masks.span(&debounced_inputs)?;
+        let debounced = to_indices(&debounced_inputs, "inputs")?;
+
         let supervisors = project
             .supervisors
             .iter()
@@ -202,24 +263,15 @@ impl ConfigPools {
             overrun_limit: project.overrun_limit,
             overrun_fault: project.overrun_fault,
             lost_edge_fault: project.lost_edge_fault,
-            inputs: project
-                .inputs
-                .iter()
-                .map(|i| ex::InputSpec {
-                    debounce_scans: i.debounce_scans,
-                })
-                .collect(),
+            inputs,
+            debounced,
+            debounce_mask,
             outputs,
-            timers: project
-                .timers
-                .iter()
-                .map(|t| ex::TimerSpec {
-                    preset_ms: t.preset_ms,
-                })
-                .collect(),
+            timers,
             events,
             supervisors,
-            input_lists,
+            input_masks: masks.pool,
+            raised,
             actions,
             memberships,
             state_map,
@@ -238,11 +290,14 @@ impl ConfigPools {
             overrun_fault: self.overrun_fault,
             lost_edge_fault: self.lost_edge_fault,
             inputs: &self.inputs,
+            debounced: &self.debounced,
+            debounce_mask: self.debounce_mask,
             outputs: &self.outputs,
             timers: &self.timers,
             events: &self.events,
             supervisors: &self.supervisors,
-            input_lists: &self.input_lists,
+            input_masks: &self.input_masks,
+            raised: &self.raised,
             actions: &self.actions,
             memberships: &self.memberships,
             state_map: &self.state_map,

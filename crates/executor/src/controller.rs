@@ -1,9 +1,10 @@
 //! The scan cycle (docs/semantics.md, "One scan").
 
+use crate::bits;
 use crate::inputs;
 use crate::memory::{Memory, Ram};
 use crate::pacing::{Pacer, ScanStart};
-use crate::program::{Action, Config, Index, Program, Trigger, UnexpectedPolicy};
+use crate::program::{Action, Config, EventSpec, Index, Program, Trigger, UnexpectedPolicy};
 use crate::record::{Counters, Fault, ScanRecord};
 use crate::timers::due;
 
@@ -23,6 +24,8 @@ pub struct Controller<P: Program, M: Memory> {
     executed_len: usize,
     unexpected_len: usize,
     counters: Counters,
+    /// Some debounce counter is above 0.
+    counting: bool,
 }
 
 impl<P: Program, M: Memory> Controller<P, M> {
@@ -43,6 +46,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
             executed_len: 0,
             unexpected_len: 0,
             counters: Counters::default(),
+            counting: false,
         };
         if fault.is_some() {
             controller.counters.faults += 1;
@@ -147,12 +151,29 @@ impl<P: Program, M: Memory> Controller<P, M> {
     }
 
     /// Runs one scan at time `now_ms` with the raw input image `raw`
-    /// (one value per input in declaration order) and returns its record.
+    /// (one value per input in declaration order; missing inputs read as
+    /// 0) and returns its record.
     pub fn scan(&mut self, now_ms: u32, raw: &[bool]) -> ScanRecord<'_> {
+        let inputs = self.program.config().inputs.len();
+        inputs::pack(raw, inputs, self.memory.ram().raw);
+        self.run(now_ms)
+    }
+
+    /// [`Controller::scan`] with the raw input image packed 32 inputs to a
+    /// word, input `i` at bit `i % 32` of word `i / 32`, as a board reads
+    /// its ports (missing words read as 0, bits of no input are ignored).
+    pub fn scan_packed(&mut self, now_ms: u32, raw: &[u32]) -> ScanRecord<'_> {
+        let inputs = self.program.config().inputs.len();
+        inputs::copy_packed(raw, inputs, self.memory.ram().raw);
+        self.run(now_ms)
+    }
+
+    /// One scan of the raw image in memory.
+    fn run(&mut self, now_ms: u32) -> ScanRecord<'_> {
         let first = self.scan == 0;
         let config = &self.program.config();
         let mut ram = self.memory.ram();
-        inputs::sample(config, &mut ram, raw, first);
+        let changed = inputs::sample(config, &mut ram, first, &mut self.counting);
         self.executed_len = 0;
         self.unexpected_len = 0;
 
@@ -169,7 +190,9 @@ impl<P: Program, M: Memory> Controller<P, M> {
 
         // Step 2: fault mode.
         if self.fault.is_some() {
-            let reset = config.reset.is_some_and(|r| inputs::rising(&[r], &ram));
+            let reset = config
+                .reset
+                .is_some_and(|r| inputs::input_rose(usize::from(r), &ram));
             if reset && self.program.image_intact() {
                 initialise(config, &mut ram);
                 self.fault = None;
@@ -180,55 +203,68 @@ impl<P: Program, M: Memory> Controller<P, M> {
             return self.finish(now_ms);
         }
 
-        // Step 3 and the triggers of step 4: which events occurred.
-        for (e, spec) in config.events.iter().enumerate() {
-            let fired = match spec.trigger {
-                Trigger::Command => false,
-                Trigger::Rising(list) => inputs::rising(list.of(config.input_lists), &ram),
-                Trigger::Falling(list) => inputs::falling(list.of(config.input_lists), &ram),
-                Trigger::Expired(t) => {
-                    let t = t as usize;
-                    ram.timer_running.get(t).copied().unwrap_or(false)
-                        && due(ram.timer_deadline[t], now_ms)
+        // Step 3 and the triggers of step 4: which events occurred. Only
+        // the inputs that changed can raise an edge, and only the events
+        // bound to them are looked at.
+        ram.occurred.fill(0);
+        ram.done.fill(0);
+        if changed {
+            for k in 0..ram.filtered.len() {
+                let mut changes = ram.filtered[k] ^ ram.previous[k];
+                while changes != 0 {
+                    let i = k * 32 + changes.trailing_zeros() as usize;
+                    changes &= changes - 1;
+                    let Some(input) = config.inputs.get(i) else {
+                        continue;
+                    };
+                    for &e in input.raises.of(config.raised) {
+                        if edge_occurred(config, &ram, usize::from(e)) {
+                            bits::insert(ram.occurred, usize::from(e));
+                        }
+                    }
                 }
-            };
-            ram.occurred[e] = fired
-                && inputs::all(spec.when.of(config.input_lists), ram.filtered)
-                && !inputs::any(spec.unless.of(config.input_lists), ram.filtered);
-            ram.done[e] = false;
+            }
         }
-        for t in 0..config.timers.len() {
+        for (t, timer) in config.timers.iter().enumerate() {
             if ram.timer_running[t] && due(ram.timer_deadline[t], now_ms) {
                 ram.timer_running[t] = false;
+                for &e in timer.raises.of(config.raised) {
+                    let e = usize::from(e);
+                    if config.events.get(e).is_some_and(|spec| conditions_hold(config, &ram, spec)) {
+                        bits::insert(ram.occurred, e);
+                    }
+                }
             }
         }
 
         // Step 4: uncontrollable phase, in declaration order.
         let mut executed = 0usize;
         let mut unexpected = 0usize;
-        for e in 0..config.events.len() {
-            if !ram.occurred[e] {
-                continue;
-            }
-            if feasible(&self.program, config, &ram, e) {
-                execute(&self.program, config, &mut ram, e, now_ms);
-                ram.executed[executed] = e as Index;
-                executed += 1;
-                continue;
-            }
-            ram.unexpected[unexpected] = e as Index;
-            unexpected += 1;
-            match config.unexpected {
-                UnexpectedPolicy::Ignore => {
-                    self.counters.ignored = self.counters.ignored.wrapping_add(1);
+        for k in 0..ram.occurred.len() {
+            let mut pending = ram.occurred[k];
+            while pending != 0 {
+                let e = k * 32 + pending.trailing_zeros() as usize;
+                pending &= pending - 1;
+                if feasible(&self.program, config, &ram, e) {
+                    execute(&self.program, config, &mut ram, e, now_ms);
+                    ram.executed[executed] = e as Index;
+                    executed += 1;
+                    continue;
                 }
-                UnexpectedPolicy::Fault => {
-                    self.fault = Some(Fault::Unexpected { event: e as Index });
-                    self.counters.faults = self.counters.faults.wrapping_add(1);
-                    write_safe_outputs(config, &mut ram);
-                    self.executed_len = executed;
-                    self.unexpected_len = unexpected;
-                    return self.finish(now_ms);
+                ram.unexpected[unexpected] = e as Index;
+                unexpected += 1;
+                match config.unexpected {
+                    UnexpectedPolicy::Ignore => {
+                        self.counters.ignored = self.counters.ignored.wrapping_add(1);
+                    }
+                    UnexpectedPolicy::Fault => {
+                        self.fault = Some(Fault::Unexpected { event: e as Index });
+                        self.counters.faults = self.counters.faults.wrapping_add(1);
+                        write_safe_outputs(config, &mut ram);
+                        self.executed_len = executed;
+                        self.unexpected_len = unexpected;
+                        return self.finish(now_ms);
+                    }
                 }
             }
         }
@@ -243,10 +279,10 @@ impl<P: Program, M: Memory> Controller<P, M> {
             let choice = (0..config.events.len()).find(|&e| {
                 let spec = &config.events[e];
                 spec.is_controllable()
-                    && !ram.done[e]
+                    && !bits::contains(ram.done, e)
                     && spec
                         .request
-                        .is_none_or(|r| ram.filtered.get(r as usize).copied().unwrap_or(false))
+                        .is_none_or(|r| inputs::input_on(usize::from(r), &ram))
                     && feasible(&self.program, config, &ram, e)
             });
             let Some(e) = choice else { break };
@@ -280,6 +316,28 @@ fn initialise(config: &Config<'_>, ram: &mut Ram<'_>) {
     for (level, spec) in ram.latched.iter_mut().zip(config.outputs) {
         *level = spec.initial;
     }
+}
+
+/// An edge event whose binding changed: its edge happened and its
+/// conditions hold in F\[k\].
+#[inline]
+fn edge_occurred(config: &Config<'_>, ram: &Ram<'_>, e: usize) -> bool {
+    let Some(spec) = config.events.get(e) else {
+        return false;
+    };
+    let edge = match spec.trigger {
+        Trigger::Rising(mask) => inputs::rising(mask.of(config.input_masks), ram),
+        Trigger::Falling(mask) => inputs::falling(mask.of(config.input_masks), ram),
+        Trigger::Command | Trigger::Expired(_) => false,
+    };
+    edge && conditions_hold(config, ram, spec)
+}
+
+/// `when` (all 1) and `unless` (all 0) of an event in F\[k\].
+#[inline]
+fn conditions_hold(config: &Config<'_>, ram: &Ram<'_>, spec: &EventSpec) -> bool {
+    inputs::all(spec.when.of(config.input_masks), ram.filtered)
+        && !inputs::any(spec.unless.of(config.input_masks), ram.filtered)
 }
 
 /// An event is feasible when every supervisor having it can take it.
@@ -318,7 +376,7 @@ fn execute<P: Program>(program: &P, config: &Config<'_>, ram: &mut Ram<'_>, e: u
             Action::Reset(t) => ram.timer_running[t as usize] = false,
         }
     }
-    ram.done[e] = true;
+    bits::insert(ram.done, e);
 }
 
 /// Action-driven levels, and for Moore outputs the OR over their state map.

@@ -19,8 +19,8 @@
 //! ```
 //! use executor::memory::StaticMemory;
 //! use executor::program::{
-//!     Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Program, Span,
-//!     SupervisorSpec, Trigger, UnexpectedPolicy,
+//!     mask_word, Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Program,
+//!     Span, SupervisorSpec, Trigger, UnexpectedPolicy,
 //! };
 //! use executor::table::config_crc;
 //! use executor::{Controller, Fault, SizeMismatch};
@@ -44,12 +44,15 @@
 //!     overrun_limit: 1,
 //!     overrun_fault: false,
 //!     lost_edge_fault: false,
-//!     inputs: &[InputSpec { debounce_scans: 0 }],
+//!     // The button's edges can raise `pressed` (raised[0..1]).
+//!     inputs: &[InputSpec { debounce_scans: 0, raises: Span::new(0, 1) }],
+//!     debounced: &[],
+//!     debounce_mask: Span::EMPTY,
 //!     outputs: &[OutputSpec { safe: false, initial: false, state_map: Span::EMPTY }],
 //!     timers: &[],
 //!     events: &[
 //!         EventSpec {
-//!             trigger: Trigger::Rising(Span::new(0, 1)), // input_lists[0..1]
+//!             trigger: Trigger::Rising(Span::new(0, 1)), // input_masks[0..1]
 //!             when: Span::EMPTY,
 //!             unless: Span::EMPTY,
 //!             request: None,
@@ -66,7 +69,9 @@
 //!         },
 //!     ],
 //!     supervisors: &[SupervisorSpec { states: 3, initial: IDLE }],
-//!     input_lists: &[START_PB],
+//!     // One word per mask (32 inputs per word): the button alone.
+//!     input_masks: &[mask_word(0, &[START_PB])],
+//!     raised: &[PRESSED],
 //!     actions: &[Action::Set(MOTOR)],
 //!     memberships: &[
 //!         Membership { supervisor: 0, local: 0 },
@@ -98,10 +103,11 @@
 //! }
 //!
 //! let program = Starter { crc: config_crc(&CONFIG) };
-//! // 1 input, 1 output, 0 timers, 1 supervisor, 2 events.
-//! type Memory = StaticMemory<1, 1, 0, 1, 2>;
+//! // 1 input word, no debounced input, 1 output, 0 timers, 1 supervisor,
+//! // 2 events in 1 word.
+//! type Memory = StaticMemory<1, 0, 1, 0, 1, 2, 1>;
 //! assert!(matches!(
-//!     Controller::new(&program, StaticMemory::<1, 1, 0, 1, 3>::new()),
+//!     Controller::new(&program, StaticMemory::<1, 0, 1, 0, 1, 3, 1>::new()),
 //!     Err(SizeMismatch)
 //! ));
 //! let mut plc = Controller::new(&program, Memory::new()).expect("sized for CONFIG");
@@ -212,6 +218,7 @@
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
+mod bits;
 mod controller;
 mod inputs;
 pub mod memory;

@@ -13,7 +13,7 @@
 //! read or write the arrays; the controller's state is visible only
 //! through [`crate::Controller`]'s accessors and its scan records.
 
-use crate::program::Config;
+use crate::program::{words, Config};
 
 pub(crate) use sealed::Ram;
 
@@ -22,12 +22,17 @@ pub(crate) use sealed::Ram;
 /// can name them.
 pub(crate) mod sealed {
     /// Mutable views of every per-controller array, for the scan cycle.
+    /// Input images and event sets are bit sets in `u32` words (bit
+    /// `i % 32` of word `i / 32`).
     pub struct Ram<'a> {
+        /// The raw input image of this scan.
+        pub(crate) raw: &'a mut [u32],
         /// Debounced input values, this scan (F\[k\]).
-        pub(crate) filtered: &'a mut [bool],
+        pub(crate) filtered: &'a mut [u32],
         /// Debounced input values, previous scan (F\[k-1\]).
-        pub(crate) previous: &'a mut [bool],
-        /// Consecutive scans each raw input has differed from its filtered value.
+        pub(crate) previous: &'a mut [u32],
+        /// Per debounced input (`Config::debounced`): consecutive scans its
+        /// raw value has differed from its filtered value.
         pub(crate) debounce: &'a mut [u8],
         /// Per timer: running.
         pub(crate) timer_running: &'a mut [bool],
@@ -39,10 +44,10 @@ pub(crate) mod sealed {
         pub(crate) outputs: &'a mut [bool],
         /// The state of each supervisor.
         pub(crate) states: &'a mut [u32],
-        /// Per event: occurred (edge or expiry) in this scan.
-        pub(crate) occurred: &'a mut [bool],
-        /// Per event: executed in this scan.
-        pub(crate) done: &'a mut [bool],
+        /// Events that occurred (edge or expiry) in this scan.
+        pub(crate) occurred: &'a mut [u32],
+        /// Events executed in this scan.
+        pub(crate) done: &'a mut [u32],
         /// Events executed in this scan, in order (capacity: all events).
         pub(crate) executed: &'a mut [u16],
         /// Unexpected events of this scan, in order (capacity: all events).
@@ -88,7 +93,7 @@ pub(crate) mod sealed {
 /// ```compile_fail,E0599
 /// use executor::memory::StaticMemory;
 ///
-/// let mut memory: StaticMemory<1, 1, 0, 1, 2> = StaticMemory::new();
+/// let mut memory: StaticMemory<1, 0, 1, 0, 1, 2, 1> = StaticMemory::new();
 /// let _ = memory.ram();
 /// ```
 pub trait Memory: sealed::Storage {
@@ -96,15 +101,17 @@ pub trait Memory: sealed::Storage {
     fn fits(&self, config: &Config<'_>) -> bool;
 }
 
-/// Fixed-size memory: `I` inputs, `O` outputs, `T` timers, `S` supervisors,
-/// `E` events.
+/// Fixed-size memory: `IW` input words (32 inputs per `u32`), `D`
+/// debounced inputs, `O` outputs, `T` timers, `S` supervisors, `E` events
+/// and `EW` event words (32 events per `u32`).
 ///
 /// ```
 /// use executor::memory::StaticMemory;
 ///
-/// /// A project with 2 inputs, 1 output, no timer, 1 supervisor and 3
-/// /// events, as `codegen gen` declares its memory.
-/// pub type Memory = StaticMemory<2, 1, 0, 1, 3>;
+/// /// A project with 2 inputs (1 word, none debounced), 1 output, no
+/// /// timer, 1 supervisor and 3 events (1 word), as `codegen gen`
+/// /// declares its memory.
+/// pub type Memory = StaticMemory<1, 0, 1, 0, 1, 3, 1>;
 ///
 /// // `new` is `const`, so the memory can be a `static` or built at compile time.
 /// const FRESH: Memory = Memory::new();
@@ -112,61 +119,87 @@ pub trait Memory: sealed::Storage {
 /// ```
 #[derive(Debug, Clone)]
 pub struct StaticMemory<
-    const I: usize,
+    const IW: usize,
+    const D: usize,
     const O: usize,
     const T: usize,
     const S: usize,
     const E: usize,
+    const EW: usize,
 > {
-    filtered: [bool; I],
-    previous: [bool; I],
-    debounce: [u8; I],
+    raw: [u32; IW],
+    filtered: [u32; IW],
+    previous: [u32; IW],
+    debounce: [u8; D],
     timer_running: [bool; T],
     timer_deadline: [u32; T],
     latched: [bool; O],
     outputs: [bool; O],
     states: [u32; S],
-    occurred: [bool; E],
-    done: [bool; E],
+    occurred: [u32; EW],
+    done: [u32; EW],
     executed: [u16; E],
     unexpected: [u16; E],
 }
 
-impl<const I: usize, const O: usize, const T: usize, const S: usize, const E: usize> Default
-    for StaticMemory<I, O, T, S, E>
+impl<
+        const IW: usize,
+        const D: usize,
+        const O: usize,
+        const T: usize,
+        const S: usize,
+        const E: usize,
+        const EW: usize,
+    > Default for StaticMemory<IW, D, O, T, S, E, EW>
 {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<const I: usize, const O: usize, const T: usize, const S: usize, const E: usize>
-    StaticMemory<I, O, T, S, E>
+impl<
+        const IW: usize,
+        const D: usize,
+        const O: usize,
+        const T: usize,
+        const S: usize,
+        const E: usize,
+        const EW: usize,
+    > StaticMemory<IW, D, O, T, S, E, EW>
 {
     /// Zeroed memory (the controller initialises it).
     pub const fn new() -> Self {
         StaticMemory {
-            filtered: [false; I],
-            previous: [false; I],
-            debounce: [0; I],
+            raw: [0; IW],
+            filtered: [0; IW],
+            previous: [0; IW],
+            debounce: [0; D],
             timer_running: [false; T],
             timer_deadline: [0; T],
             latched: [false; O],
             outputs: [false; O],
             states: [0; S],
-            occurred: [false; E],
-            done: [false; E],
+            occurred: [0; EW],
+            done: [0; EW],
             executed: [0; E],
             unexpected: [0; E],
         }
     }
 }
 
-impl<const I: usize, const O: usize, const T: usize, const S: usize, const E: usize> sealed::Storage
-    for StaticMemory<I, O, T, S, E>
+impl<
+        const IW: usize,
+        const D: usize,
+        const O: usize,
+        const T: usize,
+        const S: usize,
+        const E: usize,
+        const EW: usize,
+    > sealed::Storage for StaticMemory<IW, D, O, T, S, E, EW>
 {
     fn ram(&mut self) -> Ram<'_> {
         Ram {
+            raw: &mut self.raw,
             filtered: &mut self.filtered,
             previous: &mut self.previous,
             debounce: &mut self.debounce,
@@ -199,15 +232,24 @@ impl<const I: usize, const O: usize, const T: usize, const S: usize, const E: us
     }
 }
 
-impl<const I: usize, const O: usize, const T: usize, const S: usize, const E: usize> Memory
-    for StaticMemory<I, O, T, S, E>
+impl<
+        const IW: usize,
+        const D: usize,
+        const O: usize,
+        const T: usize,
+        const S: usize,
+        const E: usize,
+        const EW: usize,
+    > Memory for StaticMemory<IW, D, O, T, S, E, EW>
 {
     fn fits(&self, config: &Config<'_>) -> bool {
-        config.inputs.len() == I
+        words(config.inputs.len()) == IW
+            && config.debounced.len() == D
             && config.outputs.len() == O
             && config.timers.len() == T
             && config.supervisors.len() == S
             && config.events.len() == E
+            && words(config.events.len()) == EW
     }
 }
 
@@ -217,23 +259,24 @@ pub use heap::HeapMemory;
 #[cfg(feature = "alloc")]
 mod heap {
     use super::{sealed, Memory, Ram};
-    use crate::program::Config;
+    use crate::program::{words, Config};
     use alloc::vec;
     use alloc::vec::Vec;
 
     /// Memory sized at run time from a [`Config`] (hosts only).
     #[derive(Debug, Clone, Default)]
     pub struct HeapMemory {
-        filtered: Vec<bool>,
-        previous: Vec<bool>,
+        raw: Vec<u32>,
+        filtered: Vec<u32>,
+        previous: Vec<u32>,
         debounce: Vec<u8>,
         timer_running: Vec<bool>,
         timer_deadline: Vec<u32>,
         latched: Vec<bool>,
         outputs: Vec<bool>,
         states: Vec<u32>,
-        occurred: Vec<bool>,
-        done: Vec<bool>,
+        occurred: Vec<u32>,
+        done: Vec<u32>,
         executed: Vec<u16>,
         unexpected: Vec<u16>,
     }
@@ -241,23 +284,22 @@ mod heap {
     impl HeapMemory {
         /// Memory for `config`.
         pub fn for_config(config: &Config<'_>) -> Self {
-            let (i, o, t) = (
-                config.inputs.len(),
-                config.outputs.len(),
-                config.timers.len(),
-            );
+            let iw = words(config.inputs.len());
+            let (o, t) = (config.outputs.len(), config.timers.len());
             let (s, e) = (config.supervisors.len(), config.events.len());
+            let ew = words(e);
             HeapMemory {
-                filtered: vec![false; i],
-                previous: vec![false; i],
-                debounce: vec![0; i],
+                raw: vec![0; iw],
+                filtered: vec![0; iw],
+                previous: vec![0; iw],
+                debounce: vec![0; config.debounced.len()],
                 timer_running: vec![false; t],
                 timer_deadline: vec![0; t],
                 latched: vec![false; o],
                 outputs: vec![false; o],
                 states: vec![0; s],
-                occurred: vec![false; e],
-                done: vec![false; e],
+                occurred: vec![0; ew],
+                done: vec![0; ew],
                 executed: vec![0; e],
                 unexpected: vec![0; e],
             }
@@ -267,6 +309,7 @@ mod heap {
     impl sealed::Storage for HeapMemory {
         fn ram(&mut self) -> Ram<'_> {
             Ram {
+                raw: &mut self.raw,
                 filtered: &mut self.filtered,
                 previous: &mut self.previous,
                 debounce: &mut self.debounce,
@@ -301,11 +344,13 @@ mod heap {
 
     impl Memory for HeapMemory {
         fn fits(&self, config: &Config<'_>) -> bool {
-            config.inputs.len() == self.filtered.len()
+            words(config.inputs.len()) == self.filtered.len()
+                && config.debounced.len() == self.debounce.len()
                 && config.outputs.len() == self.outputs.len()
                 && config.timers.len() == self.timer_running.len()
                 && config.supervisors.len() == self.states.len()
-                && config.events.len() == self.occurred.len()
+                && config.events.len() == self.executed.len()
+                && words(config.events.len()) == self.occurred.len()
         }
     }
 }

@@ -2,14 +2,39 @@
 //!
 //! A [`Config`] is plain data (slices and small integers), so the code
 //! generator can emit it as a `static` in flash and a host can build it at
-//! run time from vectors. Lists that vary in length (the inputs of an OR
-//! binding, an event's actions, …) live in shared pools and are referred
-//! to by [`Span`]s. Supervisor dynamics come through the [`Program`] trait,
-//! implemented by bit-packed tables ([`crate::table`]) and by generated
-//! CMSSM logic functions alike.
+//! run time from vectors. Lists that vary in length (an event's actions,
+//! the events an input's edges can raise, …) live in shared pools and are
+//! referred to by [`Span`]s. Sets of inputs (the OR of an edge binding,
+//! `when` and `unless` conditions) are *masks*: one `u32` per input word,
+//! bit `i % 32` of word `i / 32` standing for input `i`, so the scan tests
+//! a whole set with one AND per word. Supervisor dynamics come through the
+//! [`Program`] trait, implemented by bit-packed tables ([`crate::table`])
+//! and by generated CMSSM logic functions alike.
 
 /// Index of an input, output, timer, event or supervisor.
 pub type Index = u16;
+
+/// Words of a bit set of `n` members (32 per `u32`): the length of an
+/// input mask for `n` inputs, of an event set for `n` events.
+pub const fn words(n: usize) -> usize {
+    n.div_ceil(32)
+}
+
+/// Word `word` of the bit set of `members`: bit `i % 32` set for every
+/// member `i` with `i / 32 == word`. `const`, so generated code writes
+/// masks by name (`mask_word(0, &[input::A, input::B])`) and the compiler
+/// folds them into constants.
+pub const fn mask_word(word: u16, members: &[Index]) -> u32 {
+    let mut bits = 0u32;
+    let mut k = 0;
+    while k < members.len() {
+        if members[k] / 32 == word {
+            bits |= 1 << (members[k] % 32);
+        }
+        k += 1;
+    }
+    bits
+}
 
 /// A range `start..start + len` of one of the [`Config`] pools.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -47,8 +72,14 @@ impl Span {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct InputSpec {
     /// Scans a new raw value must persist before the filtered value
-    /// follows it; 0 and 1 mean no filtering.
+    /// follows it; 0 and 1 mean no filtering. A debounced input
+    /// (`debounce_scans ≥ 2`) is also listed in [`Config::debounced`] and
+    /// [`Config::debounce_mask`].
     pub debounce_scans: u8,
+    /// The events bound to an edge of this input, alone or in an OR (span
+    /// of [`Config::raised`]): the only events a change of this input can
+    /// raise.
+    pub raises: Span,
 }
 
 /// An output signal.
@@ -68,6 +99,9 @@ pub struct OutputSpec {
 pub struct TimerSpec {
     /// Preset in milliseconds, `0 < preset < 2^31`.
     pub preset_ms: u32,
+    /// The events bound to this timer's expiry (span of
+    /// [`Config::raised`]).
+    pub raises: Span,
 }
 
 /// What makes an uncontrollable event occur.
@@ -75,10 +109,11 @@ pub struct TimerSpec {
 pub enum Trigger {
     /// A controllable event: the controller chooses it.
     Command,
-    /// Rising edge of the OR of the inputs in the span of
-    /// [`Config::input_lists`].
+    /// Rising edge of the OR of the inputs of a mask (span of
+    /// [`Config::input_masks`]): the OR was 0 in F\[k-1\] and is 1 in
+    /// F\[k\].
     Rising(Span),
-    /// Falling edge of the OR of the inputs in the span.
+    /// Falling edge of the OR of the inputs of a mask.
     Falling(Span),
     /// Expiry of the timer.
     Expired(Index),
@@ -112,9 +147,10 @@ pub struct Membership {
 pub struct EventSpec {
     /// What makes it occur ([`Trigger::Command`] for controllable events).
     pub trigger: Trigger,
-    /// Inputs (span of [`Config::input_lists`]) that must all be 1.
+    /// Mask of inputs (span of [`Config::input_masks`]) that must all be
+    /// 1; empty for none.
     pub when: Span,
-    /// Inputs that must all be 0.
+    /// Mask of inputs that must all be 0; empty for none.
     pub unless: Span,
     /// Controllable events: an input that must be 1 for the event to be
     /// chosen (manual mode).
@@ -182,6 +218,11 @@ pub struct Config<'a> {
     pub lost_edge_fault: bool,
     /// Inputs in declaration order.
     pub inputs: &'a [InputSpec],
+    /// The debounced inputs (`debounce_scans ≥ 2`) in declaration order:
+    /// filter counter `k` belongs to input `debounced[k]`.
+    pub debounced: &'a [Index],
+    /// Mask (span of [`Config::input_masks`]) of the debounced inputs.
+    pub debounce_mask: Span,
     /// Outputs in declaration order.
     pub outputs: &'a [OutputSpec],
     /// Timers in declaration order.
@@ -190,8 +231,12 @@ pub struct Config<'a> {
     pub events: &'a [EventSpec],
     /// Supervisors in declaration order.
     pub supervisors: &'a [SupervisorSpec],
-    /// Pool of input lists (OR bindings, `when`, `unless`).
-    pub input_lists: &'a [Index],
+    /// Pool of input masks (edge bindings, `when`, `unless`, the debounced
+    /// inputs), each [`words`]`(inputs.len())` long.
+    pub input_masks: &'a [u32],
+    /// Pool of event lists: the events each input's edges and each timer's
+    /// expiry can raise, each list in declaration order.
+    pub raised: &'a [Index],
     /// Pool of actions.
     pub actions: &'a [Action],
     /// Pool of event memberships.

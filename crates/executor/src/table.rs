@@ -219,7 +219,10 @@ pub fn digest_config(d: &mut Digest<'_, u32>, config: &Config<'_>) {
     feed(d, &(config.inputs.len() as u32).to_le_bytes());
     for i in config.inputs {
         feed(d, &[i.debounce_scans]);
+        span(d, i.raises);
     }
+    u16s(d, config.debounced);
+    span(d, config.debounce_mask);
     feed(d, &(config.outputs.len() as u32).to_le_bytes());
     for o in config.outputs {
         feed(d, &[o.safe as u8, o.initial as u8]);
@@ -228,6 +231,7 @@ pub fn digest_config(d: &mut Digest<'_, u32>, config: &Config<'_>) {
     feed(d, &(config.timers.len() as u32).to_le_bytes());
     for t in config.timers {
         feed(d, &t.preset_ms.to_le_bytes());
+        span(d, t.raises);
     }
     feed(d, &(config.events.len() as u32).to_le_bytes());
     for e in config.events {
@@ -257,7 +261,8 @@ pub fn digest_config(d: &mut Digest<'_, u32>, config: &Config<'_>) {
         feed(d, &s.states.to_le_bytes());
         feed(d, &s.initial.to_le_bytes());
     }
-    u16s(d, config.input_lists);
+    words(d, config.input_masks);
+    u16s(d, config.raised);
     feed(d, &(config.actions.len() as u32).to_le_bytes());
     for a in config.actions {
         let (tag, x) = match *a {

@@ -29,7 +29,11 @@ struct Conveyor {
     intact: bool,
 }
 
-const INPUT_LISTS: [Index; 2] = [LS, AUTO];
+/// Input masks: `ls` (the edges of `ls_on`, `ls_off` and the debounce
+/// mask when `ls` is debounced).
+const INPUT_MASKS: [u32; 1] = [1 << LS];
+/// Events raised by `ls` (0–1) and by the timer (2).
+const RAISED: [Index; 3] = [LS_ON, LS_OFF, CLEARED];
 const ACTIONS: [Action; 3] = [Action::Start(0), Action::Set(0), Action::Clear(0)];
 const MEMBERS: [Membership; 4] = [
     Membership {
@@ -83,10 +87,18 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
     let inputs: &'static [InputSpec] = Box::leak(Box::new([
         InputSpec {
             debounce_scans: debounce,
+            raises: Span::new(0, 2),
         },
-        InputSpec { debounce_scans: 0 },
-        InputSpec { debounce_scans: 0 },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
     ]));
+    let debounced = debounce >= 2;
     Config {
         name: "conveyor",
         scan_period_ms: 10,
@@ -97,6 +109,12 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
         overrun_fault: false,
         lost_edge_fault: true,
         inputs,
+        debounced: if debounced { &[LS] } else { &[] },
+        debounce_mask: if debounced {
+            Span::new(0, 1)
+        } else {
+            Span::EMPTY
+        },
         outputs: &[
             OutputSpec {
                 safe: false,
@@ -109,13 +127,17 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
                 state_map: Span { start: 0, len: 1 },
             },
         ],
-        timers: &[TimerSpec { preset_ms: 1000 }],
+        timers: &[TimerSpec {
+            preset_ms: 1000,
+            raises: Span { start: 2, len: 1 },
+        }],
         events,
         supervisors: &[SupervisorSpec {
             states: 4,
             initial: 0,
         }],
-        input_lists: &INPUT_LISTS,
+        input_masks: &INPUT_MASKS,
+        raised: &RAISED,
         actions: &ACTIONS,
         memberships: &MEMBERS,
         state_map: &[StateMapEntry {
@@ -145,7 +167,11 @@ impl Program for Conveyor {
     }
 }
 
-type Mem = StaticMemory<3, 2, 1, 1, 5>;
+/// 3 inputs (1 word), none debounced, 2 outputs, 1 timer, 1 supervisor,
+/// 5 events (1 word).
+type Mem = StaticMemory<1, 0, 2, 1, 1, 5, 1>;
+/// The same with `ls` debounced.
+type DebouncedMem = StaticMemory<1, 1, 2, 1, 1, 5, 1>;
 
 fn controller(config: Config<'static>) -> Controller<Conveyor, Mem> {
     Controller::new(
@@ -154,6 +180,17 @@ fn controller(config: Config<'static>) -> Controller<Conveyor, Mem> {
             intact: true,
         },
         Mem::new(),
+    )
+    .unwrap()
+}
+
+fn debounced(config: Config<'static>) -> Controller<Conveyor, DebouncedMem> {
+    Controller::new(
+        Conveyor {
+            config,
+            intact: true,
+        },
+        DebouncedMem::new(),
     )
     .unwrap()
 }
@@ -258,7 +295,7 @@ fn ignore_policy_drops_and_counts_unexpected_events() {
 
 #[test]
 fn debounce_needs_d_consecutive_differing_scans() {
-    let mut c = controller(config(3, UnexpectedPolicy::Fault, None));
+    let mut c = debounced(config(3, UnexpectedPolicy::Fault, None));
     c.scan(0, &io(false, false));
     assert!(c.scan(10, &io(true, false)).executed.is_empty());
     assert!(c.scan(20, &io(true, false)).executed.is_empty());
@@ -353,7 +390,7 @@ fn an_overrun_is_a_fault_from_its_own_scan_when_configured() {
 #[test]
 fn memory_of_the_wrong_size_is_refused() {
     let config = config(0, UnexpectedPolicy::Fault, None);
-    let small: StaticMemory<3, 2, 1, 1, 4> = StaticMemory::new();
+    let small: StaticMemory<1, 0, 2, 1, 1, 4, 1> = StaticMemory::new();
     assert!(Controller::new(
         Conveyor {
             config,

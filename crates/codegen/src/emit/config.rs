@@ -9,6 +9,19 @@
 
 use super::{ident, listed, positions, quoted, Emitter};
 
+/// The members of a bit set, in order.
+fn mask_members(mask: &[u32]) -> Vec<ex::Index> {
+    let mut members = Vec::new();
+    for (k, &w) in mask.iter().enumerate() {
+        for b in 0..32 {
+            if w >> b & 1 == 1 {
+                members.push((k * 32 + b) as ex::Index);
+            }
+        }
+    }
+    members
+}
+
 /// A doc comment: `title` and, if there are any, the list items `doc`.
 fn titled(title: &str, doc: &str) -> String {
     if doc.is_empty() {
@@ -108,12 +121,32 @@ impl Emitter<'_> {
         quoted(&a.state_name(StateId(state)))
     }
 
-    /// The input names of an input-list span.
+    /// The input names of a mask (a span of the input masks).
     fn inputs_in(&self, s: ex::Span) -> Vec<String> {
-        s.of(&self.pools.input_lists)
-            .iter()
-            .map(|&i| self.input_name(i))
+        mask_members(s.of(&self.pools.input_masks))
+            .into_iter()
+            .map(|i| self.input_name(i))
             .collect()
+    }
+
+    /// The event names of a span of the raised-events pool.
+    fn raised_in(&self, s: ex::Span) -> Vec<String> {
+        s.of(&self.pools.raised)
+            .iter()
+            .map(|&e| self.event_name(usize::from(e)))
+            .collect()
+    }
+
+    /// A mask word as Rust: `mask_word(k, &[input::A, input::B])`, or `0`.
+    fn mask_word_expr(&self, k: usize, word: u32) -> String {
+        if word == 0 {
+            return "0".to_owned();
+        }
+        let names: Vec<String> = (0..32)
+            .filter(|b| word >> b & 1 == 1)
+            .map(|b| self.input((k * 32 + b) as ex::Index))
+            .collect();
+        format!("mask_word({k}, &[{}])", names.join(", "))
     }
 
     /// The events whose actions include `wanted`.
@@ -220,13 +253,21 @@ impl Emitter<'_> {
         format!("{} ({kind}): {}", self.event_name(e), parts.join("; "))
     }
 
-    /// Doc lines naming the owner of each non-empty span, in pool order.
+    /// Doc lines naming the owners of each non-empty span, in pool order
+    /// (a span several owners share on one line).
     fn owners(&self, mut spans: Vec<(ex::Span, String)>) -> String {
         spans.retain(|(s, _)| !s.is_empty());
-        spans.sort_by_key(|(s, _)| s.start);
-        let mut doc = String::new();
+        spans.sort_by_key(|(s, _)| (s.start, s.len));
+        let mut lines: Vec<(ex::Span, Vec<String>)> = Vec::new();
         for (s, owner) in spans {
-            let _ = writeln!(doc, "/// - {}: {owner}", positions(s));
+            match lines.last_mut() {
+                Some((last, owners)) if *last == s => owners.push(owner),
+                _ => lines.push((s, vec![owner])),
+            }
+        }
+        let mut doc = String::new();
+        for (s, owners) in lines {
+            let _ = writeln!(doc, "/// - {}: {}", positions(s), owners.join(", "));
         }
         doc
     }
@@ -239,24 +280,48 @@ impl Emitter<'_> {
 
         let mut doc = String::new();
         for (i, input) in pools.inputs.iter().enumerate() {
-            let filter = match input.debounce_scans {
+            let mut about = match input.debounce_scans {
                 0 | 1 => "unfiltered".to_owned(),
                 d => format!("debounced over {d} scans"),
             };
-            let _ = writeln!(doc, "/// - {i} {}: {filter}", quoted(&p.inputs[i].name));
+            let raised = self.raised_in(input.raises);
+            if !raised.is_empty() {
+                let _ = write!(about, "; its edges can raise {}", listed(&raised, "and"));
+            }
+            let _ = writeln!(doc, "/// - {i} {}: {about}", quoted(&p.inputs[i].name));
         }
         let inputs = list(
             pools
                 .inputs
                 .iter()
-                .map(|i| format!("InputSpec {{ debounce_scans: {} }}", i.debounce_scans))
+                .map(|i| {
+                    format!(
+                        "InputSpec {{ debounce_scans: {}, raises: {} }}",
+                        i.debounce_scans,
+                        self.span(i.raises)
+                    )
+                })
                 .collect(),
         );
         let _ = writeln!(
             self.out,
+            "/// Words of the input image and of every input mask (32 inputs per word).\npub const INPUT_WORDS: usize = executor::program::words(input::COUNT);"
+        );
+        let _ = writeln!(
+            self.out,
             "{}const INPUTS: [InputSpec; {}] = [{inputs}];",
-            titled("Input filtering, by input", &doc),
+            titled(
+                "Input filtering and the events each input's edges can raise, by input",
+                &doc
+            ),
             pools.inputs.len()
+        );
+        let debounced: Vec<String> = pools.debounced.iter().map(|&i| self.input(i)).collect();
+        let _ = writeln!(
+            self.out,
+            "/// The debounced inputs; filter counter `k` belongs to the `k`-th.\nconst DEBOUNCED: [Index; {}] = [{}];",
+            debounced.len(),
+            list(debounced)
         );
 
         let mut doc = String::new();
@@ -332,7 +397,13 @@ impl Emitter<'_> {
             pools
                 .timers
                 .iter()
-                .map(|t| format!("TimerSpec {{ preset_ms: {} }}", t.preset_ms))
+                .map(|t| {
+                    format!(
+                        "TimerSpec {{ preset_ms: {}, raises: {} }}",
+                        t.preset_ms,
+                        self.span(t.raises)
+                    )
+                })
                 .collect(),
         );
         let _ = writeln!(
@@ -410,7 +481,7 @@ impl Emitter<'_> {
             pools.supervisors.len()
         );
 
-        let mut spans = Vec::new();
+        let mut spans = vec![(pools.debounce_mask, "the debounced inputs".to_owned())];
         for (e, spec) in pools.events.iter().enumerate() {
             let name = self.event_name(e);
             if let ex::Trigger::Rising(s) | ex::Trigger::Falling(s) = spec.trigger {
@@ -420,15 +491,48 @@ impl Emitter<'_> {
             spans.push((spec.unless, format!("`unless` of {name}")));
         }
         let doc = self.owners(spans);
-        let lists = list(pools.input_lists.iter().map(|&i| self.input(i)).collect());
+        let iw = ex::words(pools.inputs.len()).max(1);
+        let masks = list(
+            pools
+                .input_masks
+                .iter()
+                .enumerate()
+                .map(|(at, &w)| self.mask_word_expr(at % iw, w))
+                .collect(),
+        );
         let _ = writeln!(
             self.out,
-            "{}const INPUT_LISTS: [Index; {}] = [{lists}];",
+            "{}const INPUT_MASKS: [u32; {}] = [{masks}];",
             titled(
-                "Input lists of edge bindings and `when`/`unless` conditions, by position",
+                "Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position",
                 &doc
             ),
-            pools.input_lists.len()
+            pools.input_masks.len()
+        );
+
+        let mut spans = Vec::new();
+        for (i, input) in pools.inputs.iter().enumerate() {
+            spans.push((input.raises, format!("edges of {}", self.input_name(i as ex::Index))));
+        }
+        for (t, timer) in pools.timers.iter().enumerate() {
+            spans.push((timer.raises, format!("expiry of {}", self.timer_name(t as ex::Index))));
+        }
+        let doc = self.owners(spans);
+        let raised = list(
+            pools
+                .raised
+                .iter()
+                .map(|&e| format!("event::{}", ident(&p.events[usize::from(e)].name)))
+                .collect(),
+        );
+        let _ = writeln!(
+            self.out,
+            "{}const RAISED: [Index; {}] = [{raised}];",
+            titled(
+                "Events an input's edges or a timer's expiry can raise, by position",
+                &doc
+            ),
+            pools.raised.len()
         );
 
         let spans = (0..pools.events.len())
@@ -517,22 +621,18 @@ impl Emitter<'_> {
             .map_or("None".to_owned(), |r| format!("Some({})", self.input(r)));
         let _ = writeln!(
             self.out,
-            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, inputs: &INPUTS, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_lists: &INPUT_LISTS, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP }};",
+            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, inputs: &INPUTS, debounced: &DEBOUNCED, debounce_mask: {}, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_masks: &INPUT_MASKS, raised: &RAISED, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP }};",
             pools.name,
             pools.scan_period_ms,
             pools.max_commands_per_scan,
             pools.overrun_limit,
             pools.overrun_fault,
             pools.lost_edge_fault,
+            self.span(pools.debounce_mask),
         );
         let _ = writeln!(
             self.out,
-            "/// Controller memory sized for this project.\npub type Memory = executor::memory::StaticMemory<{}, {}, {}, {}, {}>;",
-            pools.inputs.len(),
-            pools.outputs.len(),
-            pools.timers.len(),
-            pools.supervisors.len(),
-            pools.events.len()
+            "/// Words of an event set (32 events per word).\npub const EVENT_WORDS: usize = executor::program::words(event::COUNT);\n/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, and event sets in `EVENT_WORDS` words.\npub type Memory = executor::memory::StaticMemory<INPUT_WORDS, {{ DEBOUNCED.len() }}, {{ output::COUNT }}, {{ timer::COUNT }}, {{ supervisor::COUNT }}, {{ event::COUNT }}, EVENT_WORDS>;"
         );
     }
 }
@@ -612,8 +712,9 @@ file = "crane/sup_section.toml"
         );
         for line in [
             // INPUTS, OUTPUTS, TIMERS
-            "/// - 0 `a`: debounced over 3 scans",
-            "/// - 1 `b`: unfiltered",
+            "/// - 0 `a`: debounced over 3 scans; its edges can raise `t1_at13` and `t2_at13`",
+            "/// - 1 `b`: unfiltered; its edges can raise `t2_at13` and `t2_at14`",
+            "/// - 4 `go`: unfiltered",
             "/// - 0 `lamp` (safe 0): 1 while `sup_crane1` is in `train1` or `train2`, or `sup_section` is in `t1_in`",
             "/// - 1 `valve` (safe 1): latched, initially 1; set by `st_ld1`; cleared by `run_t1`",
             "/// - 0 `t`: 500 ms, started by `st_ld1`, reset by `t2_at13`, expiry raises `f_ld1`",
@@ -626,12 +727,16 @@ file = "crane/sup_section.toml"
             "/// - 8 `spare` (uncontrollable, plant): rising edge of `d`; in no supervisor",
             // SUPERVISORS
             "/// - 0 `sup_crane1`: 3 states, initial `idle`",
-            // INPUT_LISTS
-            "/// - 0: edge of `t1_at13`",
-            "/// - 1–2: `when` of `t1_at13`",
-            "/// - 3: `unless` of `t1_at13`",
-            "/// - 4–5: edge of `t2_at13`",
-            "/// - 8: edge of `spare`",
+            // INPUT_MASKS: one word each, equal masks stored once
+            "/// - 0: the debounced inputs, edge of `t1_at13`",
+            "/// - 1: `when` of `t1_at13`",
+            "/// - 2: `unless` of `t1_at13`",
+            "/// - 3: edge of `t2_at13`",
+            "/// - 6: edge of `spare`",
+            // RAISED
+            "/// - 0–1: edges of `a`",
+            "/// - 2–3: edges of `b`",
+            "/// - 6: expiry of `t`",
             // ACTIONS
             "/// - 0: `t2_at13`",
             "/// - 1–2: `st_ld1`",

@@ -288,7 +288,7 @@ fn write_program(
     };
     let _ = writeln!(
         e.out,
-        "#[allow(unused_imports)]\nuse executor::program::{{Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy}};\n#[allow(unused_imports)]\n{uses}"
+        "#[allow(unused_imports)]\nuse executor::program::{{mask_word, Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy}};\n#[allow(unused_imports)]\n{uses}"
     );
     e.names();
     e.config();

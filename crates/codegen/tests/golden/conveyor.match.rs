@@ -4,7 +4,7 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span,
+    mask_word, Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span,
     StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
@@ -117,13 +117,25 @@ pub mod states {
     ];
 }
 
-/// Input filtering, by input:
-/// - 0 `ls`: debounced over 2 scans
+/// Words of the input image and of every input mask (32 inputs per word).
+pub const INPUT_WORDS: usize = executor::program::words(input::COUNT);
+
+/// Input filtering and the events each input's edges can raise, by input:
+/// - 0 `ls`: debounced over 2 scans; its edges can raise `re_ls` and `fe_ls`
 /// - 1 `reset`: unfiltered
 const INPUTS: [InputSpec; 2] = [
-    InputSpec { debounce_scans: 2 },
-    InputSpec { debounce_scans: 0 },
+    InputSpec {
+        debounce_scans: 2,
+        raises: Span::new(0, 2),
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::EMPTY,
+    },
 ];
+
+/// The debounced inputs; filter counter `k` belongs to the `k`-th.
+const DEBOUNCED: [Index; 1] = [input::LS];
 
 /// Outputs, by output (level in fault mode, and how each is driven):
 /// - 0 `belt` (safe 0): latched, initially 0; set by `start`; cleared by `stop`
@@ -137,7 +149,12 @@ const OUTPUTS: [OutputSpec; 1] = [
 
 /// Timer presets, by timer:
 /// - 0 `runon`: 1000 ms, started by `fe_ls`, reset by `re_ls`, expiry raises `gone`
-const TIMERS: [TimerSpec; 1] = [TimerSpec { preset_ms: 1000 }];
+const TIMERS: [TimerSpec; 1] = [
+    TimerSpec {
+        preset_ms: 1000,
+        raises: Span::new(2, 1),
+    },
+];
 
 /// Events in priority order (trigger and conditions; actions; supervisors, with the event's local index):
 /// - 0 `gone` (uncontrollable, plant): expiry of `runon`; in `conveyor` (local 0)
@@ -163,7 +180,7 @@ const EVENTS: [EventSpec; 5] = [
         members: Span::new(1, 1),
     },
     EventSpec {
-        trigger: Trigger::Falling(Span::new(1, 1)),
+        trigger: Trigger::Falling(Span::new(0, 1)),
         when: Span::EMPTY,
         unless: Span::EMPTY,
         request: None,
@@ -197,10 +214,14 @@ const SUPERVISORS: [SupervisorSpec; 1] = [
     },
 ];
 
-/// Input lists of edge bindings and `when`/`unless` conditions, by position:
-/// - 0: edge of `re_ls`
-/// - 1: edge of `fe_ls`
-const INPUT_LISTS: [Index; 2] = [input::LS, input::LS];
+/// Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position:
+/// - 0: the debounced inputs, edge of `re_ls`, edge of `fe_ls`
+const INPUT_MASKS: [u32; 1] = [mask_word(0, &[input::LS])];
+
+/// Events an input's edges or a timer's expiry can raise, by position:
+/// - 0–1: edges of `ls`
+/// - 2: expiry of `runon`
+const RAISED: [Index; 3] = [event::RE_LS, event::FE_LS, event::GONE];
 
 /// Event actions, by position:
 /// - 0: `re_ls`
@@ -257,18 +278,32 @@ pub const CONFIG: Config<'static> = Config {
     overrun_fault: false,
     lost_edge_fault: false,
     inputs: &INPUTS,
+    debounced: &DEBOUNCED,
+    debounce_mask: Span::new(0, 1),
     outputs: &OUTPUTS,
     timers: &TIMERS,
     events: &EVENTS,
     supervisors: &SUPERVISORS,
-    input_lists: &INPUT_LISTS,
+    input_masks: &INPUT_MASKS,
+    raised: &RAISED,
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
 };
 
-/// Controller memory sized for this project.
-pub type Memory = executor::memory::StaticMemory<2, 1, 1, 1, 5>;
+/// Words of an event set (32 events per word).
+pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
+
+/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, and event sets in `EVENT_WORDS` words.
+pub type Memory = executor::memory::StaticMemory<
+    INPUT_WORDS,
+    { DEBOUNCED.len() },
+    { output::COUNT },
+    { timer::COUNT },
+    { supervisor::COUNT },
+    { event::COUNT },
+    EVENT_WORDS,
+>;
 
 /// Board wiring of `conveyor` (the project's `[board]` section): which pin of
 /// the STM32F411RETx carries each signal. Plain data; the board firmware
@@ -367,7 +402,7 @@ pub mod matches {
 }
 
 /// CRC-32 of the configuration (the supervisors are code), checked at start.
-pub const IMAGE_CRC: u32 = 0xe7dbe6f8;
+pub const IMAGE_CRC: u32 = 0xcba6fbf3;
 
 /// The program: supervisors as `match` statements.
 pub struct Match;

@@ -4,7 +4,7 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span,
+    mask_word, Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span,
     StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
@@ -172,26 +172,64 @@ pub mod states {
     pub static SUP_SECTION: [&str; 3] = ["free", "t1_in", "t2_in"];
 }
 
-/// Input filtering, by input:
-/// - 0 `s13_t1`: debounced over 2 scans
-/// - 1 `s13_t2`: debounced over 2 scans
-/// - 2 `s14_t1`: debounced over 2 scans
-/// - 3 `s14_t2`: debounced over 2 scans
-/// - 4 `ld1_done`: unfiltered
+/// Words of the input image and of every input mask (32 inputs per word).
+pub const INPUT_WORDS: usize = executor::program::words(input::COUNT);
+
+/// Input filtering and the events each input's edges can raise, by input:
+/// - 0 `s13_t1`: debounced over 2 scans; its edges can raise `t1_at13`
+/// - 1 `s13_t2`: debounced over 2 scans; its edges can raise `t2_at13`
+/// - 2 `s14_t1`: debounced over 2 scans; its edges can raise `t1_at14`
+/// - 3 `s14_t2`: debounced over 2 scans; its edges can raise `t2_at14`
+/// - 4 `ld1_done`: unfiltered; its edges can raise `f_ld1`
 /// - 5 `ld1_ready`: unfiltered
 /// - 6 `t1_depart`: unfiltered
 /// - 7 `t2_depart`: unfiltered
 /// - 8 `reset`: unfiltered
 const INPUTS: [InputSpec; 9] = [
-    InputSpec { debounce_scans: 2 },
-    InputSpec { debounce_scans: 2 },
-    InputSpec { debounce_scans: 2 },
-    InputSpec { debounce_scans: 2 },
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 0 },
+    InputSpec {
+        debounce_scans: 2,
+        raises: Span::new(0, 1),
+    },
+    InputSpec {
+        debounce_scans: 2,
+        raises: Span::new(1, 1),
+    },
+    InputSpec {
+        debounce_scans: 2,
+        raises: Span::new(2, 1),
+    },
+    InputSpec {
+        debounce_scans: 2,
+        raises: Span::new(3, 1),
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::new(4, 1),
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::EMPTY,
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::EMPTY,
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::EMPTY,
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::EMPTY,
+    },
+];
+
+/// The debounced inputs; filter counter `k` belongs to the `k`-th.
+const DEBOUNCED: [Index; 4] = [
+    input::S13_T1,
+    input::S13_T2,
+    input::S14_T1,
+    input::S14_T2,
 ];
 
 /// Outputs, by output (level in fault mode, and how each is driven):
@@ -315,18 +353,34 @@ const SUPERVISORS: [SupervisorSpec; 2] = [
     },
 ];
 
-/// Input lists of edge bindings and `when`/`unless` conditions, by position:
+/// Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position:
 /// - 0: edge of `t1_at13`
 /// - 1: edge of `t2_at13`
 /// - 2: edge of `f_ld1`
 /// - 3: edge of `t1_at14`
 /// - 4: edge of `t2_at14`
-const INPUT_LISTS: [Index; 5] = [
-    input::S13_T1,
-    input::S13_T2,
-    input::LD1_DONE,
-    input::S14_T1,
-    input::S14_T2,
+/// - 5: the debounced inputs
+const INPUT_MASKS: [u32; 6] = [
+    mask_word(0, &[input::S13_T1]),
+    mask_word(0, &[input::S13_T2]),
+    mask_word(0, &[input::LD1_DONE]),
+    mask_word(0, &[input::S14_T1]),
+    mask_word(0, &[input::S14_T2]),
+    mask_word(0, &[input::S13_T1, input::S13_T2, input::S14_T1, input::S14_T2]),
+];
+
+/// Events an input's edges or a timer's expiry can raise, by position:
+/// - 0: edges of `s13_t1`
+/// - 1: edges of `s13_t2`
+/// - 2: edges of `s14_t1`
+/// - 3: edges of `s14_t2`
+/// - 4: edges of `ld1_done`
+const RAISED: [Index; 5] = [
+    event::T1_AT13,
+    event::T2_AT13,
+    event::T1_AT14,
+    event::T2_AT14,
+    event::F_LD1,
 ];
 
 /// Event actions, by position:
@@ -431,18 +485,32 @@ pub const CONFIG: Config<'static> = Config {
     overrun_fault: false,
     lost_edge_fault: false,
     inputs: &INPUTS,
+    debounced: &DEBOUNCED,
+    debounce_mask: Span::new(5, 1),
     outputs: &OUTPUTS,
     timers: &TIMERS,
     events: &EVENTS,
     supervisors: &SUPERVISORS,
-    input_lists: &INPUT_LISTS,
+    input_masks: &INPUT_MASKS,
+    raised: &RAISED,
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
 };
 
-/// Controller memory sized for this project.
-pub type Memory = executor::memory::StaticMemory<9, 4, 0, 2, 8>;
+/// Words of an event set (32 events per word).
+pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
+
+/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, and event sets in `EVENT_WORDS` words.
+pub type Memory = executor::memory::StaticMemory<
+    INPUT_WORDS,
+    { DEBOUNCED.len() },
+    { output::COUNT },
+    { timer::COUNT },
+    { supervisor::COUNT },
+    { event::COUNT },
+    EVENT_WORDS,
+>;
 
 /// Board wiring of `crane` (the project's `[board]` section): which pin of
 /// the STM32F411RETx carries each signal. Plain data; the board firmware
@@ -715,7 +783,7 @@ pub mod logic {
 }
 
 /// CRC-32 of the configuration (the supervisors are code), checked at start.
-pub const IMAGE_CRC: u32 = 0x4a728b4f;
+pub const IMAGE_CRC: u32 = 0x4555e22d;
 
 /// The program: supervisors as minimised boolean functions.
 pub struct Logic;

@@ -4,7 +4,7 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span,
+    mask_word, Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span,
     StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
@@ -154,21 +154,45 @@ pub mod states {
     ];
 }
 
-/// Input filtering, by input:
-/// - 0 `x_a`: unfiltered
-/// - 1 `x_b`: unfiltered
-/// - 2 `x_e`: unfiltered
-/// - 3 `x_f`: unfiltered
+/// Words of the input image and of every input mask (32 inputs per word).
+pub const INPUT_WORDS: usize = executor::program::words(input::COUNT);
+
+/// Input filtering and the events each input's edges can raise, by input:
+/// - 0 `x_a`: unfiltered; its edges can raise `a`
+/// - 1 `x_b`: unfiltered; its edges can raise `b`
+/// - 2 `x_e`: unfiltered; its edges can raise `e`
+/// - 3 `x_f`: unfiltered; its edges can raise `f`
 /// - 4 `req_c_lo`: unfiltered
 /// - 5 `reset`: unfiltered
 const INPUTS: [InputSpec; 6] = [
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 0 },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::new(0, 1),
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::new(1, 1),
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::new(2, 1),
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::new(3, 1),
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::EMPTY,
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::EMPTY,
+    },
 ];
+
+/// The debounced inputs; filter counter `k` belongs to the `k`-th.
+const DEBOUNCED: [Index; 0] = [];
 
 /// Outputs, by output (level in fault mode, and how each is driven):
 /// - 0 `x_c_hi` (safe 0): latched, initially 0; set by `c_hi`; cleared by `c_lo` and `c_cl`
@@ -289,12 +313,24 @@ const SUPERVISORS: [SupervisorSpec; 1] = [
     },
 ];
 
-/// Input lists of edge bindings and `when`/`unless` conditions, by position:
+/// Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position:
 /// - 0: edge of `a`
 /// - 1: edge of `b`
 /// - 2: edge of `e`
 /// - 3: edge of `f`
-const INPUT_LISTS: [Index; 4] = [input::X_A, input::X_B, input::X_E, input::X_F];
+const INPUT_MASKS: [u32; 4] = [
+    mask_word(0, &[input::X_A]),
+    mask_word(0, &[input::X_B]),
+    mask_word(0, &[input::X_E]),
+    mask_word(0, &[input::X_F]),
+];
+
+/// Events an input's edges or a timer's expiry can raise, by position:
+/// - 0: edges of `x_a`
+/// - 1: edges of `x_b`
+/// - 2: edges of `x_e`
+/// - 3: edges of `x_f`
+const RAISED: [Index; 4] = [event::A, event::B, event::E, event::F];
 
 /// Event actions, by position:
 /// - 0–1: `c_lo`
@@ -376,18 +412,32 @@ pub const CONFIG: Config<'static> = Config {
     overrun_fault: false,
     lost_edge_fault: false,
     inputs: &INPUTS,
+    debounced: &DEBOUNCED,
+    debounce_mask: Span::EMPTY,
     outputs: &OUTPUTS,
     timers: &TIMERS,
     events: &EVENTS,
     supervisors: &SUPERVISORS,
-    input_lists: &INPUT_LISTS,
+    input_masks: &INPUT_MASKS,
+    raised: &RAISED,
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
 };
 
-/// Controller memory sized for this project.
-pub type Memory = executor::memory::StaticMemory<6, 3, 0, 1, 9>;
+/// Words of an event set (32 events per word).
+pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
+
+/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, and event sets in `EVENT_WORDS` words.
+pub type Memory = executor::memory::StaticMemory<
+    INPUT_WORDS,
+    { DEBOUNCED.len() },
+    { output::COUNT },
+    { timer::COUNT },
+    { supervisor::COUNT },
+    { event::COUNT },
+    EVENT_WORDS,
+>;
 
 /// Board wiring of `motivating` (the project's `[board]` section): which pin of
 /// the STM32F411RETx carries each signal. Plain data; the board firmware
@@ -533,7 +583,7 @@ pub mod matches {
 }
 
 /// CRC-32 of the configuration (the supervisors are code), checked at start.
-pub const IMAGE_CRC: u32 = 0x05ddc284;
+pub const IMAGE_CRC: u32 = 0xd389240f;
 
 /// The program: supervisors as `match` statements.
 pub struct Match;

@@ -4,7 +4,7 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span,
+    mask_word, Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span,
     StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
@@ -145,21 +145,45 @@ pub mod states {
     pub static PRESS: [&str; 6] = ["1", "2", "3", "4", "5", "6"];
 }
 
-/// Input filtering, by input:
-/// - 0 `auto_pb`: unfiltered
-/// - 1 `stop_pb`: unfiltered
-/// - 2 `reset_pb`: unfiltered
-/// - 3 `part`: debounced over 3 scans
-/// - 4 `top_ls`: unfiltered
-/// - 5 `bottom_ls`: unfiltered
+/// Words of the input image and of every input mask (32 inputs per word).
+pub const INPUT_WORDS: usize = executor::program::words(input::COUNT);
+
+/// Input filtering and the events each input's edges can raise, by input:
+/// - 0 `auto_pb`: unfiltered; its edges can raise `auto`
+/// - 1 `stop_pb`: unfiltered; its edges can raise `stop`
+/// - 2 `reset_pb`: unfiltered; its edges can raise `reset`
+/// - 3 `part`: debounced over 3 scans; its edges can raise `part_in` and `part_out`
+/// - 4 `top_ls`: unfiltered; its edges can raise `at_top`
+/// - 5 `bottom_ls`: unfiltered; its edges can raise `at_bottom`
 const INPUTS: [InputSpec; 6] = [
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 3 },
-    InputSpec { debounce_scans: 0 },
-    InputSpec { debounce_scans: 0 },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::new(0, 1),
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::new(1, 1),
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::new(2, 1),
+    },
+    InputSpec {
+        debounce_scans: 3,
+        raises: Span::new(3, 2),
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::new(5, 1),
+    },
+    InputSpec {
+        debounce_scans: 0,
+        raises: Span::new(6, 1),
+    },
 ];
+
+/// The debounced inputs; filter counter `k` belongs to the `k`-th.
+const DEBOUNCED: [Index; 1] = [input::PART];
 
 /// Outputs, by output (level in fault mode, and how each is driven):
 /// - 0 `auto_lamp` (safe 0): 1 while `press` is in `2`, `3`, `4` or `6`
@@ -234,7 +258,7 @@ const EVENTS: [EventSpec; 7] = [
         members: Span::new(3, 1),
     },
     EventSpec {
-        trigger: Trigger::Falling(Span::new(5, 1)),
+        trigger: Trigger::Falling(Span::new(4, 1)),
         when: Span::EMPTY,
         unless: Span::EMPTY,
         request: None,
@@ -242,7 +266,7 @@ const EVENTS: [EventSpec; 7] = [
         members: Span::new(4, 1),
     },
     EventSpec {
-        trigger: Trigger::Rising(Span::new(6, 1)),
+        trigger: Trigger::Rising(Span::new(5, 1)),
         when: Span::EMPTY,
         unless: Span::EMPTY,
         request: None,
@@ -250,7 +274,7 @@ const EVENTS: [EventSpec; 7] = [
         members: Span::new(5, 1),
     },
     EventSpec {
-        trigger: Trigger::Rising(Span::new(7, 1)),
+        trigger: Trigger::Rising(Span::new(1, 1)),
         when: Span::EMPTY,
         unless: Span::EMPTY,
         request: None,
@@ -268,24 +292,37 @@ const SUPERVISORS: [SupervisorSpec; 1] = [
     },
 ];
 
-/// Input lists of edge bindings and `when`/`unless` conditions, by position:
+/// Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position:
 /// - 0: edge of `auto`
-/// - 1: `when` of `auto`
+/// - 1: `when` of `auto`, edge of `at_top`
 /// - 2: edge of `stop`
 /// - 3: edge of `reset`
-/// - 4: edge of `part_in`
-/// - 5: edge of `part_out`
-/// - 6: edge of `at_bottom`
-/// - 7: edge of `at_top`
-const INPUT_LISTS: [Index; 8] = [
-    input::AUTO_PB,
-    input::TOP_LS,
-    input::STOP_PB,
-    input::RESET_PB,
-    input::PART,
-    input::PART,
-    input::BOTTOM_LS,
-    input::TOP_LS,
+/// - 4: the debounced inputs, edge of `part_in`, edge of `part_out`
+/// - 5: edge of `at_bottom`
+const INPUT_MASKS: [u32; 6] = [
+    mask_word(0, &[input::AUTO_PB]),
+    mask_word(0, &[input::TOP_LS]),
+    mask_word(0, &[input::STOP_PB]),
+    mask_word(0, &[input::RESET_PB]),
+    mask_word(0, &[input::PART]),
+    mask_word(0, &[input::BOTTOM_LS]),
+];
+
+/// Events an input's edges or a timer's expiry can raise, by position:
+/// - 0: edges of `auto_pb`
+/// - 1: edges of `stop_pb`
+/// - 2: edges of `reset_pb`
+/// - 3–4: edges of `part`
+/// - 5: edges of `top_ls`
+/// - 6: edges of `bottom_ls`
+const RAISED: [Index; 7] = [
+    event::AUTO,
+    event::STOP,
+    event::RESET,
+    event::PART_IN,
+    event::PART_OUT,
+    event::AT_TOP,
+    event::AT_BOTTOM,
 ];
 
 /// Event actions, by position.
@@ -381,18 +418,32 @@ pub const CONFIG: Config<'static> = Config {
     overrun_fault: false,
     lost_edge_fault: false,
     inputs: &INPUTS,
+    debounced: &DEBOUNCED,
+    debounce_mask: Span::new(4, 1),
     outputs: &OUTPUTS,
     timers: &TIMERS,
     events: &EVENTS,
     supervisors: &SUPERVISORS,
-    input_lists: &INPUT_LISTS,
+    input_masks: &INPUT_MASKS,
+    raised: &RAISED,
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
 };
 
-/// Controller memory sized for this project.
-pub type Memory = executor::memory::StaticMemory<6, 4, 0, 1, 7>;
+/// Words of an event set (32 events per word).
+pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
+
+/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, and event sets in `EVENT_WORDS` words.
+pub type Memory = executor::memory::StaticMemory<
+    INPUT_WORDS,
+    { DEBOUNCED.len() },
+    { output::COUNT },
+    { timer::COUNT },
+    { supervisor::COUNT },
+    { event::COUNT },
+    EVENT_WORDS,
+>;
 
 /// Board wiring of `stamping-press` (the project's `[board]` section): which pin of
 /// the STM32F411RETx carries each signal. Plain data; the board firmware
@@ -601,7 +652,7 @@ pub mod logic {
 }
 
 /// CRC-32 of the configuration (the supervisors are code), checked at start.
-pub const IMAGE_CRC: u32 = 0x8c82d6eb;
+pub const IMAGE_CRC: u32 = 0x58b9c819;
 
 /// The program: supervisors as minimised boolean functions.
 pub struct Logic;
