@@ -51,9 +51,17 @@ pub struct ConfigPools {
     /// Pool of input masks, each [`ex::words`]`(inputs)` words; equal
     /// masks are stored once.
     pub input_masks: Vec<u32>,
-    /// Pool of the events each input's edges and each timer's expiry can
-    /// raise.
-    pub raised: Vec<Index>,
+    /// Pool of event lists: the events each input's edges and each timer's
+    /// expiry can raise, each supervisor's alphabet in local order, the
+    /// commands with a request input.
+    pub event_lists: Vec<Index>,
+    /// Pool of event sets, each [`ex::words`]`(events)` words: what each
+    /// supervisor never blocks, the commands without a request input.
+    pub event_masks: Vec<u32>,
+    /// The commands without a request input (span of `event_masks`).
+    pub commands: Span,
+    /// The commands with a request input (span of `event_lists`).
+    pub requested: Span,
     /// Pool of actions.
     pub actions: Vec<ex::Action>,
     /// Pool of memberships.
@@ -107,7 +115,10 @@ impl MaskPool {
             }
         };
         index(at + self.words, "input masks")?;
-        Ok(Span::new(index(at, "input masks")?, index(self.words, "input words")?))
+        Ok(Span::new(
+            index(at, "input masks")?,
+            index(self.words, "input words")?,
+        ))
     }
 }
 
@@ -196,7 +207,7 @@ impl ConfigPools {
         }
 
         // The events each input's edges and each timer's expiry can raise.
-        let mut raised = Vec::new();
+        let mut event_lists = Vec::new();
         let mut raises_of = |bound: &dyn Fn(&Trigger) -> bool| -> Result<Span> {
             let events: Vec<Index> = project
                 .events
@@ -205,7 +216,7 @@ impl ConfigPools {
                 .filter(|(_, ev)| bound(&ev.trigger))
                 .map(|(e, _)| index(e, "events"))
                 .collect::<Result<_>>()?;
-            push_span(&mut raised, &events, "raised events")
+            push_span(&mut event_lists, &events, "event lists")
         };
         let mut inputs = Vec::with_capacity(project.inputs.len());
         for (i, input) in project.inputs.iter().enumerate() {
@@ -232,19 +243,64 @@ impl ConfigPools {
         let debounce_mask = masks.span(&debounced_inputs)?;
         let debounced = to_indices(&debounced_inputs, "inputs")?;
 
-        let supervisors = project
-            .supervisors
-            .iter()
-            .map(|s| {
-                let initial = s.automaton.initial().ok_or_else(|| {
-                    Error::Incompatible(format!("supervisor `{}` has no initial state", s.name))
-                })?;
-                Ok(ex::SupervisorSpec {
-                    states: s.automaton.num_states() as u32,
-                    initial: initial.0,
-                })
-            })
-            .collect::<Result<_>>()?;
+        // Event sets: what each supervisor never blocks, then the commands
+        // the controller may choose without a request.
+        let event_words = ex::words(project.events.len());
+        let mut event_masks = Vec::new();
+        let mut event_set = |members: &mut dyn Iterator<Item = usize>| -> Result<Span> {
+            let mut set = vec![0u32; event_words];
+            for e in members {
+                set[e / 32] |= 1 << (e % 32);
+            }
+            // The empty set reads as zeros past any pool; equal sets once.
+            if set.iter().all(|&w| w == 0) {
+                return Ok(Span::EMPTY);
+            }
+            let start = match event_masks.chunks(event_words).position(|m| m == set) {
+                Some(found) => found * event_words,
+                None => {
+                    event_masks.extend_from_slice(&set);
+                    event_masks.len() - event_words
+                }
+            };
+            index(start + event_words, "event masks")?;
+            Ok(Span::new(
+                index(start, "event masks")?,
+                index(event_words, "event words")?,
+            ))
+        };
+        let mut supervisors = Vec::with_capacity(project.supervisors.len());
+        for s in &project.supervisors {
+            let initial = s.automaton.initial().ok_or_else(|| {
+                Error::Incompatible(format!("supervisor `{}` has no initial state", s.name))
+            })?;
+            let alphabet: Vec<usize> = s.local_events.iter().map(|&(e, _)| e).collect();
+            let outside =
+                event_set(&mut (0..project.events.len()).filter(|e| !alphabet.contains(e)))?;
+            supervisors.push(ex::SupervisorSpec {
+                states: s.automaton.num_states() as u32,
+                initial: initial.0,
+                alphabet: push_span(
+                    &mut event_lists,
+                    &to_indices(&alphabet, "events")?,
+                    "event lists",
+                )?,
+                outside,
+            });
+        }
+        let is_command = |e: &usize| project.events[*e].trigger == Trigger::Command;
+        let commands = event_set(
+            &mut (0..project.events.len())
+                .filter(|e| is_command(e) && project.events[*e].request.is_none()),
+        )?;
+        let requested: Vec<usize> = (0..project.events.len())
+            .filter(|e| is_command(e) && project.events[*e].request.is_some())
+            .collect();
+        let requested = push_span(
+            &mut event_lists,
+            &to_indices(&requested, "events")?,
+            "event lists",
+        )?;
 
         index(project.inputs.len(), "inputs")?;
         index(project.outputs.len(), "outputs")?;
@@ -271,7 +327,10 @@ impl ConfigPools {
             events,
             supervisors,
             input_masks: masks.pool,
-            raised,
+            event_lists,
+            event_masks,
+            commands,
+            requested,
             actions,
             memberships,
             state_map,
@@ -297,7 +356,10 @@ impl ConfigPools {
             events: &self.events,
             supervisors: &self.supervisors,
             input_masks: &self.input_masks,
-            raised: &self.raised,
+            event_lists: &self.event_lists,
+            event_masks: &self.event_masks,
+            commands: self.commands,
+            requested: self.requested,
             actions: &self.actions,
             memberships: &self.memberships,
             state_map: &self.state_map,
@@ -351,6 +413,13 @@ impl Program for TableImage {
             .get(supervisor as usize)?
             .view()
             .next_state(state, local)
+    }
+
+    #[inline]
+    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        self.tables
+            .get(supervisor as usize)
+            .map_or(0, |t| t.view().enabled(state, from, len))
     }
 
     fn image_intact(&self) -> bool {

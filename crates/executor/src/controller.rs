@@ -6,7 +6,7 @@ use crate::memory::{Memory, Ram};
 use crate::pacing::{Pacer, ScanStart};
 use crate::program::{Action, Config, EventSpec, Index, Program, Trigger, UnexpectedPolicy};
 use crate::record::{Counters, Fault, ScanRecord};
-use crate::timers::due;
+use crate::timers::{due, earliest};
 
 /// The memory does not match the program's sizes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -26,6 +26,14 @@ pub struct Controller<P: Program, M: Memory> {
     counters: Counters,
     /// Some debounce counter is above 0.
     counting: bool,
+    /// The last controllable phase found no command it could choose (not
+    /// counting those it had executed), and no input or state has changed
+    /// since: the next controllable phase would find none either.
+    idle: bool,
+    /// The output image no longer matches the states and latched levels.
+    outputs_stale: bool,
+    /// The earliest deadline of the running timers.
+    next_due: Option<u32>,
 }
 
 impl<P: Program, M: Memory> Controller<P, M> {
@@ -35,7 +43,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
         if !memory.fits(&program.config()) {
             return Err(SizeMismatch);
         }
-        initialise(&program.config(), &mut memory.ram());
+        initialise(&program, &program.config(), &mut memory.ram());
         let fault = (!program.image_intact()).then_some(Fault::Corrupt);
         let mut controller = Controller {
             program,
@@ -47,6 +55,9 @@ impl<P: Program, M: Memory> Controller<P, M> {
             unexpected_len: 0,
             counters: Counters::default(),
             counting: false,
+            idle: false,
+            outputs_stale: true,
+            next_due: None,
         };
         if fault.is_some() {
             controller.counters.faults += 1;
@@ -174,6 +185,9 @@ impl<P: Program, M: Memory> Controller<P, M> {
         let config = &self.program.config();
         let mut ram = self.memory.ram();
         let changed = inputs::sample(config, &mut ram, first, &mut self.counting);
+        if self.executed_len != 0 {
+            ram.done.fill(0);
+        }
         self.executed_len = 0;
         self.unexpected_len = 0;
 
@@ -194,20 +208,26 @@ impl<P: Program, M: Memory> Controller<P, M> {
                 .reset
                 .is_some_and(|r| inputs::input_rose(usize::from(r), &ram));
             if reset && self.program.image_intact() {
-                initialise(config, &mut ram);
+                initialise(&self.program, config, &mut ram);
                 self.fault = None;
+                self.idle = false;
+                self.next_due = None;
                 write_outputs(config, &mut ram);
+                self.outputs_stale = false;
             } else {
                 write_safe_outputs(config, &mut ram);
+                self.outputs_stale = true;
             }
             return self.finish(now_ms);
         }
 
         // Step 3 and the triggers of step 4: which events occurred. Only
-        // the inputs that changed can raise an edge, and only the events
-        // bound to them are looked at.
-        ram.occurred.fill(0);
-        ram.done.fill(0);
+        // the inputs that changed can raise an edge, only the events bound
+        // to them are looked at, and the timers only when one is due.
+        let timer_due = self.next_due.is_some_and(|d| due(d, now_ms));
+        if changed || timer_due {
+            ram.occurred.fill(0);
+        }
         if changed {
             for k in 0..ram.filtered.len() {
                 let mut changes = ram.filtered[k] ^ ram.previous[k];
@@ -217,7 +237,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
                     let Some(input) = config.inputs.get(i) else {
                         continue;
                     };
-                    for &e in input.raises.of(config.raised) {
+                    for &e in input.raises.of(config.event_lists) {
                         if edge_occurred(config, &ram, usize::from(e)) {
                             bits::insert(ram.occurred, usize::from(e));
                         }
@@ -225,28 +245,42 @@ impl<P: Program, M: Memory> Controller<P, M> {
                 }
             }
         }
-        for (t, timer) in config.timers.iter().enumerate() {
-            if ram.timer_running[t] && due(ram.timer_deadline[t], now_ms) {
-                ram.timer_running[t] = false;
-                for &e in timer.raises.of(config.raised) {
-                    let e = usize::from(e);
-                    if config.events.get(e).is_some_and(|spec| conditions_hold(config, &ram, spec)) {
-                        bits::insert(ram.occurred, e);
+        if timer_due {
+            for (t, timer) in config.timers.iter().enumerate() {
+                if ram.timer_running[t] && due(ram.timer_deadline[t], now_ms) {
+                    ram.timer_running[t] = false;
+                    for &e in timer.raises.of(config.event_lists) {
+                        let e = usize::from(e);
+                        if config
+                            .events
+                            .get(e)
+                            .is_some_and(|spec| conditions_hold(config, &ram, spec))
+                        {
+                            bits::insert(ram.occurred, e);
+                        }
                     }
                 }
             }
+            self.next_due = earliest(ram.timer_running, ram.timer_deadline, now_ms);
         }
 
         // Step 4: uncontrollable phase, in declaration order.
         let mut executed = 0usize;
         let mut unexpected = 0usize;
+        let mut timers_changed = false;
         for k in 0..ram.occurred.len() {
+            if !(changed || timer_due) {
+                break;
+            }
             let mut pending = ram.occurred[k];
             while pending != 0 {
                 let e = k * 32 + pending.trailing_zeros() as usize;
                 pending &= pending - 1;
-                if feasible(&self.program, config, &ram, e) {
-                    execute(&self.program, config, &mut ram, e, now_ms);
+                if bits::contains(ram.feasible, e) {
+                    let Some(timers) = execute(&self.program, config, &mut ram, e, now_ms) else {
+                        return self.fault_corrupt(executed, unexpected, now_ms);
+                    };
+                    timers_changed |= timers;
                     ram.executed[executed] = e as Index;
                     executed += 1;
                     continue;
@@ -261,6 +295,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
                         self.fault = Some(Fault::Unexpected { event: e as Index });
                         self.counters.faults = self.counters.faults.wrapping_add(1);
                         write_safe_outputs(config, &mut ram);
+                        self.outputs_stale = true;
                         self.executed_len = executed;
                         self.unexpected_len = unexpected;
                         return self.finish(now_ms);
@@ -269,31 +304,54 @@ impl<P: Program, M: Memory> Controller<P, M> {
             }
         }
 
-        // Step 5: controllable phase.
-        let limit = match config.max_commands_per_scan {
-            0 => usize::MAX,
-            n => n as usize,
-        };
-        let mut commands = 0usize;
-        while commands < limit {
-            let choice = (0..config.events.len()).find(|&e| {
-                let spec = &config.events[e];
-                spec.is_controllable()
-                    && !bits::contains(ram.done, e)
-                    && spec
-                        .request
-                        .is_none_or(|r| inputs::input_on(usize::from(r), &ram))
-                    && feasible(&self.program, config, &ram, e)
-            });
-            let Some(e) = choice else { break };
-            execute(&self.program, config, &mut ram, e, now_ms);
-            ram.executed[executed] = e as Index;
-            executed += 1;
-            commands += 1;
+        // Step 5: controllable phase, skipped when it would find nothing:
+        // it found nothing last time, and neither the inputs (requests)
+        // nor the states (enabled events) have changed since.
+        if !(self.idle && !changed && executed == 0) {
+            let limit = match config.max_commands_per_scan {
+                0 => usize::MAX,
+                n => n as usize,
+            };
+            let mut commands = 0usize;
+            self.idle = false;
+            loop {
+                if commands >= limit {
+                    break;
+                }
+                let Some(e) = next_command(config, &ram) else {
+                    self.idle = !any_command(config, &ram);
+                    break;
+                };
+                let Some(timers) = execute(&self.program, config, &mut ram, e, now_ms) else {
+                    return self.fault_corrupt(executed, unexpected, now_ms);
+                };
+                timers_changed |= timers;
+                ram.executed[executed] = e as Index;
+                executed += 1;
+                commands += 1;
+            }
+        }
+        if timers_changed {
+            self.next_due = earliest(ram.timer_running, ram.timer_deadline, now_ms);
         }
 
-        // Step 6: outputs.
-        write_outputs(config, &mut ram);
+        // Step 6: outputs, recomputed only when an event has moved a state
+        // or a latched level.
+        if executed != 0 || self.outputs_stale {
+            write_outputs(config, &mut ram);
+            self.outputs_stale = false;
+        }
+        self.executed_len = executed;
+        self.unexpected_len = unexpected;
+        self.finish(now_ms)
+    }
+
+    /// A supervisor's table refused a transition its cached enabled set
+    /// allowed: the cache in RAM is corrupt. Fault mode from this scan on.
+    fn fault_corrupt(&mut self, executed: usize, unexpected: usize, now_ms: u32) -> ScanRecord<'_> {
+        self.enter_fault(Fault::Corrupt);
+        write_safe_outputs(&self.program.config(), &mut self.memory.ram());
+        self.outputs_stale = true;
         self.executed_len = executed;
         self.unexpected_len = unexpected;
         self.finish(now_ms)
@@ -307,8 +365,8 @@ impl<P: Program, M: Memory> Controller<P, M> {
 }
 
 /// Every supervisor initial, every timer stopped, action-driven outputs at
-/// their initial level.
-fn initialise(config: &Config<'_>, ram: &mut Ram<'_>) {
+/// their initial level, and the enabled sets of the initial states.
+fn initialise<P: Program>(program: &P, config: &Config<'_>, ram: &mut Ram<'_>) {
     for (x, spec) in ram.states.iter_mut().zip(config.supervisors) {
         *x = spec.initial;
     }
@@ -316,6 +374,89 @@ fn initialise(config: &Config<'_>, ram: &mut Ram<'_>) {
     for (level, spec) in ram.latched.iter_mut().zip(config.outputs) {
         *level = spec.initial;
     }
+    for j in 0..config.supervisors.len() {
+        refresh_allowed(program, config, ram, j);
+    }
+    refresh_feasible(ram);
+}
+
+/// Supervisor `j`'s `allowed` set for its current state: the events
+/// outside its alphabet, and the local events its program enables there
+/// mapped to their event numbers.
+fn refresh_allowed<P: Program>(program: &P, config: &Config<'_>, ram: &mut Ram<'_>, j: usize) {
+    let ew = ram.feasible.len();
+    let Some(allowed) = ram.allowed.get_mut(j * ew..(j + 1) * ew) else {
+        return;
+    };
+    let spec = &config.supervisors[j];
+    let outside = spec.outside.of(config.event_masks);
+    for (k, word) in allowed.iter_mut().enumerate() {
+        *word = outside.get(k).copied().unwrap_or(0);
+    }
+    let state = ram.states[j];
+    for (chunk, events) in spec.alphabet.of(config.event_lists).chunks(32).enumerate() {
+        let from = (chunk * 32) as Index;
+        let mut row = program.enabled(j as Index, state, from, events.len() as u8);
+        while row != 0 {
+            let k = row.trailing_zeros() as usize;
+            row &= row - 1;
+            if let Some(&e) = events.get(k) {
+                bits::insert(allowed, usize::from(e));
+            }
+        }
+    }
+}
+
+/// The feasible events: those no supervisor blocks.
+fn refresh_feasible(ram: &mut Ram<'_>) {
+    let ew = ram.feasible.len();
+    for (k, word) in ram.feasible.iter_mut().enumerate() {
+        *word = ram
+            .allowed
+            .iter()
+            .skip(k)
+            .step_by(ew.max(1))
+            .fold(u32::MAX, |w, a| w & a);
+    }
+}
+
+/// Word `k` of the commands the controller may choose now: those without
+/// a request input, and those whose request input is 1.
+#[inline]
+fn commands_word(config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
+    let mut word = config
+        .commands
+        .of(config.event_masks)
+        .get(k)
+        .copied()
+        .unwrap_or(0);
+    for &e in config.requested.of(config.event_lists) {
+        let e = usize::from(e);
+        if e / 32 == k
+            && config.events[e]
+                .request
+                .is_some_and(|r| inputs::input_on(usize::from(r), ram))
+        {
+            word |= 1 << (e % 32);
+        }
+    }
+    word
+}
+
+/// The first command in declaration order that is feasible, may be
+/// chosen now and has not run in this scan.
+#[inline]
+fn next_command(config: &Config<'_>, ram: &Ram<'_>) -> Option<usize> {
+    (0..ram.feasible.len()).find_map(|k| {
+        let candidates = ram.feasible[k] & commands_word(config, ram, k) & !ram.done[k];
+        (candidates != 0).then(|| k * 32 + candidates.trailing_zeros() as usize)
+    })
+}
+
+/// Some command is feasible and may be chosen now, executed in this scan
+/// or not.
+fn any_command(config: &Config<'_>, ram: &Ram<'_>) -> bool {
+    (0..ram.feasible.len()).any(|k| ram.feasible[k] & commands_word(config, ram, k) != 0)
 }
 
 /// An edge event whose binding changed: its edge happened and its
@@ -340,30 +481,33 @@ fn conditions_hold(config: &Config<'_>, ram: &Ram<'_>, spec: &EventSpec) -> bool
         && !inputs::any(spec.unless.of(config.input_masks), ram.filtered)
 }
 
-/// An event is feasible when every supervisor having it can take it.
-#[inline]
-fn feasible<P: Program>(program: &P, config: &Config<'_>, ram: &Ram<'_>, e: usize) -> bool {
-    config.events[e]
-        .members
-        .of(config.memberships)
-        .iter()
-        .all(|m| {
-            program
-                .next_state(m.supervisor, ram.states[m.supervisor as usize], m.local)
-                .is_some()
-        })
-}
-
-/// Moves every supervisor having the (feasible) event and applies its
-/// actions.
-fn execute<P: Program>(program: &P, config: &Config<'_>, ram: &mut Ram<'_>, e: usize, now: u32) {
+/// Moves every supervisor having the (feasible) event, refreshes the
+/// enabled sets of those that moved and applies the event's actions.
+/// `Some(true)` when a timer was started or stopped; `None` when a
+/// supervisor's program refuses the event its enabled set allowed (a
+/// corrupt set).
+fn execute<P: Program>(
+    program: &P,
+    config: &Config<'_>,
+    ram: &mut Ram<'_>,
+    e: usize,
+    now: u32,
+) -> Option<bool> {
     let spec = &config.events[e];
+    let mut moved = false;
     for m in spec.members.of(config.memberships) {
         let j = m.supervisor as usize;
-        if let Some(next) = program.next_state(m.supervisor, ram.states[j], m.local) {
+        let next = program.next_state(m.supervisor, ram.states[j], m.local)?;
+        if next != ram.states[j] {
             ram.states[j] = next;
+            refresh_allowed(program, config, ram, j);
+            moved = true;
         }
     }
+    if moved {
+        refresh_feasible(ram);
+    }
+    let mut timers = false;
     for action in spec.actions.of(config.actions) {
         match *action {
             Action::Set(o) => ram.latched[o as usize] = true,
@@ -372,11 +516,16 @@ fn execute<P: Program>(program: &P, config: &Config<'_>, ram: &mut Ram<'_>, e: u
                 let t = t as usize;
                 ram.timer_running[t] = true;
                 ram.timer_deadline[t] = now.wrapping_add(config.timers[t].preset_ms);
+                timers = true;
             }
-            Action::Reset(t) => ram.timer_running[t as usize] = false,
+            Action::Reset(t) => {
+                ram.timer_running[t as usize] = false;
+                timers = true;
+            }
         }
     }
     bits::insert(ram.done, e);
+    Some(timers)
 }
 
 /// Action-driven levels, and for Moore outputs the OR over their state map.

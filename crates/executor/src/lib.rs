@@ -44,7 +44,7 @@
 //!     overrun_limit: 1,
 //!     overrun_fault: false,
 //!     lost_edge_fault: false,
-//!     // The button's edges can raise `pressed` (raised[0..1]).
+//!     // The button's edges can raise `pressed` (event_lists[0..1]).
 //!     inputs: &[InputSpec { debounce_scans: 0, raises: Span::new(0, 1) }],
 //!     debounced: &[],
 //!     debounce_mask: Span::EMPTY,
@@ -68,10 +68,21 @@
 //!             members: Span::new(1, 1), // memberships[1..2]
 //!         },
 //!     ],
-//!     supervisors: &[SupervisorSpec { states: 3, initial: IDLE }],
+//!     // Its alphabet in local order is event_lists[1..3]; no event is
+//!     // outside it.
+//!     supervisors: &[SupervisorSpec {
+//!         states: 3,
+//!         initial: IDLE,
+//!         alphabet: Span::new(1, 2),
+//!         outside: Span::EMPTY,
+//!     }],
 //!     // One word per mask (32 inputs per word): the button alone.
 //!     input_masks: &[mask_word(0, &[START_PB])],
-//!     raised: &[PRESSED],
+//!     event_lists: &[PRESSED, PRESSED, RUN],
+//!     // One word per set (32 events per word): the commands.
+//!     event_masks: &[mask_word(0, &[RUN])],
+//!     commands: Span::new(0, 1),
+//!     requested: Span::EMPTY,
 //!     actions: &[Action::Set(MOTOR)],
 //!     memberships: &[
 //!         Membership { supervisor: 0, local: 0 },
@@ -104,10 +115,10 @@
 //!
 //! let program = Starter { crc: config_crc(&CONFIG) };
 //! // 1 input word, no debounced input, 1 output, 0 timers, 1 supervisor,
-//! // 2 events in 1 word.
-//! type Memory = StaticMemory<1, 0, 1, 0, 1, 2, 1>;
+//! // 2 events in 1 word, 1 word of event set for the one supervisor.
+//! type Memory = StaticMemory<1, 0, 1, 0, 1, 2, 1, 1>;
 //! assert!(matches!(
-//!     Controller::new(&program, StaticMemory::<1, 0, 1, 0, 1, 3, 1>::new()),
+//!     Controller::new(&program, StaticMemory::<1, 0, 1, 0, 1, 3, 1, 1>::new()),
 //!     Err(SizeMismatch)
 //! ));
 //! let mut plc = Controller::new(&program, Memory::new()).expect("sized for CONFIG");

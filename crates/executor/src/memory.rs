@@ -48,6 +48,12 @@ pub(crate) mod sealed {
         pub(crate) occurred: &'a mut [u32],
         /// Events executed in this scan.
         pub(crate) done: &'a mut [u32],
+        /// Per supervisor, an event set: the events it does not block in
+        /// its current state (its enabled events and every event outside
+        /// its alphabet), supervisor `j` in words `j·EW..(j+1)·EW`.
+        pub(crate) allowed: &'a mut [u32],
+        /// The AND of every supervisor's `allowed`: the feasible events.
+        pub(crate) feasible: &'a mut [u32],
         /// Events executed in this scan, in order (capacity: all events).
         pub(crate) executed: &'a mut [u16],
         /// Unexpected events of this scan, in order (capacity: all events).
@@ -93,7 +99,7 @@ pub(crate) mod sealed {
 /// ```compile_fail,E0599
 /// use executor::memory::StaticMemory;
 ///
-/// let mut memory: StaticMemory<1, 0, 1, 0, 1, 2, 1> = StaticMemory::new();
+/// let mut memory: StaticMemory<1, 0, 1, 0, 1, 2, 1, 1> = StaticMemory::new();
 /// let _ = memory.ram();
 /// ```
 pub trait Memory: sealed::Storage {
@@ -102,8 +108,9 @@ pub trait Memory: sealed::Storage {
 }
 
 /// Fixed-size memory: `IW` input words (32 inputs per `u32`), `D`
-/// debounced inputs, `O` outputs, `T` timers, `S` supervisors, `E` events
-/// and `EW` event words (32 events per `u32`).
+/// debounced inputs, `O` outputs, `T` timers, `S` supervisors, `E` events,
+/// `EW` event words (32 events per `u32`) and `SEW` = `S·EW` words of the
+/// supervisors' event sets.
 ///
 /// ```
 /// use executor::memory::StaticMemory;
@@ -111,7 +118,7 @@ pub trait Memory: sealed::Storage {
 /// /// A project with 2 inputs (1 word, none debounced), 1 output, no
 /// /// timer, 1 supervisor and 3 events (1 word), as `codegen gen`
 /// /// declares its memory.
-/// pub type Memory = StaticMemory<1, 0, 1, 0, 1, 3, 1>;
+/// pub type Memory = StaticMemory<1, 0, 1, 0, 1, 3, 1, 1>;
 ///
 /// // `new` is `const`, so the memory can be a `static` or built at compile time.
 /// const FRESH: Memory = Memory::new();
@@ -126,6 +133,7 @@ pub struct StaticMemory<
     const S: usize,
     const E: usize,
     const EW: usize,
+    const SEW: usize,
 > {
     raw: [u32; IW],
     filtered: [u32; IW],
@@ -138,6 +146,8 @@ pub struct StaticMemory<
     states: [u32; S],
     occurred: [u32; EW],
     done: [u32; EW],
+    allowed: [u32; SEW],
+    feasible: [u32; EW],
     executed: [u16; E],
     unexpected: [u16; E],
 }
@@ -150,7 +160,8 @@ impl<
         const S: usize,
         const E: usize,
         const EW: usize,
-    > Default for StaticMemory<IW, D, O, T, S, E, EW>
+        const SEW: usize,
+    > Default for StaticMemory<IW, D, O, T, S, E, EW, SEW>
 {
     fn default() -> Self {
         Self::new()
@@ -165,7 +176,8 @@ impl<
         const S: usize,
         const E: usize,
         const EW: usize,
-    > StaticMemory<IW, D, O, T, S, E, EW>
+        const SEW: usize,
+    > StaticMemory<IW, D, O, T, S, E, EW, SEW>
 {
     /// Zeroed memory (the controller initialises it).
     pub const fn new() -> Self {
@@ -181,6 +193,8 @@ impl<
             states: [0; S],
             occurred: [0; EW],
             done: [0; EW],
+            allowed: [0; SEW],
+            feasible: [0; EW],
             executed: [0; E],
             unexpected: [0; E],
         }
@@ -195,7 +209,8 @@ impl<
         const S: usize,
         const E: usize,
         const EW: usize,
-    > sealed::Storage for StaticMemory<IW, D, O, T, S, E, EW>
+        const SEW: usize,
+    > sealed::Storage for StaticMemory<IW, D, O, T, S, E, EW, SEW>
 {
     fn ram(&mut self) -> Ram<'_> {
         Ram {
@@ -210,6 +225,8 @@ impl<
             states: &mut self.states,
             occurred: &mut self.occurred,
             done: &mut self.done,
+            allowed: &mut self.allowed,
+            feasible: &mut self.feasible,
             executed: &mut self.executed,
             unexpected: &mut self.unexpected,
         }
@@ -240,7 +257,8 @@ impl<
         const S: usize,
         const E: usize,
         const EW: usize,
-    > Memory for StaticMemory<IW, D, O, T, S, E, EW>
+        const SEW: usize,
+    > Memory for StaticMemory<IW, D, O, T, S, E, EW, SEW>
 {
     fn fits(&self, config: &Config<'_>) -> bool {
         words(config.inputs.len()) == IW
@@ -250,6 +268,7 @@ impl<
             && config.supervisors.len() == S
             && config.events.len() == E
             && words(config.events.len()) == EW
+            && config.supervisors.len() * EW == SEW
     }
 }
 
@@ -277,6 +296,8 @@ mod heap {
         states: Vec<u32>,
         occurred: Vec<u32>,
         done: Vec<u32>,
+        allowed: Vec<u32>,
+        feasible: Vec<u32>,
         executed: Vec<u16>,
         unexpected: Vec<u16>,
     }
@@ -300,6 +321,8 @@ mod heap {
                 states: vec![0; s],
                 occurred: vec![0; ew],
                 done: vec![0; ew],
+                allowed: vec![0; s * ew],
+                feasible: vec![0; ew],
                 executed: vec![0; e],
                 unexpected: vec![0; e],
             }
@@ -320,6 +343,8 @@ mod heap {
                 states: &mut self.states,
                 occurred: &mut self.occurred,
                 done: &mut self.done,
+                allowed: &mut self.allowed,
+                feasible: &mut self.feasible,
                 executed: &mut self.executed,
                 unexpected: &mut self.unexpected,
             }
@@ -351,6 +376,7 @@ mod heap {
                 && config.supervisors.len() == self.states.len()
                 && config.events.len() == self.executed.len()
                 && words(config.events.len()) == self.occurred.len()
+                && config.supervisors.len() * self.occurred.len() == self.allowed.len()
         }
     }
 }

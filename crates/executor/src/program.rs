@@ -77,7 +77,7 @@ pub struct InputSpec {
     /// [`Config::debounce_mask`].
     pub debounce_scans: u8,
     /// The events bound to an edge of this input, alone or in an OR (span
-    /// of [`Config::raised`]): the only events a change of this input can
+    /// of [`Config::event_lists`]): the only events a change of this input can
     /// raise.
     pub raises: Span,
 }
@@ -100,7 +100,7 @@ pub struct TimerSpec {
     /// Preset in milliseconds, `0 < preset < 2^31`.
     pub preset_ms: u32,
     /// The events bound to this timer's expiry (span of
-    /// [`Config::raised`]).
+    /// [`Config::event_lists`]).
     pub raises: Span,
 }
 
@@ -179,13 +179,19 @@ pub struct StateMapEntry {
     pub state: u32,
 }
 
-/// A supervisor's size and initial state.
+/// A supervisor's size, initial state and alphabet.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SupervisorSpec {
     /// Number of states; a state index at or above it is corrupt.
     pub states: u32,
     /// The initial state.
     pub initial: u32,
+    /// Its events in local order (span of [`Config::event_lists`]): local
+    /// event `k` is event `event_lists[alphabet.start + k]`.
+    pub alphabet: Span,
+    /// The events outside its alphabet, which it never blocks (span of
+    /// [`Config::event_masks`]).
+    pub outside: Span,
 }
 
 /// What to do with an uncontrollable event no supervisor can explain.
@@ -235,8 +241,19 @@ pub struct Config<'a> {
     /// inputs), each [`words`]`(inputs.len())` long.
     pub input_masks: &'a [u32],
     /// Pool of event lists: the events each input's edges and each timer's
-    /// expiry can raise, each list in declaration order.
-    pub raised: &'a [Index],
+    /// expiry can raise (each in declaration order), and each
+    /// supervisor's alphabet (in its local order).
+    pub event_lists: &'a [Index],
+    /// Pool of event sets, each [`words`]`(events.len())` long: what each
+    /// supervisor never blocks, and [`Config::commands`].
+    pub event_masks: &'a [u32],
+    /// The controllable events without a request input (span of
+    /// [`Config::event_masks`]): the controller may choose them whenever
+    /// every supervisor enables them.
+    pub commands: Span,
+    /// The controllable events with a request input, in declaration order
+    /// (span of [`Config::event_lists`]).
+    pub requested: Span,
     /// Pool of actions.
     pub actions: &'a [Action],
     /// Pool of event memberships.
@@ -255,6 +272,21 @@ pub trait Program {
     /// `None` when undefined. Called only with `state` in range.
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32>;
 
+    /// Which of the local events `from..from + len` (`len ≤ 32`) of
+    /// supervisor `supervisor` are defined in `state`: bit `k` for local
+    /// event `from + k` (the φ functions of the CMSSM, one row). Called
+    /// only with `state` in range, when the state changes. The default asks
+    /// [`Program::next_state`] for each event; tables read their row of
+    /// defined-bits.
+    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        (0..u16::from(len.min(32))).fold(0, |row, k| {
+            let defined = self
+                .next_state(supervisor, state, from.wrapping_add(k))
+                .is_some();
+            row | u32::from(defined) << k
+        })
+    }
+
     /// Recomputes the program image's checksum and compares it with the
     /// one recorded at generation; `false` means corrupt.
     fn image_intact(&self) -> bool;
@@ -267,6 +299,10 @@ impl<P: Program + ?Sized> Program for &P {
 
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         (**self).next_state(supervisor, state, local)
+    }
+
+    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        (**self).enabled(supervisor, state, from, len)
     }
 
     fn image_intact(&self) -> bool {

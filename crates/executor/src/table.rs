@@ -96,6 +96,24 @@ pub fn read_bits(words: &[u32], index: usize, width: u8) -> u32 {
     }
 }
 
+/// The `width` bits (`1..=32`) starting at bit `bit` of a bit array (bits
+/// past its end read 0).
+#[inline]
+fn read_bits_at(words: &[u32], bit: usize, width: u8) -> u32 {
+    let (word, offset) = (bit / 32, bit % 32);
+    let low = words.get(word).copied().unwrap_or(0) >> offset;
+    let value = if offset + width as usize > 32 {
+        low | (words.get(word + 1).copied().unwrap_or(0) << (32 - offset))
+    } else {
+        low
+    };
+    if width >= 32 {
+        value
+    } else {
+        value & ((1u32 << width) - 1)
+    }
+}
+
 /// Bit `index` of a bit array.
 #[inline]
 pub fn bit(words: &[u32], index: usize) -> bool {
@@ -148,6 +166,20 @@ impl SupervisorTable<'_> {
             }
         };
         Some(read_bits(self.targets, entry, self.state_bits))
+    }
+
+    /// The defined-bits of the local events `from..from + len` in `state`
+    /// (`len ≤ 32`): bit `k` for local event `from + k`; events past the
+    /// table's read as undefined.
+    #[inline]
+    pub fn enabled(&self, state: u32, from: Index, len: u8) -> u32 {
+        let m = self.events as usize;
+        let from = from as usize;
+        let len = (len.min(32) as usize).min(m.saturating_sub(from));
+        if len == 0 {
+            return 0;
+        }
+        read_bits_at(self.defined, state as usize * m + from, len as u8)
     }
 
     fn digest(&self, d: &mut Digest<'_, u32>) {
@@ -260,9 +292,14 @@ pub fn digest_config(d: &mut Digest<'_, u32>, config: &Config<'_>) {
     for s in config.supervisors {
         feed(d, &s.states.to_le_bytes());
         feed(d, &s.initial.to_le_bytes());
+        span(d, s.alphabet);
+        span(d, s.outside);
     }
     words(d, config.input_masks);
-    u16s(d, config.raised);
+    u16s(d, config.event_lists);
+    words(d, config.event_masks);
+    span(d, config.commands);
+    span(d, config.requested);
     feed(d, &(config.actions.len() as u32).to_le_bytes());
     for a in config.actions {
         let (tag, x) = match *a {
@@ -329,6 +366,13 @@ impl Program for TableProgram<'_> {
             .next_state(state, local)
     }
 
+    #[inline]
+    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        self.tables
+            .get(supervisor as usize)
+            .map_or(0, |t| t.enabled(state, from, len))
+    }
+
     fn image_intact(&self) -> bool {
         image_crc(&self.config, self.tables) == self.crc
     }
@@ -367,7 +411,33 @@ mod tests {
             assert_eq!(t.next_state(2, 0), Some(0));
             assert_eq!(t.next_state(2, 1), None);
             assert_eq!(t.next_state(2, 7), None, "local event out of range");
+            assert_eq!(t.enabled(0, 0, 2), 0b01);
+            assert_eq!(t.enabled(1, 0, 2), 0b10);
+            assert_eq!(t.enabled(1, 1, 1), 0b1);
+            assert_eq!(t.enabled(2, 0, 32), 0b01, "rows end at the table's events");
         }
+    }
+
+    #[test]
+    fn rows_longer_than_a_word_read_in_slices() {
+        // 40 local events, 2 states: state 1's row starts at bit 40.
+        let mut defined = [0u32; 3];
+        for e in [0usize, 31, 32, 39] {
+            let bit = 40 + e;
+            defined[bit / 32] |= 1 << (bit % 32);
+        }
+        let t = SupervisorTable {
+            events: 40,
+            state_bits: 1,
+            defined: &defined,
+            targets: &[0, 0, 0],
+            rows: Rows::Dense,
+        };
+        assert_eq!(t.enabled(1, 0, 32), 1 | 1 << 31);
+        assert_eq!(t.enabled(1, 32, 32), 1 | 1 << 7);
+        assert_eq!(t.enabled(0, 0, 32), 0);
+        let by_lookup = (0..40u16).filter(|&e| t.next_state(1, e).is_some()).count();
+        assert_eq!(by_lookup, 4, "the same row as the lookups see");
     }
 
     #[test]

@@ -32,8 +32,12 @@ struct Conveyor {
 /// Input masks: `ls` (the edges of `ls_on`, `ls_off` and the debounce
 /// mask when `ls` is debounced).
 const INPUT_MASKS: [u32; 1] = [1 << LS];
-/// Events raised by `ls` (0–1) and by the timer (2).
-const RAISED: [Index; 3] = [LS_ON, LS_OFF, CLEARED];
+/// Events raised by `ls` (0–1) and by the timer (2); the alphabet of
+/// `belt` in its local order (3–6); the command with a request input (7).
+const EVENT_LISTS: [Index; 8] = [LS_ON, LS_OFF, CLEARED, LS_ON, START, LS_OFF, STOP, START];
+/// What `belt` never blocks (0); the commands without a request input,
+/// with (1) and without (2) a request input on `start`.
+const EVENT_MASKS: [u32; 3] = [1 << CLEARED, 1 << STOP, 1 << START | 1 << STOP];
 const ACTIONS: [Action; 3] = [Action::Start(0), Action::Set(0), Action::Clear(0)];
 const MEMBERS: [Membership; 4] = [
     Membership {
@@ -135,9 +139,22 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
         supervisors: &[SupervisorSpec {
             states: 4,
             initial: 0,
+            alphabet: Span { start: 3, len: 4 },
+            outside: Span { start: 0, len: 1 },
         }],
         input_masks: &INPUT_MASKS,
-        raised: &RAISED,
+        event_lists: &EVENT_LISTS,
+        event_masks: &EVENT_MASKS,
+        commands: if request.is_some() {
+            Span::new(1, 1)
+        } else {
+            Span::new(2, 1)
+        },
+        requested: if request.is_some() {
+            Span::new(7, 1)
+        } else {
+            Span::EMPTY
+        },
         actions: &ACTIONS,
         memberships: &MEMBERS,
         state_map: &[StateMapEntry {
@@ -169,9 +186,9 @@ impl Program for Conveyor {
 
 /// 3 inputs (1 word), none debounced, 2 outputs, 1 timer, 1 supervisor,
 /// 5 events (1 word).
-type Mem = StaticMemory<1, 0, 2, 1, 1, 5, 1>;
+type Mem = StaticMemory<1, 0, 2, 1, 1, 5, 1, 1>;
 /// The same with `ls` debounced.
-type DebouncedMem = StaticMemory<1, 1, 2, 1, 1, 5, 1>;
+type DebouncedMem = StaticMemory<1, 1, 2, 1, 1, 5, 1, 1>;
 
 fn controller(config: Config<'static>) -> Controller<Conveyor, Mem> {
     Controller::new(
@@ -390,7 +407,7 @@ fn an_overrun_is_a_fault_from_its_own_scan_when_configured() {
 #[test]
 fn memory_of_the_wrong_size_is_refused() {
     let config = config(0, UnexpectedPolicy::Fault, None);
-    let small: StaticMemory<1, 0, 2, 1, 1, 4, 1> = StaticMemory::new();
+    let small: StaticMemory<1, 0, 2, 1, 1, 4, 1, 1> = StaticMemory::new();
     assert!(Controller::new(
         Conveyor {
             config,

@@ -7,9 +7,21 @@ pub(crate) fn due(deadline: u32, now: u32) -> bool {
     (now.wrapping_sub(deadline) as i32) >= 0
 }
 
+/// The earliest deadline of the running timers, `None` when none runs.
+/// Every running deadline must lie after `now` (less than 2^31 ms ahead):
+/// they are compared by their distance from `now`.
+pub(crate) fn earliest(running: &[bool], deadlines: &[u32], now: u32) -> Option<u32> {
+    running
+        .iter()
+        .zip(deadlines)
+        .filter(|(&on, _)| on)
+        .map(|(_, &deadline)| deadline)
+        .min_by_key(|deadline| deadline.wrapping_sub(now))
+}
+
 #[cfg(test)]
 mod tests {
-    use super::due;
+    use super::{due, earliest};
 
     #[test]
     fn deadlines_compare_across_the_wrap() {
@@ -20,5 +32,17 @@ mod tests {
         assert!(!due(deadline, u32::MAX));
         assert!(!due(deadline, 4));
         assert!(due(deadline, 5));
+    }
+    #[test]
+    fn the_earliest_deadline_is_the_nearest_after_now_across_the_wrap() {
+        let now = u32::MAX - 10;
+        // 15 ms ahead (past the wrap), 9 ms ahead, and a stopped timer.
+        let deadlines = [4, u32::MAX - 1, now.wrapping_add(1)];
+        assert_eq!(
+            earliest(&[true, true, false], &deadlines, now),
+            Some(u32::MAX - 1)
+        );
+        assert_eq!(earliest(&[true, false, false], &deadlines, now), Some(4));
+        assert_eq!(earliest(&[false; 3], &deadlines, now), None);
     }
 }

@@ -82,6 +82,13 @@ impl Program for RuntimeProgram {
         }
     }
 
+    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        match self {
+            RuntimeProgram::Table(t) => t.enabled(supervisor, state, from, len),
+            RuntimeProgram::Logic(l) => l.enabled(supervisor, state, from, len),
+        }
+    }
+
     fn image_intact(&self) -> bool {
         match self {
             RuntimeProgram::Table(t) => t.image_intact(),

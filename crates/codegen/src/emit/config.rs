@@ -129,9 +129,9 @@ impl Emitter<'_> {
             .collect()
     }
 
-    /// The event names of a span of the raised-events pool.
+    /// The event names of a span of the event-list pool.
     fn raised_in(&self, s: ex::Span) -> Vec<String> {
-        s.of(&self.pools.raised)
+        s.of(&self.pools.event_lists)
             .iter()
             .map(|&e| self.event_name(usize::from(e)))
             .collect()
@@ -145,6 +145,19 @@ impl Emitter<'_> {
         let names: Vec<String> = (0..32)
             .filter(|b| word >> b & 1 == 1)
             .map(|b| self.input((k * 32 + b) as ex::Index))
+            .collect();
+        format!("mask_word({k}, &[{}])", names.join(", "))
+    }
+
+    /// An event-set word as Rust: `mask_word(k, &[event::A, event::B])`,
+    /// or `0`.
+    fn event_word_expr(&self, k: usize, word: u32) -> String {
+        if word == 0 {
+            return "0".to_owned();
+        }
+        let names: Vec<String> = (0..32)
+            .filter(|b| word >> b & 1 == 1)
+            .map(|b| format!("event::{}", ident(&self.project.events[k * 32 + b].name)))
             .collect();
         format!("mask_word({k}, &[{}])", names.join(", "))
     }
@@ -468,8 +481,11 @@ impl Emitter<'_> {
                 .iter()
                 .map(|s| {
                     format!(
-                        "SupervisorSpec {{ states: {}, initial: {} }}",
-                        s.states, s.initial
+                        "SupervisorSpec {{ states: {}, initial: {}, alphabet: {}, outside: {} }}",
+                        s.states,
+                        s.initial,
+                        self.span(s.alphabet),
+                        self.span(s.outside)
                     )
                 })
                 .collect(),
@@ -477,7 +493,10 @@ impl Emitter<'_> {
         let _ = writeln!(
             self.out,
             "{}const SUPERVISORS: [SupervisorSpec; {}] = [{sups}];",
-            titled("Supervisor sizes and initial states, by supervisor", &doc),
+            titled(
+                "Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor",
+                &doc
+            ),
             pools.supervisors.len()
         );
 
@@ -512,27 +531,70 @@ impl Emitter<'_> {
 
         let mut spans = Vec::new();
         for (i, input) in pools.inputs.iter().enumerate() {
-            spans.push((input.raises, format!("edges of {}", self.input_name(i as ex::Index))));
+            spans.push((
+                input.raises,
+                format!("edges of {}", self.input_name(i as ex::Index)),
+            ));
         }
         for (t, timer) in pools.timers.iter().enumerate() {
-            spans.push((timer.raises, format!("expiry of {}", self.timer_name(t as ex::Index))));
+            spans.push((
+                timer.raises,
+                format!("expiry of {}", self.timer_name(t as ex::Index)),
+            ));
         }
+        for (j, sup) in pools.supervisors.iter().enumerate() {
+            let name = self.supervisor_name(j as ex::Index);
+            spans.push((sup.alphabet, format!("alphabet of {name}")));
+        }
+        spans.push((
+            pools.requested,
+            "the commands with a request input".to_owned(),
+        ));
         let doc = self.owners(spans);
-        let raised = list(
+        let event_lists = list(
             pools
-                .raised
+                .event_lists
                 .iter()
                 .map(|&e| format!("event::{}", ident(&p.events[usize::from(e)].name)))
                 .collect(),
         );
         let _ = writeln!(
             self.out,
-            "{}const RAISED: [Index; {}] = [{raised}];",
+            "{}const EVENT_LISTS: [Index; {}] = [{event_lists}];",
             titled(
-                "Events an input's edges or a timer's expiry can raise, by position",
+                "Event lists: what an input's edges or a timer's expiry can raise, each supervisor's alphabet, the commands with a request input, by position",
                 &doc
             ),
-            pools.raised.len()
+            pools.event_lists.len()
+        );
+
+        let mut spans = Vec::new();
+        for (j, sup) in pools.supervisors.iter().enumerate() {
+            let name = self.supervisor_name(j as ex::Index);
+            spans.push((sup.outside, format!("outside the alphabet of {name}")));
+        }
+        spans.push((
+            pools.commands,
+            "the commands without a request input".to_owned(),
+        ));
+        let doc = self.owners(spans);
+        let ew = ex::words(pools.events.len()).max(1);
+        let event_masks = list(
+            pools
+                .event_masks
+                .iter()
+                .enumerate()
+                .map(|(at, &w)| self.event_word_expr(at % ew, w))
+                .collect(),
+        );
+        let _ = writeln!(
+            self.out,
+            "{}const EVENT_MASKS: [u32; {}] = [{event_masks}];",
+            titled(
+                "Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position",
+                &doc
+            ),
+            pools.event_masks.len()
         );
 
         let spans = (0..pools.events.len())
@@ -621,7 +683,7 @@ impl Emitter<'_> {
             .map_or("None".to_owned(), |r| format!("Some({})", self.input(r)));
         let _ = writeln!(
             self.out,
-            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, inputs: &INPUTS, debounced: &DEBOUNCED, debounce_mask: {}, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_masks: &INPUT_MASKS, raised: &RAISED, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP }};",
+            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, inputs: &INPUTS, debounced: &DEBOUNCED, debounce_mask: {}, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_masks: &INPUT_MASKS, event_lists: &EVENT_LISTS, event_masks: &EVENT_MASKS, commands: {}, requested: {}, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP }};",
             pools.name,
             pools.scan_period_ms,
             pools.max_commands_per_scan,
@@ -629,10 +691,12 @@ impl Emitter<'_> {
             pools.overrun_fault,
             pools.lost_edge_fault,
             self.span(pools.debounce_mask),
+            self.span(pools.commands),
+            self.span(pools.requested),
         );
         let _ = writeln!(
             self.out,
-            "/// Words of an event set (32 events per word).\npub const EVENT_WORDS: usize = executor::program::words(event::COUNT);\n/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, and event sets in `EVENT_WORDS` words.\npub type Memory = executor::memory::StaticMemory<INPUT_WORDS, {{ DEBOUNCED.len() }}, {{ output::COUNT }}, {{ timer::COUNT }}, {{ supervisor::COUNT }}, {{ event::COUNT }}, EVENT_WORDS>;"
+            "/// Words of an event set (32 events per word).\npub const EVENT_WORDS: usize = executor::program::words(event::COUNT);\n/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, event sets in `EVENT_WORDS` words, and one event set per supervisor.\npub type Memory = executor::memory::StaticMemory<INPUT_WORDS, {{ DEBOUNCED.len() }}, {{ output::COUNT }}, {{ timer::COUNT }}, {{ supervisor::COUNT }}, {{ event::COUNT }}, EVENT_WORDS, {{ supervisor::COUNT * EVENT_WORDS }}>;"
         );
     }
 }

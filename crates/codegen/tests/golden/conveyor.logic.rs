@@ -205,12 +205,14 @@ const EVENTS: [EventSpec; 5] = [
     },
 ];
 
-/// Supervisor sizes and initial states, by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor:
 /// - 0 `conveyor`: 8 states, initial `clear.off.idle.idle`
 const SUPERVISORS: [SupervisorSpec; 1] = [
     SupervisorSpec {
         states: 8,
         initial: 0,
+        alphabet: Span::new(3, 5),
+        outside: Span::EMPTY,
     },
 ];
 
@@ -218,10 +220,24 @@ const SUPERVISORS: [SupervisorSpec; 1] = [
 /// - 0: the debounced inputs, edge of `re_ls`, edge of `fe_ls`
 const INPUT_MASKS: [u32; 1] = [mask_word(0, &[input::LS])];
 
-/// Events an input's edges or a timer's expiry can raise, by position:
+/// Event lists: what an input's edges or a timer's expiry can raise, each supervisor's alphabet, the commands with a request input, by position:
 /// - 0–1: edges of `ls`
 /// - 2: expiry of `runon`
-const RAISED: [Index; 3] = [event::RE_LS, event::FE_LS, event::GONE];
+/// - 3–7: alphabet of `conveyor`
+const EVENT_LISTS: [Index; 8] = [
+    event::RE_LS,
+    event::FE_LS,
+    event::GONE,
+    event::GONE,
+    event::RE_LS,
+    event::FE_LS,
+    event::START,
+    event::STOP,
+];
+
+/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position:
+/// - 0: the commands without a request input
+const EVENT_MASKS: [u32; 1] = [mask_word(0, &[event::START, event::STOP])];
 
 /// Event actions, by position:
 /// - 0: `re_ls`
@@ -285,7 +301,10 @@ pub const CONFIG: Config<'static> = Config {
     events: &EVENTS,
     supervisors: &SUPERVISORS,
     input_masks: &INPUT_MASKS,
-    raised: &RAISED,
+    event_lists: &EVENT_LISTS,
+    event_masks: &EVENT_MASKS,
+    commands: Span::new(0, 1),
+    requested: Span::EMPTY,
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
@@ -294,7 +313,7 @@ pub const CONFIG: Config<'static> = Config {
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
 
-/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, and event sets in `EVENT_WORDS` words.
+/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, event sets in `EVENT_WORDS` words, and one event set per supervisor.
 pub type Memory = executor::memory::StaticMemory<
     INPUT_WORDS,
     { DEBOUNCED.len() },
@@ -303,6 +322,7 @@ pub type Memory = executor::memory::StaticMemory<
     { supervisor::COUNT },
     { event::COUNT },
     EVENT_WORDS,
+    { supervisor::COUNT * EVENT_WORDS },
 >;
 
 /// Board wiring of `conveyor` (the project's `[board]` section): which pin of
@@ -450,7 +470,7 @@ pub mod logic {
 }
 
 /// CRC-32 of the configuration (the supervisors are code), checked at start.
-pub const IMAGE_CRC: u32 = 0xcba6fbf3;
+pub const IMAGE_CRC: u32 = 0x43fe40f9;
 
 /// The program: supervisors as minimised boolean functions.
 pub struct Logic;

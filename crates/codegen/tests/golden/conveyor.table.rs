@@ -206,12 +206,14 @@ const EVENTS: [EventSpec; 5] = [
     },
 ];
 
-/// Supervisor sizes and initial states, by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor:
 /// - 0 `conveyor`: 8 states, initial `clear.off.idle.idle`
 const SUPERVISORS: [SupervisorSpec; 1] = [
     SupervisorSpec {
         states: 8,
         initial: 0,
+        alphabet: Span::new(3, 5),
+        outside: Span::EMPTY,
     },
 ];
 
@@ -219,10 +221,24 @@ const SUPERVISORS: [SupervisorSpec; 1] = [
 /// - 0: the debounced inputs, edge of `re_ls`, edge of `fe_ls`
 const INPUT_MASKS: [u32; 1] = [mask_word(0, &[input::LS])];
 
-/// Events an input's edges or a timer's expiry can raise, by position:
+/// Event lists: what an input's edges or a timer's expiry can raise, each supervisor's alphabet, the commands with a request input, by position:
 /// - 0–1: edges of `ls`
 /// - 2: expiry of `runon`
-const RAISED: [Index; 3] = [event::RE_LS, event::FE_LS, event::GONE];
+/// - 3–7: alphabet of `conveyor`
+const EVENT_LISTS: [Index; 8] = [
+    event::RE_LS,
+    event::FE_LS,
+    event::GONE,
+    event::GONE,
+    event::RE_LS,
+    event::FE_LS,
+    event::START,
+    event::STOP,
+];
+
+/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position:
+/// - 0: the commands without a request input
+const EVENT_MASKS: [u32; 1] = [mask_word(0, &[event::START, event::STOP])];
 
 /// Event actions, by position:
 /// - 0: `re_ls`
@@ -286,7 +302,10 @@ pub const CONFIG: Config<'static> = Config {
     events: &EVENTS,
     supervisors: &SUPERVISORS,
     input_masks: &INPUT_MASKS,
-    raised: &RAISED,
+    event_lists: &EVENT_LISTS,
+    event_masks: &EVENT_MASKS,
+    commands: Span::new(0, 1),
+    requested: Span::EMPTY,
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
@@ -295,7 +314,7 @@ pub const CONFIG: Config<'static> = Config {
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
 
-/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, and event sets in `EVENT_WORDS` words.
+/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, event sets in `EVENT_WORDS` words, and one event set per supervisor.
 pub type Memory = executor::memory::StaticMemory<
     INPUT_WORDS,
     { DEBOUNCED.len() },
@@ -304,6 +323,7 @@ pub type Memory = executor::memory::StaticMemory<
     { supervisor::COUNT },
     { event::COUNT },
     EVENT_WORDS,
+    { supervisor::COUNT * EVENT_WORDS },
 >;
 
 /// Board wiring of `conveyor` (the project's `[board]` section): which pin of
@@ -409,7 +429,7 @@ const TABLES: [SupervisorTable<'static>; 1] = [
 ];
 
 /// CRC-32 of the program image (configuration and tables), checked at start.
-pub const IMAGE_CRC: u32 = 0xc93b529d;
+pub const IMAGE_CRC: u32 = 0x4d60eaae;
 
 /// The program: the configuration and the tables above, as constants the
 /// compiler can see through (a zero-sized type rather than a `static` holding them).
@@ -422,6 +442,11 @@ impl Program for Tables {
     #[inline]
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         TABLES.get(supervisor as usize)?.next_state(state, local)
+    }
+
+    #[inline]
+    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        TABLES.get(supervisor as usize).map_or(0, |t| t.enabled(state, from, len))
     }
     fn image_intact(&self) -> bool {
         executor::table::image_crc(&CONFIG, &TABLES) == IMAGE_CRC

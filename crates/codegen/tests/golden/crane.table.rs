@@ -340,17 +340,21 @@ const EVENTS: [EventSpec; 8] = [
     },
 ];
 
-/// Supervisor sizes and initial states, by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor:
 /// - 0 `sup_crane1`: 3 states, initial `idle`
 /// - 1 `sup_section`: 3 states, initial `free`
 const SUPERVISORS: [SupervisorSpec; 2] = [
     SupervisorSpec {
         states: 3,
         initial: 0,
+        alphabet: Span::new(5, 6),
+        outside: Span::new(0, 1),
     },
     SupervisorSpec {
         states: 3,
         initial: 0,
+        alphabet: Span::new(11, 4),
+        outside: Span::new(1, 1),
     },
 ];
 
@@ -370,18 +374,42 @@ const INPUT_MASKS: [u32; 6] = [
     mask_word(0, &[input::S13_T1, input::S13_T2, input::S14_T1, input::S14_T2]),
 ];
 
-/// Events an input's edges or a timer's expiry can raise, by position:
+/// Event lists: what an input's edges or a timer's expiry can raise, each supervisor's alphabet, the commands with a request input, by position:
 /// - 0: edges of `s13_t1`
 /// - 1: edges of `s13_t2`
 /// - 2: edges of `s14_t1`
 /// - 3: edges of `s14_t2`
 /// - 4: edges of `ld1_done`
-const RAISED: [Index; 5] = [
+/// - 5–10: alphabet of `sup_crane1`
+/// - 11–14: alphabet of `sup_section`
+/// - 15–17: the commands with a request input
+const EVENT_LISTS: [Index; 18] = [
     event::T1_AT13,
     event::T2_AT13,
     event::T1_AT14,
     event::T2_AT14,
     event::F_LD1,
+    event::T1_AT13,
+    event::T2_AT13,
+    event::F_LD1,
+    event::ST_LD1,
+    event::RUN_T1,
+    event::RUN_T2,
+    event::T1_AT14,
+    event::T2_AT14,
+    event::RUN_T1,
+    event::RUN_T2,
+    event::ST_LD1,
+    event::RUN_T1,
+    event::RUN_T2,
+];
+
+/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position:
+/// - 0: outside the alphabet of `sup_crane1`
+/// - 1: outside the alphabet of `sup_section`
+const EVENT_MASKS: [u32; 2] = [
+    mask_word(0, &[event::T1_AT14, event::T2_AT14]),
+    mask_word(0, &[event::T1_AT13, event::T2_AT13, event::F_LD1, event::ST_LD1]),
 ];
 
 /// Event actions, by position:
@@ -493,7 +521,10 @@ pub const CONFIG: Config<'static> = Config {
     events: &EVENTS,
     supervisors: &SUPERVISORS,
     input_masks: &INPUT_MASKS,
-    raised: &RAISED,
+    event_lists: &EVENT_LISTS,
+    event_masks: &EVENT_MASKS,
+    commands: Span::EMPTY,
+    requested: Span::new(15, 3),
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
@@ -502,7 +533,7 @@ pub const CONFIG: Config<'static> = Config {
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
 
-/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, and event sets in `EVENT_WORDS` words.
+/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, event sets in `EVENT_WORDS` words, and one event set per supervisor.
 pub type Memory = executor::memory::StaticMemory<
     INPUT_WORDS,
     { DEBOUNCED.len() },
@@ -511,6 +542,7 @@ pub type Memory = executor::memory::StaticMemory<
     { supervisor::COUNT },
     { event::COUNT },
     EVENT_WORDS,
+    { supervisor::COUNT * EVENT_WORDS },
 >;
 
 /// Board wiring of `crane` (the project's `[board]` section): which pin of
@@ -702,7 +734,7 @@ const TABLES: [SupervisorTable<'static>; 2] = [
 ];
 
 /// CRC-32 of the program image (configuration and tables), checked at start.
-pub const IMAGE_CRC: u32 = 0xbb8dc300;
+pub const IMAGE_CRC: u32 = 0x55c96e1b;
 
 /// The program: the configuration and the tables above, as constants the
 /// compiler can see through (a zero-sized type rather than a `static` holding them).
@@ -715,6 +747,11 @@ impl Program for Tables {
     #[inline]
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         TABLES.get(supervisor as usize)?.next_state(state, local)
+    }
+
+    #[inline]
+    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        TABLES.get(supervisor as usize).map_or(0, |t| t.enabled(state, from, len))
     }
     fn image_intact(&self) -> bool {
         executor::table::image_crc(&CONFIG, &TABLES) == IMAGE_CRC

@@ -305,12 +305,14 @@ const EVENTS: [EventSpec; 9] = [
     },
 ];
 
-/// Supervisor sizes and initial states, by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor:
 /// - 0 `motivating`: 10 states, initial `0`
 const SUPERVISORS: [SupervisorSpec; 1] = [
     SupervisorSpec {
         states: 10,
         initial: 0,
+        alphabet: Span::new(4, 9),
+        outside: Span::EMPTY,
     },
 ];
 
@@ -326,12 +328,35 @@ const INPUT_MASKS: [u32; 4] = [
     mask_word(0, &[input::X_F]),
 ];
 
-/// Events an input's edges or a timer's expiry can raise, by position:
+/// Event lists: what an input's edges or a timer's expiry can raise, each supervisor's alphabet, the commands with a request input, by position:
 /// - 0: edges of `x_a`
 /// - 1: edges of `x_b`
 /// - 2: edges of `x_e`
 /// - 3: edges of `x_f`
-const RAISED: [Index; 4] = [event::A, event::B, event::E, event::F];
+/// - 4–12: alphabet of `motivating`
+/// - 13: the commands with a request input
+const EVENT_LISTS: [Index; 14] = [
+    event::A,
+    event::B,
+    event::E,
+    event::F,
+    event::A,
+    event::B,
+    event::E,
+    event::F,
+    event::C_LO,
+    event::C_HI,
+    event::C_CL,
+    event::D_ON,
+    event::D_OFF,
+    event::C_LO,
+];
+
+/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position:
+/// - 0: the commands without a request input
+const EVENT_MASKS: [u32; 1] = [
+    mask_word(0, &[event::C_HI, event::C_CL, event::D_ON, event::D_OFF]),
+];
 
 /// Event actions, by position:
 /// - 0–1: `c_lo`
@@ -420,7 +445,10 @@ pub const CONFIG: Config<'static> = Config {
     events: &EVENTS,
     supervisors: &SUPERVISORS,
     input_masks: &INPUT_MASKS,
-    raised: &RAISED,
+    event_lists: &EVENT_LISTS,
+    event_masks: &EVENT_MASKS,
+    commands: Span::new(0, 1),
+    requested: Span::new(13, 1),
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
@@ -429,7 +457,7 @@ pub const CONFIG: Config<'static> = Config {
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
 
-/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, and event sets in `EVENT_WORDS` words.
+/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, event sets in `EVENT_WORDS` words, and one event set per supervisor.
 pub type Memory = executor::memory::StaticMemory<
     INPUT_WORDS,
     { DEBOUNCED.len() },
@@ -438,6 +466,7 @@ pub type Memory = executor::memory::StaticMemory<
     { supervisor::COUNT },
     { event::COUNT },
     EVENT_WORDS,
+    { supervisor::COUNT * EVENT_WORDS },
 >;
 
 /// Board wiring of `motivating` (the project's `[board]` section): which pin of
@@ -592,7 +621,7 @@ const TABLES: [SupervisorTable<'static>; 1] = [
 ];
 
 /// CRC-32 of the program image (configuration and tables), checked at start.
-pub const IMAGE_CRC: u32 = 0xf30b5235;
+pub const IMAGE_CRC: u32 = 0x80aad142;
 
 /// The program: the configuration and the tables above, as constants the
 /// compiler can see through (a zero-sized type rather than a `static` holding them).
@@ -605,6 +634,11 @@ impl Program for Tables {
     #[inline]
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         TABLES.get(supervisor as usize)?.next_state(state, local)
+    }
+
+    #[inline]
+    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        TABLES.get(supervisor as usize).map_or(0, |t| t.enabled(state, from, len))
     }
     fn image_intact(&self) -> bool {
         executor::table::image_crc(&CONFIG, &TABLES) == IMAGE_CRC

@@ -283,12 +283,14 @@ const EVENTS: [EventSpec; 7] = [
     },
 ];
 
-/// Supervisor sizes and initial states, by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor:
 /// - 0 `press`: 6 states, initial `1`
 const SUPERVISORS: [SupervisorSpec; 1] = [
     SupervisorSpec {
         states: 6,
         initial: 0,
+        alphabet: Span::new(7, 7),
+        outside: Span::EMPTY,
     },
 ];
 
@@ -308,14 +310,15 @@ const INPUT_MASKS: [u32; 6] = [
     mask_word(0, &[input::BOTTOM_LS]),
 ];
 
-/// Events an input's edges or a timer's expiry can raise, by position:
+/// Event lists: what an input's edges or a timer's expiry can raise, each supervisor's alphabet, the commands with a request input, by position:
 /// - 0: edges of `auto_pb`
 /// - 1: edges of `stop_pb`
 /// - 2: edges of `reset_pb`
 /// - 3–4: edges of `part`
 /// - 5: edges of `top_ls`
 /// - 6: edges of `bottom_ls`
-const RAISED: [Index; 7] = [
+/// - 7–13: alphabet of `press`
+const EVENT_LISTS: [Index; 14] = [
     event::AUTO,
     event::STOP,
     event::RESET,
@@ -323,7 +326,17 @@ const RAISED: [Index; 7] = [
     event::PART_OUT,
     event::AT_TOP,
     event::AT_BOTTOM,
+    event::AUTO,
+    event::STOP,
+    event::RESET,
+    event::PART_IN,
+    event::PART_OUT,
+    event::AT_BOTTOM,
+    event::AT_TOP,
 ];
+
+/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position.
+const EVENT_MASKS: [u32; 0] = [];
 
 /// Event actions, by position.
 const ACTIONS: [Action; 0] = [];
@@ -425,7 +438,10 @@ pub const CONFIG: Config<'static> = Config {
     events: &EVENTS,
     supervisors: &SUPERVISORS,
     input_masks: &INPUT_MASKS,
-    raised: &RAISED,
+    event_lists: &EVENT_LISTS,
+    event_masks: &EVENT_MASKS,
+    commands: Span::EMPTY,
+    requested: Span::EMPTY,
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
@@ -434,7 +450,7 @@ pub const CONFIG: Config<'static> = Config {
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
 
-/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, and event sets in `EVENT_WORDS` words.
+/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, event sets in `EVENT_WORDS` words, and one event set per supervisor.
 pub type Memory = executor::memory::StaticMemory<
     INPUT_WORDS,
     { DEBOUNCED.len() },
@@ -443,6 +459,7 @@ pub type Memory = executor::memory::StaticMemory<
     { supervisor::COUNT },
     { event::COUNT },
     EVENT_WORDS,
+    { supervisor::COUNT * EVENT_WORDS },
 >;
 
 /// Board wiring of `stamping-press` (the project's `[board]` section): which pin of
@@ -652,7 +669,7 @@ pub mod logic {
 }
 
 /// CRC-32 of the configuration (the supervisors are code), checked at start.
-pub const IMAGE_CRC: u32 = 0x58b9c819;
+pub const IMAGE_CRC: u32 = 0x5740dea0;
 
 /// The program: supervisors as minimised boolean functions.
 pub struct Logic;
