@@ -40,6 +40,12 @@ pub struct Figures {
     pub flash: u64,
     /// Static RAM.
     pub ram: u64,
+    /// Quiet scans (no input change, nothing executed).
+    pub quiet_scans: u64,
+    /// Median instructions of a quiet scan.
+    pub quiet_median: u64,
+    /// Largest quiet scan.
+    pub quiet_max: u64,
 }
 
 impl Figures {
@@ -57,6 +63,18 @@ impl Figures {
                 "instr_max" => &mut f.max,
                 "flash" => &mut f.flash,
                 "ram" => &mut f.ram,
+                "quiet_scans" => {
+                    f.quiet_scans = value;
+                    continue;
+                }
+                "quiet_median" => {
+                    f.quiet_median = value;
+                    continue;
+                }
+                "quiet_max" => {
+                    f.quiet_max = value;
+                    continue;
+                }
                 _ => continue,
             };
             *slot = value;
@@ -348,7 +366,7 @@ fn ratio(ours: u64, base: u64) -> String {
 
 fn print_report(rows: &[(String, Vec<(&str, Figures)>)], budgets: &Budgets) {
     println!(
-        "\n{:<12} {:<6} {:>6} {:>5} {:>8} {:>8} {:>8} {:>8} {:>6}  {:>13} {:>13}",
+        "\n{:<12} {:<6} {:>6} {:>5} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6}  {:>13} {:>13}",
         "model",
         "backend",
         "scans",
@@ -356,6 +374,7 @@ fn print_report(rows: &[(String, Vec<(&str, Figures)>)], budgets: &Budgets) {
         "instr_md",
         "instr_99",
         "instr_mx",
+        "quiet_md",
         "flash",
         "ram",
         "instr vs match",
@@ -369,7 +388,7 @@ fn print_report(rows: &[(String, Vec<(&str, Figures)>)], budgets: &Budgets) {
             .unwrap_or_default();
         for (backend, f) in per {
             println!(
-                "{:<12} {:<6} {:>6} {:>5} {:>8} {:>8} {:>8} {:>8} {:>6}  {:>13} {:>13}",
+                "{:<12} {:<6} {:>6} {:>5} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6}  {:>13} {:>13}",
                 name,
                 backend,
                 f.scans,
@@ -377,6 +396,7 @@ fn print_report(rows: &[(String, Vec<(&str, Figures)>)], budgets: &Budgets) {
                 f.median,
                 f.p99,
                 f.max,
+                f.quiet_median,
                 f.flash,
                 f.ram,
                 ratio(f.median, base.median),

@@ -17,7 +17,8 @@ pub struct SizeMismatch;
 /// fault state.
 pub struct Controller<P: Program, M: Memory> {
     program: P,
-    memory: M,
+    /// Crate-visible so that tests can simulate a flipped RAM bit.
+    pub(crate) memory: M,
     scan: u32,
     time_ms: u32,
     fault: Option<Fault>,
@@ -29,11 +30,13 @@ pub struct Controller<P: Program, M: Memory> {
     /// The last controllable phase found no command it could choose (not
     /// counting those it had executed), and no input or state has changed
     /// since: the next controllable phase would find none either.
-    idle: bool,
+    pub(crate) idle: bool,
     /// The output image no longer matches the states and latched levels.
     outputs_stale: bool,
     /// The earliest deadline of the running timers.
     next_due: Option<u32>,
+    /// The supervisor whose state this scan checks for range.
+    pub(crate) range_check: usize,
 }
 
 impl<P: Program, M: Memory> Controller<P, M> {
@@ -43,7 +46,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
         if !memory.fits(&program.config()) {
             return Err(SizeMismatch);
         }
-        initialise(&program, &program.config(), &mut memory.ram());
+        initialise(&program, &program.config(), &mut memory);
         let fault = (!program.image_intact()).then_some(Fault::Corrupt);
         let mut controller = Controller {
             program,
@@ -58,6 +61,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
             idle: false,
             outputs_stale: true,
             next_due: None,
+            range_check: 0,
         };
         if fault.is_some() {
             controller.counters.faults += 1;
@@ -183,20 +187,22 @@ impl<P: Program, M: Memory> Controller<P, M> {
     fn run(&mut self, now_ms: u32) -> ScanRecord<'_> {
         let first = self.scan == 0;
         let config = &self.program.config();
-        let mut ram = self.memory.ram();
-        let changed = inputs::sample(config, &mut ram, first, &mut self.counting);
+        let changed = inputs::sample(config, &mut self.memory.ram(), first, &mut self.counting);
         if self.executed_len != 0 {
-            ram.done.fill(0);
+            self.memory.ram().done.fill(0);
         }
         self.executed_len = 0;
         self.unexpected_len = 0;
 
-        // A state index out of range can only come from corruption.
-        let corrupt = ram
-            .states
-            .iter()
-            .zip(config.supervisors)
-            .any(|(&x, spec)| x >= spec.states);
+        // A state index out of range can only come from corruption. Every
+        // scan checks one supervisor in turn (all of them within S scans),
+        // and `execute` checks those it is about to move.
+        let j = self.range_check;
+        let corrupt = match config.supervisors.get(j) {
+            Some(spec) => self.memory.states().get(j).is_some_and(|&x| x >= spec.states),
+            None => false,
+        };
+        self.range_check = if j + 1 < config.supervisors.len() { j + 1 } else { 0 };
         if corrupt && self.fault.is_none() {
             self.fault = Some(Fault::Corrupt);
             self.counters.faults = self.counters.faults.wrapping_add(1);
@@ -206,16 +212,16 @@ impl<P: Program, M: Memory> Controller<P, M> {
         if self.fault.is_some() {
             let reset = config
                 .reset
-                .is_some_and(|r| inputs::input_rose(usize::from(r), &ram));
+                .is_some_and(|r| inputs::input_rose(usize::from(r), &self.memory.ram()));
             if reset && self.program.image_intact() {
-                initialise(&self.program, config, &mut ram);
+                initialise(&self.program, config, &mut self.memory);
                 self.fault = None;
                 self.idle = false;
                 self.next_due = None;
-                write_outputs(config, &mut ram);
+                write_outputs(config, &mut self.memory);
                 self.outputs_stale = false;
             } else {
-                write_safe_outputs(config, &mut ram);
+                write_safe_outputs(config, &mut self.memory);
                 self.outputs_stale = true;
             }
             return self.finish(now_ms);
@@ -225,6 +231,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
         // the inputs that changed can raise an edge, only the events bound
         // to them are looked at, and the timers only when one is due.
         let timer_due = self.next_due.is_some_and(|d| due(d, now_ms));
+        let ram = self.memory.ram();
         if changed || timer_due {
             ram.occurred.fill(0);
         }
@@ -264,28 +271,29 @@ impl<P: Program, M: Memory> Controller<P, M> {
             self.next_due = earliest(ram.timer_running, ram.timer_deadline, now_ms);
         }
 
-        // Step 4: uncontrollable phase, in declaration order.
+        // Step 4: uncontrollable phase, in declaration order. `execute`
+        // takes the memory itself: handing it the arrays one by one would
+        // cost every scan, quiet or not, the building of their views.
         let mut executed = 0usize;
         let mut unexpected = 0usize;
         let mut timers_changed = false;
-        for k in 0..ram.occurred.len() {
-            if !(changed || timer_due) {
-                break;
-            }
-            let mut pending = ram.occurred[k];
+        let event_words = if changed || timer_due { ram.occurred.len() } else { 0 };
+        for k in 0..event_words {
+            let mut pending = self.memory.ram().occurred[k];
             while pending != 0 {
                 let e = k * 32 + pending.trailing_zeros() as usize;
                 pending &= pending - 1;
-                if bits::contains(ram.feasible, e) {
-                    let Some(timers) = execute(&self.program, config, &mut ram, e, now_ms) else {
+                if bits::contains(self.memory.ram().feasible, e) {
+                    let Some(timers) = execute(&self.program, config, &mut self.memory, e, now_ms)
+                    else {
                         return self.fault_corrupt(executed, unexpected, now_ms);
                     };
                     timers_changed |= timers;
-                    ram.executed[executed] = e as Index;
+                    self.memory.ram().executed[executed] = e as Index;
                     executed += 1;
                     continue;
                 }
-                ram.unexpected[unexpected] = e as Index;
+                self.memory.ram().unexpected[unexpected] = e as Index;
                 unexpected += 1;
                 match config.unexpected {
                     UnexpectedPolicy::Ignore => {
@@ -294,7 +302,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
                     UnexpectedPolicy::Fault => {
                         self.fault = Some(Fault::Unexpected { event: e as Index });
                         self.counters.faults = self.counters.faults.wrapping_add(1);
-                        write_safe_outputs(config, &mut ram);
+                        write_safe_outputs(config, &mut self.memory);
                         self.outputs_stale = true;
                         self.executed_len = executed;
                         self.unexpected_len = unexpected;
@@ -314,31 +322,30 @@ impl<P: Program, M: Memory> Controller<P, M> {
             };
             let mut commands = 0usize;
             self.idle = false;
-            loop {
-                if commands >= limit {
-                    break;
-                }
-                let Some(e) = next_command(config, &ram) else {
-                    self.idle = !any_command(config, &ram);
+            while commands < limit {
+                let Some(e) = next_command(config, &mut self.memory) else {
+                    self.idle = !any_command(config, &mut self.memory);
                     break;
                 };
-                let Some(timers) = execute(&self.program, config, &mut ram, e, now_ms) else {
+                let Some(timers) = execute(&self.program, config, &mut self.memory, e, now_ms)
+                else {
                     return self.fault_corrupt(executed, unexpected, now_ms);
                 };
                 timers_changed |= timers;
-                ram.executed[executed] = e as Index;
+                self.memory.ram().executed[executed] = e as Index;
                 executed += 1;
                 commands += 1;
             }
         }
         if timers_changed {
+            let ram = self.memory.ram();
             self.next_due = earliest(ram.timer_running, ram.timer_deadline, now_ms);
         }
 
         // Step 6: outputs, recomputed only when an event has moved a state
         // or a latched level.
         if executed != 0 || self.outputs_stale {
-            write_outputs(config, &mut ram);
+            write_outputs(config, &mut self.memory);
             self.outputs_stale = false;
         }
         self.executed_len = executed;
@@ -350,7 +357,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
     /// allowed: the cache in RAM is corrupt. Fault mode from this scan on.
     fn fault_corrupt(&mut self, executed: usize, unexpected: usize, now_ms: u32) -> ScanRecord<'_> {
         self.enter_fault(Fault::Corrupt);
-        write_safe_outputs(&self.program.config(), &mut self.memory.ram());
+        write_safe_outputs(&self.program.config(), &mut self.memory);
         self.outputs_stale = true;
         self.executed_len = executed;
         self.unexpected_len = unexpected;
@@ -366,7 +373,8 @@ impl<P: Program, M: Memory> Controller<P, M> {
 
 /// Every supervisor initial, every timer stopped, action-driven outputs at
 /// their initial level, and the enabled sets of the initial states.
-fn initialise<P: Program>(program: &P, config: &Config<'_>, ram: &mut Ram<'_>) {
+fn initialise<P: Program, M: Memory>(program: &P, config: &Config<'_>, memory: &mut M) {
+    let ram = &mut memory.ram();
     for (x, spec) in ram.states.iter_mut().zip(config.supervisors) {
         *x = spec.initial;
     }
@@ -446,7 +454,8 @@ fn commands_word(config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
 /// The first command in declaration order that is feasible, may be
 /// chosen now and has not run in this scan.
 #[inline]
-fn next_command(config: &Config<'_>, ram: &Ram<'_>) -> Option<usize> {
+fn next_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> Option<usize> {
+    let ram = &memory.ram();
     (0..ram.feasible.len()).find_map(|k| {
         let candidates = ram.feasible[k] & commands_word(config, ram, k) & !ram.done[k];
         (candidates != 0).then(|| k * 32 + candidates.trailing_zeros() as usize)
@@ -455,7 +464,8 @@ fn next_command(config: &Config<'_>, ram: &Ram<'_>) -> Option<usize> {
 
 /// Some command is feasible and may be chosen now, executed in this scan
 /// or not.
-fn any_command(config: &Config<'_>, ram: &Ram<'_>) -> bool {
+fn any_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> bool {
+    let ram = &memory.ram();
     (0..ram.feasible.len()).any(|k| ram.feasible[k] & commands_word(config, ram, k) != 0)
 }
 
@@ -484,19 +494,23 @@ fn conditions_hold(config: &Config<'_>, ram: &Ram<'_>, spec: &EventSpec) -> bool
 /// Moves every supervisor having the (feasible) event, refreshes the
 /// enabled sets of those that moved and applies the event's actions.
 /// `Some(true)` when a timer was started or stopped; `None` when a
-/// supervisor's program refuses the event its enabled set allowed (a
-/// corrupt set).
-fn execute<P: Program>(
+/// supervisor's state is out of range or its program refuses the event its
+/// enabled set allowed (corrupt memory).
+fn execute<P: Program, M: Memory>(
     program: &P,
     config: &Config<'_>,
-    ram: &mut Ram<'_>,
+    memory: &mut M,
     e: usize,
     now: u32,
 ) -> Option<bool> {
+    let ram = &mut memory.ram();
     let spec = &config.events[e];
     let mut moved = false;
     for m in spec.members.of(config.memberships) {
         let j = m.supervisor as usize;
+        if ram.states[j] >= config.supervisors[j].states {
+            return None;
+        }
         let next = program.next_state(m.supervisor, ram.states[j], m.local)?;
         if next != ram.states[j] {
             ram.states[j] = next;
@@ -529,7 +543,8 @@ fn execute<P: Program>(
 }
 
 /// Action-driven levels, and for Moore outputs the OR over their state map.
-fn write_outputs(config: &Config<'_>, ram: &mut Ram<'_>) {
+fn write_outputs<M: Memory>(config: &Config<'_>, memory: &mut M) {
+    let ram = memory.ram();
     for (o, spec) in config.outputs.iter().enumerate() {
         ram.outputs[o] = if spec.state_map.is_empty() {
             ram.latched[o]
@@ -543,7 +558,8 @@ fn write_outputs(config: &Config<'_>, ram: &mut Ram<'_>) {
     }
 }
 
-fn write_safe_outputs(config: &Config<'_>, ram: &mut Ram<'_>) {
+fn write_safe_outputs<M: Memory>(config: &Config<'_>, memory: &mut M) {
+    let ram = memory.ram();
     for (level, spec) in ram.outputs.iter_mut().zip(config.outputs) {
         *level = spec.safe;
     }

@@ -125,6 +125,16 @@ pub fn unpack(bits: &[u8], out: &mut [bool]) {
     }
 }
 
+/// Unpacks `bits` into input words as [`crate::Controller::scan_packed`]
+/// takes them: value `i` at bit `i % 32` of word `i / 32` (missing bytes
+/// read as 0).
+pub fn unpack_words(bits: &[u8], out: &mut [u32]) {
+    for (k, word) in out.iter_mut().enumerate() {
+        let byte = |b: usize| u32::from(bits.get(4 * k + b).copied().unwrap_or(0)) << (8 * b);
+        *word = byte(0) | byte(1) | byte(2) | byte(3);
+    }
+}
+
 impl RecordedScan {
     /// The recorded form of `record` for raw inputs `raw`.
     pub fn new(raw: &[bool], record: &ScanRecord<'_>) -> Result<RecordedScan, CapacityExceeded> {

@@ -417,3 +417,64 @@ fn memory_of_the_wrong_size_is_refused() {
     )
     .is_err());
 }
+
+/// Memory corruption (a flipped RAM bit) is simulated by writing the
+/// sealed arrays from inside the crate.
+#[test]
+fn a_state_out_of_range_is_corrupt_within_one_round_of_supervisors() {
+    let mut c = plain();
+    c.scan(0, &io(false, false));
+    use crate::memory::sealed::Storage;
+    c.memory.ram().states[0] = 7; // `belt` has 4 states
+    let r = c.scan(10, &io(false, false));
+    assert_eq!(r.fault, Some(Fault::Corrupt), "one supervisor: the next scan checks it");
+    assert_eq!(r.outputs, [false, true], "the safe image");
+}
+
+#[test]
+fn a_state_out_of_range_is_corrupt_before_the_event_moves_it() {
+    let mut c = plain();
+    c.scan(0, &io(false, false));
+    c.scan(10, &io(false, false));
+    use crate::memory::sealed::Storage;
+    c.memory.ram().states[0] = 9;
+    // Skip the rotating check: the edge of `ls` reaches `execute` first.
+    c.range_check = 1;
+    let r = c.scan(20, &io(true, false));
+    assert_eq!(r.fault, Some(Fault::Corrupt));
+    assert!(r.executed.is_empty());
+}
+
+#[test]
+fn an_enabled_set_corrupted_in_ram_cannot_run_an_event_the_table_refuses() {
+    let mut c = plain();
+    c.scan(0, &io(false, false));
+    assert_eq!(c.states(), [0], "`stop` is not enabled in state 0");
+    use crate::memory::sealed::Storage;
+    let ram = c.memory.ram();
+    ram.allowed[0] |= 1 << STOP;
+    ram.feasible[0] |= 1 << STOP;
+    // The flipped bit makes `stop` look enabled; a request-free command is
+    // chosen as soon as it is feasible, so this scan tries it.
+    c.idle = false;
+    let r = c.scan(10, &io(false, false));
+    assert_eq!(r.fault, Some(Fault::Corrupt));
+    assert!(r.executed.is_empty(), "the refused command did not run");
+    assert_eq!(r.states, [0]);
+}
+
+#[test]
+fn quiet_scans_skip_the_controllable_phase_but_not_a_new_request() {
+    // `start` waits for its request input `auto` (input 2).
+    let mut c = controller(config(0, UnexpectedPolicy::Fault, Some(AUTO)));
+    c.scan(0, &[false, false, false]);
+    let r = c.scan(10, &[true, false, false]);
+    assert_eq!(r.executed, [LS_ON], "no request yet: `start` waits");
+    for t in [20, 30, 40] {
+        assert!(c.scan(t, &[true, false, false]).executed.is_empty());
+        assert!(c.idle, "nothing to choose: the next quiet scan skips the phase");
+    }
+    let r = c.scan(50, &[true, false, true]);
+    assert_eq!(r.executed, [START], "the request input changed: the phase runs");
+    assert!(!c.idle);
+}

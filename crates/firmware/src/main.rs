@@ -115,7 +115,7 @@ fn main() -> ! {
             report::lost_edge(controller.next_scan(), input, count);
         }
 
-        let record = controller.scan(start.time_ms, &raw);
+        let record = controller.scan_packed(start.time_ms, &raw);
         io.write(record.outputs);
         report::scan(&record, fault);
         fault = record.fault;

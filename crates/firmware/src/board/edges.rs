@@ -16,7 +16,7 @@ use cortex_m::peripheral::NVIC;
 use critical_section::{CriticalSection, Mutex};
 use firmware::edges::{ChangeCounts, LineMap};
 use firmware::program::board::{EDGE_LATCHED, INPUT_PINS};
-use firmware::program::input;
+use firmware::program::{input, INPUT_WORDS};
 use stm32f4xx_hal::interrupt;
 use stm32f4xx_hal::pac::{Interrupt, EXTI};
 
@@ -109,7 +109,7 @@ fn service(cs: CriticalSection<'_>, mask: u32) {
 
 /// The raw input image and the changes since the previous sample, taken
 /// together.
-pub fn sample(io: &Io) -> ([bool; input::COUNT], Changes) {
+pub fn sample(io: &Io) -> ([u32; INPUT_WORDS], Changes) {
     critical_section::with(|cs| {
         service(cs, LINES.mask());
         let raw = io.read();

@@ -11,7 +11,7 @@
 
 use firmware::levels;
 use firmware::program::board::{self, INPUT_PINS, OUTPUT_PINS};
-use firmware::program::{input, output};
+use firmware::program::{input, output, INPUT_WORDS};
 use stm32f4xx_hal::gpio::{
     self, gpioa, gpiob, gpioc, gpiod, gpioe, gpioh, Edge, ErasedPin, ExtiPin, Input, Output,
     PinMode, PinState, PushPull,
@@ -218,13 +218,15 @@ impl Io {
         }
     }
 
-    /// The raw input image: each wired input's signal (active-low pins
-    /// inverted), 0 for inputs without a pin.
-    pub fn read(&self) -> [bool; input::COUNT] {
-        let mut raw = [false; input::COUNT];
-        for ((value, pin), spec) in raw.iter_mut().zip(&self.inputs).zip(&INPUT_PINS) {
+    /// The raw input image, packed as the controller takes it (input `i`
+    /// at bit `i % 32` of word `i / 32`): each wired input's signal
+    /// (active-low pins inverted), 0 for inputs without a pin.
+    pub fn read(&self) -> [u32; INPUT_WORDS] {
+        let mut raw = [0u32; INPUT_WORDS];
+        for (i, (pin, spec)) in self.inputs.iter().zip(&INPUT_PINS).enumerate() {
             if let (Some(pin), Some(spec)) = (pin, spec) {
-                *value = levels::signal(pin.is_high(), spec.active_low);
+                let on = levels::signal(pin.is_high(), spec.active_low);
+                raw[i / 32] |= u32::from(on) << (i % 32);
             }
         }
         raw
