@@ -171,20 +171,30 @@ impl<P: Program, M: Memory> Controller<P, M> {
     pub fn scan(&mut self, now_ms: u32, raw: &[bool]) -> ScanRecord<'_> {
         let inputs = self.program.config().inputs.len();
         inputs::pack(raw, inputs, self.memory.ram().raw);
-        self.run(now_ms)
+        self.run(now_ms);
+        self.record()
     }
 
     /// [`Controller::scan`] with the raw input image packed 32 inputs to a
     /// word, input `i` at bit `i % 32` of word `i / 32`, as a board reads
     /// its ports (missing words read as 0, bits of no input are ignored).
     pub fn scan_packed(&mut self, now_ms: u32, raw: &[u32]) -> ScanRecord<'_> {
+        self.step_packed(now_ms, raw);
+        self.record()
+    }
+
+    /// [`Controller::scan_packed`] without building the record: what a
+    /// board runs each period, reading the outputs
+    /// ([`Controller::outputs`]) or the record ([`Controller::record`])
+    /// after it when it needs them.
+    pub fn step_packed(&mut self, now_ms: u32, raw: &[u32]) {
         let inputs = self.program.config().inputs.len();
         inputs::copy_packed(raw, inputs, self.memory.ram().raw);
-        self.run(now_ms)
+        self.run(now_ms);
     }
 
     /// One scan of the raw image in memory.
-    fn run(&mut self, now_ms: u32) -> ScanRecord<'_> {
+    fn run(&mut self, now_ms: u32) {
         let first = self.scan == 0;
         let config = &self.program.config();
         let changed = inputs::sample(config, &mut self.memory.ram(), first, &mut self.counting);
@@ -199,10 +209,18 @@ impl<P: Program, M: Memory> Controller<P, M> {
         // and `execute` checks those it is about to move.
         let j = self.range_check;
         let corrupt = match config.supervisors.get(j) {
-            Some(spec) => self.memory.states().get(j).is_some_and(|&x| x >= spec.states),
+            Some(spec) => self
+                .memory
+                .states()
+                .get(j)
+                .is_some_and(|&x| x >= spec.states),
             None => false,
         };
-        self.range_check = if j + 1 < config.supervisors.len() { j + 1 } else { 0 };
+        self.range_check = if j + 1 < config.supervisors.len() {
+            j + 1
+        } else {
+            0
+        };
         if corrupt && self.fault.is_none() {
             self.fault = Some(Fault::Corrupt);
             self.counters.faults = self.counters.faults.wrapping_add(1);
@@ -277,7 +295,11 @@ impl<P: Program, M: Memory> Controller<P, M> {
         let mut executed = 0usize;
         let mut unexpected = 0usize;
         let mut timers_changed = false;
-        let event_words = if changed || timer_due { ram.occurred.len() } else { 0 };
+        let event_words = if changed || timer_due {
+            ram.occurred.len()
+        } else {
+            0
+        };
         for k in 0..event_words {
             let mut pending = self.memory.ram().occurred[k];
             while pending != 0 {
@@ -355,7 +377,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
 
     /// A supervisor's table refused a transition its cached enabled set
     /// allowed: the cache in RAM is corrupt. Fault mode from this scan on.
-    fn fault_corrupt(&mut self, executed: usize, unexpected: usize, now_ms: u32) -> ScanRecord<'_> {
+    fn fault_corrupt(&mut self, executed: usize, unexpected: usize, now_ms: u32) {
         self.enter_fault(Fault::Corrupt);
         write_safe_outputs(&self.program.config(), &mut self.memory);
         self.outputs_stale = true;
@@ -364,10 +386,9 @@ impl<P: Program, M: Memory> Controller<P, M> {
         self.finish(now_ms)
     }
 
-    fn finish(&mut self, now_ms: u32) -> ScanRecord<'_> {
+    fn finish(&mut self, now_ms: u32) {
         self.time_ms = now_ms;
         self.scan = self.scan.wrapping_add(1);
-        self.record()
     }
 }
 
@@ -383,7 +404,14 @@ fn initialise<P: Program, M: Memory>(program: &P, config: &Config<'_>, memory: &
         *level = spec.initial;
     }
     for j in 0..config.supervisors.len() {
-        refresh_allowed(program, config, ram, j);
+        let ew = ram.feasible.len();
+        refresh_allowed(
+            program,
+            config,
+            j,
+            ram.states[j],
+            allowed_of(ram.allowed, ew, j),
+        );
     }
     refresh_feasible(ram);
 }
@@ -391,17 +419,18 @@ fn initialise<P: Program, M: Memory>(program: &P, config: &Config<'_>, memory: &
 /// Supervisor `j`'s `allowed` set for its current state: the events
 /// outside its alphabet, and the local events its program enables there
 /// mapped to their event numbers.
-fn refresh_allowed<P: Program>(program: &P, config: &Config<'_>, ram: &mut Ram<'_>, j: usize) {
-    let ew = ram.feasible.len();
-    let Some(allowed) = ram.allowed.get_mut(j * ew..(j + 1) * ew) else {
-        return;
-    };
+fn refresh_allowed<P: Program>(
+    program: &P,
+    config: &Config<'_>,
+    j: usize,
+    state: u32,
+    allowed: &mut [u32],
+) {
     let spec = &config.supervisors[j];
     let outside = spec.outside.of(config.event_masks);
     for (k, word) in allowed.iter_mut().enumerate() {
         *word = outside.get(k).copied().unwrap_or(0);
     }
-    let state = ram.states[j];
     for (chunk, events) in spec.alphabet.of(config.event_lists).chunks(32).enumerate() {
         let from = (chunk * 32) as Index;
         let mut row = program.enabled(j as Index, state, from, events.len() as u8);
@@ -413,6 +442,14 @@ fn refresh_allowed<P: Program>(program: &P, config: &Config<'_>, ram: &mut Ram<'
             }
         }
     }
+}
+
+/// Supervisor `j`'s words of the `allowed` sets (empty past the last).
+#[inline]
+fn allowed_of<'r>(allowed: &'r mut [u32], event_words: usize, j: usize) -> &'r mut [u32] {
+    allowed
+        .get_mut(j * event_words..(j + 1) * event_words)
+        .unwrap_or_default()
 }
 
 /// The feasible events: those no supervisor blocks.
@@ -514,7 +551,14 @@ fn execute<P: Program, M: Memory>(
         let next = program.next_state(m.supervisor, ram.states[j], m.local)?;
         if next != ram.states[j] {
             ram.states[j] = next;
-            refresh_allowed(program, config, ram, j);
+            let ew = ram.feasible.len();
+            refresh_allowed(
+                program,
+                config,
+                j,
+                ram.states[j],
+                allowed_of(ram.allowed, ew, j),
+            );
             moved = true;
         }
     }

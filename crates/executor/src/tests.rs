@@ -427,7 +427,11 @@ fn a_state_out_of_range_is_corrupt_within_one_round_of_supervisors() {
     use crate::memory::sealed::Storage;
     c.memory.ram().states[0] = 7; // `belt` has 4 states
     let r = c.scan(10, &io(false, false));
-    assert_eq!(r.fault, Some(Fault::Corrupt), "one supervisor: the next scan checks it");
+    assert_eq!(
+        r.fault,
+        Some(Fault::Corrupt),
+        "one supervisor: the next scan checks it"
+    );
     assert_eq!(r.outputs, [false, true], "the safe image");
 }
 
@@ -472,9 +476,16 @@ fn quiet_scans_skip_the_controllable_phase_but_not_a_new_request() {
     assert_eq!(r.executed, [LS_ON], "no request yet: `start` waits");
     for t in [20, 30, 40] {
         assert!(c.scan(t, &[true, false, false]).executed.is_empty());
-        assert!(c.idle, "nothing to choose: the next quiet scan skips the phase");
+        assert!(
+            c.idle,
+            "nothing to choose: the next quiet scan skips the phase"
+        );
     }
     let r = c.scan(50, &[true, false, true]);
-    assert_eq!(r.executed, [START], "the request input changed: the phase runs");
+    assert_eq!(
+        r.executed,
+        [START],
+        "the request input changed: the phase runs"
+    );
     assert!(!c.idle);
 }

@@ -115,7 +115,8 @@ fn main() -> ! {
             report::lost_edge(controller.next_scan(), input, count);
         }
 
-        let record = controller.scan_packed(start.time_ms, &raw);
+        controller.step_packed(start.time_ms, &raw);
+        let record = controller.record();
         io.write(record.outputs);
         report::scan(&record, fault);
         fault = record.fault;

@@ -14,8 +14,9 @@
 //! where `flash` is the image without the embedded scenario, `ram` the
 //! static RAM (`.data` + `.bss`), and the `quiet_` figures count the quiet
 //! scans alone: same raw inputs as the scan before, no fault in either,
-//! nothing executed or unexpected. Inputs are handed over packed in words
-//! (`Controller::scan_packed`), as the board reads them. The exit code is 0 only when M = 0 and
+//! nothing executed or unexpected. The timed call is the board's:
+//! `Controller::step_packed`, inputs packed in words as the board reads
+//! them; the record is read after it. The exit code is 0 only when M = 0 and
 //! the budgets given at build time (`PLC_BUDGET_FLASH`, `PLC_BUDGET_RAM`,
 //! `PLC_BUDGET_INSTR_MEDIAN`, `PLC_BUDGET_INSTR_MAX`) hold. A HardFault
 //! exits with failure.
@@ -180,8 +181,9 @@ fn main() -> ! {
         unpack_words(&expected.inputs, &mut raw);
 
         let before = SYST::get_current();
-        let record = controller.scan_packed(expected.time_ms, &raw);
+        controller.step_packed(expected.time_ms, &raw);
         let after = SYST::get_current();
+        let record = controller.record();
 
         if let Some(field) = expected.mismatch(&record) {
             if mismatches < 10 {
@@ -216,7 +218,10 @@ fn main() -> ! {
     let (median, p99, max) = (at(50), at(99), at(100));
     let quiet = &mut quiet[..quiet_scans];
     quiet.sort_unstable();
-    let quiet_median = quiet.get(quiet.len().saturating_sub(1) / 2).copied().unwrap_or(0);
+    let quiet_median = quiet
+        .get(quiet.len().saturating_sub(1) / 2)
+        .copied()
+        .unwrap_or(0);
     let quiet_max = quiet.last().copied().unwrap_or(0);
     let (flash, ram) = image_sizes();
     let flash = flash - SCENARIO.len() as u32;
