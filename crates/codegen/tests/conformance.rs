@@ -65,14 +65,14 @@
 //!
 //! # Random projects and runs
 //!
-//! A project has 2–5 inputs (debounce 0–3, usually one of them the `reset`
-//! input), 0–3 timers (presets a multiple of the scan period or any
-//! 1–80 ms), 1–5 outputs (action-driven or Moore), 2–8 events (about 40 %
-//! controllable, some with a request input; the others bound to the
-//! rising or falling edge of the OR of 1–3 inputs or to a timer expiry,
-//! some with `when`/`unless`), 0–3 actions per event, 1–4 deterministic
-//! supervisors with random partial transition functions over random,
-//! overlapping alphabets, `max_commands_per_scan` 0–3 and either
+//! A narrow project ([`NARROW`]) has 2–5 inputs (debounce 0–3, usually
+//! one of them the `reset` input), 0–3 timers (presets a multiple of the
+//! scan period or any 1–80 ms), 1–5 outputs (action-driven or Moore), 2–8
+//! events (about 40 % controllable, some with a request input; the others
+//! bound to the rising or falling edge of the OR of 1–3 inputs or to a
+//! timer expiry, some with `when`/`unless`), 0–3 actions per event, 1–4
+//! deterministic supervisors with random partial transition functions over
+//! random, overlapping alphabets, `max_commands_per_scan` 0–3 and either
 //! unexpected-event policy. [`ProjectSpec`] is plain data whose references
 //! are [`proptest::sample::Index`]es, resolved modulo the current counts
 //! by [`ProjectSpec::build`], so any shrunk value still builds a valid
@@ -89,8 +89,28 @@
 //! execute every kind of event, enter and leave fault mode, ignore events
 //! and wrap the clock.
 //!
-//! 8,500 cases have supervisors of 1–12 states and 1,500 of 13–50 states
-//! (CMSSM synthesis, which runs on every case, dominates the run time).
+//! # Wide projects
+//!
+//! The executor keeps input images and event sets as 32-bit words and
+//! reads a supervisor's enabled events in rows of up to 32 local events;
+//! a narrow project fits in one word everywhere. A wide project ([`WIDE`])
+//! is built the same way but has 33–70 inputs and 33–70 events, so inputs
+//! and events 31, 32 and 33 always exist and every set spans two or three
+//! words. Each of its supervisors (1–8 states, about 80 % of the (state,
+//! event) pairs defined) has a few picked events, many (usually more than
+//! 32, read in two or three slices) or every event; before each scan of
+//! its run any of the 70 inputs a wide project can have may flip.
+//! [`wide_runs_cross_every_word_boundary`] checks that events, commands
+//! and request inputs past the first word are executed and used, that
+//! inputs past the first word alone make edges, that supervisors move on
+//! local events past the first slice of their rows, and that these runs
+//! still reach every rule.
+//!
+//! 8,500 cases have narrow projects with supervisors of 1–12 states and
+//! 1,500 with 13–50 states (CMSSM synthesis, which runs on every case,
+//! dominates their run time); 200 cases have wide projects (each costs
+//! about as much as fifteen narrow ones, mostly the logic backend
+//! evaluating its covers for every local event when a state changes).
 
 use codegen::automaton::{EventId, StateId};
 use codegen::image::{LogicImage, TableImage};
@@ -107,6 +127,7 @@ use proptest::sample::Index as Pick;
 use proptest::test_runner::{RngAlgorithm, TestCaseError};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fmt::Debug;
+use std::ops::RangeInclusive;
 use std::path::PathBuf;
 
 // ---------------------------------------------------------------------------
@@ -587,10 +608,33 @@ fn check_run(project: &Project, samples: &[(u32, Vec<bool>)]) -> Result<(), Test
 // Random projects
 // ---------------------------------------------------------------------------
 
-/// Most inputs a random project has (and bits of an input flip mask).
-const MAX_INPUTS: usize = 5;
-/// Most events a random project has (and transition slots per state).
-const MAX_EVENTS: usize = 8;
+/// Members per word of the executor's input images and event sets.
+const WORD: usize = 32;
+
+/// How many inputs and events the projects of a family have.
+struct Shape {
+    /// Inputs; the largest count is also the bits of an input flip mask.
+    inputs: RangeInclusive<usize>,
+    /// Events; the largest count is also the transition slots per state.
+    events: RangeInclusive<usize>,
+}
+
+/// The first two families: every input image and event set fits in one
+/// word.
+const NARROW: Shape = Shape {
+    inputs: 2..=5,
+    events: 2..=8,
+};
+
+/// The wide family: input images and event sets of two or three words, so
+/// that inputs and events 31, 32 and 33 always exist.
+const WIDE: Shape = Shape {
+    inputs: 33..=70,
+    events: 33..=70,
+};
+
+// A wide flip mask is a u128.
+const _: () = assert!(*WIDE.inputs.end() <= 128);
 
 /// A timer preset: a multiple of the scan period or any small value.
 #[derive(Debug, Clone, Copy)]
@@ -648,12 +692,20 @@ struct EventSpec {
     actions: Vec<ActionSpec>,
 }
 
+/// The events a supervisor has, before more are added so that every
+/// controllable event is in some alphabet.
+#[derive(Debug, Clone)]
+enum AlphabetSpec {
+    /// The picked events.
+    Picked(Vec<Pick>),
+    /// Every event of the project.
+    Every,
+}
+
 /// A supervisor: alphabet, initial state and transition rows.
 #[derive(Debug, Clone)]
 struct SupervisorSpec {
-    /// Events picked for the alphabet (more may be added so that every
-    /// controllable event is in some alphabet).
-    alphabet: Vec<Pick>,
+    alphabet: AlphabetSpec,
     initial: Pick,
     /// One row per state: the target on the i-th event of the (sorted)
     /// alphabet, if defined.
@@ -771,7 +823,10 @@ impl ProjectSpec {
         let mut sets: Vec<BTreeSet<usize>> = self
             .supervisors
             .iter()
-            .map(|s| resolve(&s.alphabet, events.len()).into_iter().collect())
+            .map(|s| match &s.alphabet {
+                AlphabetSpec::Picked(picked) => resolve(picked, events.len()).into_iter().collect(),
+                AlphabetSpec::Every => (0..events.len()).collect(),
+            })
             .collect();
         for (e, ev) in events.iter().enumerate() {
             if ev.controllable && !sets.iter().any(|s| s.contains(&e)) {
@@ -932,7 +987,7 @@ fn build_supervisor(
     }
 }
 
-fn picks(len: std::ops::RangeInclusive<usize>) -> impl Strategy<Value = Vec<Pick>> {
+fn picks(len: RangeInclusive<usize>) -> impl Strategy<Value = Vec<Pick>> {
     vec(any::<Pick>(), len)
 }
 
@@ -996,11 +1051,42 @@ fn event() -> impl Strategy<Value = EventSpec> {
         )
 }
 
-/// A supervisor with a number of states drawn from `states`; about 60 %
-/// of the (state, event) pairs have a transition.
-fn supervisor(states: std::ops::RangeInclusive<usize>) -> impl Strategy<Value = SupervisorSpec> {
-    let row = vec(proptest::option::weighted(0.6, any::<Pick>()), MAX_EVENTS);
-    (picks(1..=5), any::<Pick>(), vec(row, states)).prop_map(|(alphabet, initial, rows)| {
+/// A supervisor of the narrow families: 1–5 picked events, a number of
+/// states drawn from `states`, and about 60 % of the (state, event) pairs
+/// with a transition.
+fn supervisor(states: RangeInclusive<usize>) -> impl Strategy<Value = SupervisorSpec> {
+    let alphabet = picks(1..=5).prop_map(AlphabetSpec::Picked);
+    supervisor_over(&NARROW, alphabet, 0.6, states)
+}
+
+/// A supervisor of the wide family: a few events, many (usually more than
+/// 32 distinct, so its rows are read in several slices) or every event.
+/// About 80 % of the (state, event) pairs have a transition: a wide
+/// project has many shared events, and sparser supervisors would leave
+/// most runs in fault mode. 1–8 states: the narrow families cover larger
+/// supervisors, and with 1–12 a wide case took about three times as long.
+fn wide_supervisor() -> impl Strategy<Value = SupervisorSpec> {
+    let alphabet = prop_oneof![
+        2 => picks(1..=8).prop_map(AlphabetSpec::Picked),
+        2 => picks(40..=90).prop_map(AlphabetSpec::Picked),
+        1 => Just(AlphabetSpec::Every),
+    ];
+    supervisor_over(&WIDE, alphabet, 0.8, 1..=8)
+}
+
+/// A supervisor of a `shape` project over `alphabet`, with a transition
+/// on each (state, event) pair with probability `defined`.
+fn supervisor_over(
+    shape: &Shape,
+    alphabet: impl Strategy<Value = AlphabetSpec>,
+    defined: f64,
+    states: RangeInclusive<usize>,
+) -> impl Strategy<Value = SupervisorSpec> {
+    let row = vec(
+        proptest::option::weighted(defined, any::<Pick>()),
+        *shape.events.end(),
+    );
+    (alphabet, any::<Pick>(), vec(row, states)).prop_map(|(alphabet, initial, rows)| {
         SupervisorSpec {
             alphabet,
             initial,
@@ -1009,8 +1095,9 @@ fn supervisor(states: std::ops::RangeInclusive<usize>) -> impl Strategy<Value = 
     })
 }
 
-/// Random projects with 1–4 supervisors drawn from `supervisor`.
+/// Random `shape` projects with 1–4 supervisors drawn from `supervisor`.
 fn project(
+    shape: &Shape,
     supervisor: impl Strategy<Value = SupervisorSpec>,
 ) -> impl Strategy<Value = ProjectSpec> {
     (
@@ -1018,10 +1105,10 @@ fn project(
         0u16..=3,
         prop_oneof![Just(Unexpected::Fault), Just(Unexpected::Ignore)],
         proptest::option::weighted(0.85, any::<Pick>()),
-        vec(0u8..=3, 2..=MAX_INPUTS),
+        vec(0u8..=3, shape.inputs.clone()),
         vec(preset(), 0..=3),
         vec(output(), 1..=5),
-        vec(event(), 2..=MAX_EVENTS),
+        vec(event(), shape.events.clone()),
         vec(supervisor, 1..=4),
     )
         .prop_map(
@@ -1057,18 +1144,18 @@ enum Dt {
 }
 
 /// A random run: start time, initial raw inputs, then for each scan the
-/// time step before it and the inputs it flips.
+/// time step before it and the inputs it flips (bit `i`: input `i`).
 #[derive(Debug, Clone)]
 struct RunSpec {
     start_ms: u32,
-    initial: u8,
-    steps: Vec<(Dt, u8)>,
+    initial: u128,
+    steps: Vec<(Dt, u128)>,
 }
 
 impl RunSpec {
     /// (time, raw image) of every scan for `inputs` inputs and `period`.
     fn samples(&self, inputs: usize, period: u32) -> Vec<(u32, Vec<bool>)> {
-        let image = |mask: u8| (0..inputs).map(|i| mask & (1 << i) != 0).collect();
+        let image = |mask: u128| (0..inputs).map(|i| mask & (1 << i) != 0).collect();
         let mut now = self.start_ms;
         let mut mask = self.initial;
         let mut out = vec![(now, image(mask))];
@@ -1086,13 +1173,25 @@ impl RunSpec {
     }
 }
 
-/// Which inputs flip before a scan: nothing in about half the scans,
-/// usually one input otherwise (so each input mostly keeps its value).
+/// Which inputs of a narrow project flip before a scan: nothing in about
+/// half the scans, usually one input otherwise (so each input mostly keeps
+/// its value).
 fn flips() -> impl Strategy<Value = u8> {
     prop_oneof![
         8 => Just(0u8),
-        6 => (0..MAX_INPUTS).prop_map(|i| 1u8 << i),
+        6 => (0..*NARROW.inputs.end()).prop_map(|i| 1u8 << i),
         1 => any::<u8>(),
+    ]
+}
+
+/// The same for a wide project: the single input is any of the 70 a wide
+/// project can have (a bit past its inputs flips nothing), the rare burst
+/// flips about half of them.
+fn wide_flips() -> impl Strategy<Value = u128> {
+    prop_oneof![
+        8 => Just(0u128),
+        6 => (0..*WIDE.inputs.end()).prop_map(|i| 1u128 << i),
+        1 => any::<u128>(),
     ]
 }
 
@@ -1104,15 +1203,30 @@ fn dt() -> impl Strategy<Value = Dt> {
     ]
 }
 
-/// 20–200 scans; one run in four starts just before the u32 clock wraps.
+/// A run for a narrow project.
 fn run() -> impl Strategy<Value = RunSpec> {
+    run_with(
+        any::<u8>().prop_map(u128::from),
+        flips().prop_map(u128::from),
+    )
+}
+
+/// A run for a wide project.
+fn wide_run() -> impl Strategy<Value = RunSpec> {
+    run_with(any::<u128>(), wide_flips())
+}
+
+/// 20–200 scans from the raw image `initial`, flipping `flips` before
+/// each; one run in four starts just before the u32 clock wraps.
+fn run_with(
+    initial: impl Strategy<Value = u128>,
+    flips: impl Strategy<Value = u128>,
+) -> impl Strategy<Value = RunSpec> {
     let start = prop_oneof![3 => 0u32..1_000, 1 => (u32::MAX - 3_000)..=u32::MAX];
-    (start, any::<u8>(), vec((dt(), flips()), 19..200)).prop_map(|(start_ms, initial, steps)| {
-        RunSpec {
-            start_ms,
-            initial,
-            steps,
-        }
+    (start, initial, vec((dt(), flips), 19..200)).prop_map(|(start_ms, initial, steps)| RunSpec {
+        start_ms,
+        initial,
+        steps,
     })
 }
 
@@ -1190,7 +1304,7 @@ proptest! {
     /// Small supervisors (1–12 states): most of the cases.
     #[test]
     fn backends_match_reference_on_small_supervisors(
-        spec in project(supervisor(1..=12)),
+        spec in project(&NARROW, supervisor(1..=12)),
         run in run(),
     ) {
         check_case(&spec, &run)?;
@@ -1203,8 +1317,22 @@ proptest! {
     /// Supervisors of up to 50 states.
     #[test]
     fn backends_match_reference_on_large_supervisors(
-        spec in project(supervisor(13..=50)),
+        spec in project(&NARROW, supervisor(13..=50)),
         run in run(),
+    ) {
+        check_case(&spec, &run)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(config(200))]
+
+    /// Input images and event sets of two or three words, supervisors with
+    /// more than 32 local events.
+    #[test]
+    fn backends_match_reference_on_wide_projects(
+        spec in project(&WIDE, wide_supervisor()),
+        run in wide_run(),
     ) {
         check_case(&spec, &run)?;
     }
@@ -1233,27 +1361,72 @@ struct Coverage {
     ignored: u64,
     moore_high: u64,
     clock_wraps: u64,
+    /// Events past the first word of an event set executed.
+    high_events: u64,
+    /// Commands past the first word executed.
+    high_commands: u64,
+    /// Commands executed on a request input past the first word.
+    high_requests: u64,
+    /// Edge events whose edge only inputs past the first word made.
+    high_input_edges: u64,
+    /// Supervisor moves on a local event past the first slice of its rows.
+    high_local_moves: u64,
+}
+
+/// One scan as the coverage sees it: the reference's record and its
+/// filtered input image F\[k\].
+struct Observed {
+    record: Record,
+    filtered: Vec<bool>,
+}
+
+/// Runs `samples` through the reference, keeping F\[k\] of every scan.
+fn observe(project: &Project, samples: &[(u32, Vec<bool>)]) -> Vec<Observed> {
+    let mut reference = Reference::new(project);
+    samples
+        .iter()
+        .map(|(now, raw)| Observed {
+            record: reference.scan(*now, raw),
+            filtered: reference.filtered.clone(),
+        })
+        .collect()
+}
+
+/// What `project`'s supervisors make of each event.
+struct EventMembership {
+    /// Supervisors having the event.
+    supervisors: usize,
+    /// Some supervisor has it past the first slice of its rows.
+    high_local: bool,
 }
 
 impl Coverage {
     /// Adds the counts of one run of `project`.
-    fn add(&mut self, project: &Project, records: &[Record]) {
-        let mut members = vec![0usize; project.events.len()];
+    fn add(&mut self, project: &Project, scans: &[Observed]) {
+        let mut members: Vec<EventMembership> = (0..project.events.len())
+            .map(|_| EventMembership {
+                supervisors: 0,
+                high_local: false,
+            })
+            .collect();
         for sup in &project.supervisors {
-            for &(g, _) in &sup.local_events {
-                members[g] += 1;
+            for (local, &(g, _)) in sup.local_events.iter().enumerate() {
+                members[g].supervisors += 1;
+                members[g].high_local |= local >= WORD;
             }
         }
-        for (k, r) in records.iter().enumerate() {
-            let previous = k.checked_sub(1).map(|p| &records[p]);
-            self.add_scan(project, &members, previous, r);
+        for (k, now) in scans.iter().enumerate() {
+            let previous = k.checked_sub(1).map(|p| &scans[p]);
+            self.add_scan(project, &members, previous.map(|p| &p.record), &now.record);
+            let before = previous.unwrap_or(now);
+            self.add_words(project, &members, &before.filtered, now);
         }
     }
 
     fn add_scan(
         &mut self,
         project: &Project,
-        members: &[usize],
+        members: &[EventMembership],
         previous: Option<&Record>,
         r: &Record,
     ) {
@@ -1264,7 +1437,7 @@ impl Coverage {
         self.scans_in_fault += u64::from(r.fault.is_some());
         self.uncontrollable += count(
             events()
-                .filter(|&(e, ev)| !ev.controllable && members[e] > 0)
+                .filter(|&(e, ev)| !ev.controllable && members[e].supervisors > 0)
                 .count(),
         );
         self.expiries += count(
@@ -1279,19 +1452,68 @@ impl Coverage {
         );
         self.local_logic += count(
             events()
-                .filter(|&(e, ev)| !ev.controllable && members[e] == 0)
+                .filter(|&(e, ev)| !ev.controllable && members[e].supervisors == 0)
                 .count(),
         );
         let commands = events().filter(|(_, ev)| ev.controllable).count();
         self.commands += count(commands);
         self.several_commands += u64::from(commands > 1);
         self.requested += count(events().filter(|(_, ev)| ev.request.is_some()).count());
-        self.shared += count(events().filter(|&(e, _)| members[e] > 1).count());
+        self.shared += count(
+            events()
+                .filter(|&(e, _)| members[e].supervisors > 1)
+                .count(),
+        );
         self.faults += u64::from(r.fault.is_some() && !was_faulted);
         self.resets += u64::from(was_faulted && r.fault.is_none());
         self.ignored += u64::from(r.fault.is_none() && !r.unexpected.is_empty());
         self.moore_high += u64::from(r.fault.is_none() && moore_high(project, r));
         self.clock_wraps += u64::from(previous.is_some_and(|p| r.time_ms < p.time_ms));
+    }
+
+    /// The counts past the first word of a set: scan `now`, whose
+    /// filtered image before was `before`.
+    fn add_words(
+        &mut self,
+        project: &Project,
+        members: &[EventMembership],
+        before: &[bool],
+        now: &Observed,
+    ) {
+        let r = &now.record;
+        let count = |n: usize| n as u64;
+        let high = || r.executed.iter().filter(|&&e| e >= WORD);
+        self.high_events += count(high().count());
+        let commands = || high().filter(|&&e| project.events[e].controllable);
+        self.high_commands += count(commands().count());
+        self.high_requests += count(
+            r.executed
+                .iter()
+                .filter(|&&e| project.events[e].request.is_some_and(|i| i >= WORD))
+                .count(),
+        );
+        self.high_local_moves += count(
+            r.executed
+                .iter()
+                .filter(|&&e| members[e].high_local)
+                .count(),
+        );
+        // A changed input of an event's binding made its edge (the edge of
+        // an OR rises only from all 0 and falls only to all 0).
+        let edge_from_high_inputs = |e: usize| match &project.events[e].trigger {
+            Trigger::Rising(list) | Trigger::Falling(list) => {
+                let mut changed = list.iter().filter(|&&i| before[i] != now.filtered[i]);
+                changed.clone().next().is_some() && changed.all(|&i| i >= WORD)
+            }
+            _ => false,
+        };
+        self.high_input_edges += count(
+            r.executed
+                .iter()
+                .chain(&r.unexpected)
+                .filter(|&&e| edge_from_high_inputs(e))
+                .count(),
+        );
     }
 
     /// The counters, named.
@@ -1316,6 +1538,21 @@ impl Coverage {
             ("scans in fault mode", self.scans_in_fault),
         ]
     }
+
+    /// The counters past the first word of an input image, an event set or
+    /// a supervisor's rows, named.
+    fn word_counters(&self) -> [(&'static str, u64); 5] {
+        [
+            ("events >= 32 executed", self.high_events),
+            ("commands >= 32 executed", self.high_commands),
+            ("commands requested by an input >= 32", self.high_requests),
+            ("edges made by inputs >= 32 alone", self.high_input_edges),
+            (
+                "supervisor moves on a local event >= 32",
+                self.high_local_moves,
+            ),
+        ]
+    }
 }
 
 /// `true` when some state-mapped output is 1 in `r`.
@@ -1327,26 +1564,59 @@ fn moore_high(project: &Project, r: &Record) -> bool {
         .any(|(o, &level)| level && matches!(o.drive, Drive::States(_)))
 }
 
+/// The coverage of `runs` cases drawn from `strategy` (run through the
+/// reference only).
+fn coverage_of(strategy: impl Strategy<Value = (ProjectSpec, RunSpec)>, runs: u32) -> Coverage {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+
+    let mut runner = TestRunner::new(config(runs));
+    let mut coverage = Coverage::default();
+    for _ in 0..runs {
+        let (spec, run) = strategy.new_tree(&mut runner).unwrap().current();
+        let project = spec.build();
+        let samples = run.samples(project.inputs.len(), project.scan_period_ms);
+        coverage.add(&project, &observe(&project, &samples));
+    }
+    coverage
+}
+
 /// The random cases reach every rule: events of every kind execute,
 /// faults are entered and left, events are ignored, the clock wraps; and
 /// most scans are not spent in fault mode.
 #[test]
 fn random_runs_exercise_every_rule() {
-    use proptest::strategy::ValueTree;
-    use proptest::test_runner::TestRunner;
-
-    let mut runner = TestRunner::new(config(300));
-    let strategy = (project(supervisor(1..=12)), run());
-    let mut coverage = Coverage::default();
-    for _ in 0..300 {
-        let (spec, run) = strategy.new_tree(&mut runner).unwrap().current();
-        let project = spec.build();
-        let samples = run.samples(project.inputs.len(), project.scan_period_ms);
-        coverage.add(&project, &run_reference(&project, &samples));
-    }
+    let coverage = coverage_of((project(&NARROW, supervisor(1..=12)), run()), 300);
     println!("{} scans: {:#?}", coverage.scans, coverage.counters());
     for (what, n) in coverage.counters() {
         assert!(n > 0, "no {what} in 300 random runs: {coverage:#?}");
+    }
+    assert!(
+        coverage.scans_in_fault * 2 < coverage.scans,
+        "most scans are spent in fault mode: {coverage:#?}"
+    );
+}
+
+/// The wide cases cross every word boundary the executor has: events and
+/// commands past the first word of an event set execute, a request input
+/// and edges past the first word of the input image count, supervisors
+/// move on local events past the first 32-event slice of their rows; and
+/// they still reach every rule without spending most scans in fault mode.
+#[test]
+fn wide_runs_cross_every_word_boundary() {
+    let coverage = coverage_of((project(&WIDE, wide_supervisor()), wide_run()), 100);
+    println!(
+        "{} scans: {:#?} {:#?}",
+        coverage.scans,
+        coverage.word_counters(),
+        coverage.counters()
+    );
+    for (what, n) in coverage
+        .word_counters()
+        .into_iter()
+        .chain(coverage.counters())
+    {
+        assert!(n > 0, "no {what} in 100 wide runs: {coverage:#?}");
     }
     assert!(
         coverage.scans_in_fault * 2 < coverage.scans,
