@@ -486,6 +486,16 @@ impl Program for LogicImage {
             .next_state(state, local)
     }
 
+    /// The φ functions alone, without computing the next states.
+    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        let Some(s) = self.supervisors.get(supervisor as usize) else {
+            return 0;
+        };
+        (0..u16::from(len.min(32))).fold(0, |row, k| {
+            row | u32::from(s.is_defined(state, from.wrapping_add(k))) << k
+        })
+    }
+
     fn image_intact(&self) -> bool {
         config_crc(&self.pools.config()) == self.crc
     }
