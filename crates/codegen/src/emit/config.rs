@@ -517,13 +517,14 @@ impl Emitter<'_> {
             .map_or("None".to_owned(), |r| format!("Some({})", self.input(r)));
         let _ = writeln!(
             self.out,
-            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, inputs: &INPUTS, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_lists: &INPUT_LISTS, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP }};",
+            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, rom_test_bytes_per_scan: {}, inputs: &INPUTS, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_lists: &INPUT_LISTS, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP }};",
             pools.name,
             pools.scan_period_ms,
             pools.max_commands_per_scan,
             pools.overrun_limit,
             pools.overrun_fault,
             pools.lost_edge_fault,
+            pools.rom_test_bytes_per_scan,
         );
         let _ = writeln!(
             self.out,

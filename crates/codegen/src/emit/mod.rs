@@ -20,7 +20,7 @@ mod table;
 
 use crate::backend::table::{EncodedTable, Layout};
 use crate::error::{Error, Result};
-use crate::image::{ConfigPools, LogicImage, TableImage};
+use crate::image::{ConfigPools, ImageCheck, LogicImage, TableImage};
 use crate::project::ident::sanitize;
 use crate::project::{Project, SupervisorSource};
 use executor::program as ex;
@@ -94,6 +94,8 @@ pub struct Generated {
     pub stats: Vec<SupervisorStats>,
     /// The image CRC recorded in the code.
     pub crc: u32,
+    /// The image's size and the background test's figures.
+    pub image: ImageCheck,
 }
 
 /// A sanitised identifier (validation guarantees one exists).
@@ -265,6 +267,21 @@ struct Unformatted {
     text: String,
     stats: Vec<SupervisorStats>,
     crc: u32,
+    image: ImageCheck,
+}
+
+/// The doc comment of `IMAGE_CRC`: what the image is, and how fast the
+/// background test covers it.
+fn image_crc_doc(check: &ImageCheck, covers: &str) -> String {
+    let seconds = check.bound_ms() as f64 / 1000.0;
+    format!(
+        "/// CRC-32/MPEG-2 of the program image ({covers}, {} bytes), recorded at generation.\n/// The controller checks the whole image at start-up, then again in the background,\n/// {} bytes per scan: a pass takes {} scans, and a flipped bit is found within {} scans\n/// ({seconds} s at {} ms a scan). See `executor::image`.",
+        check.image_bytes,
+        check.bytes_per_scan,
+        check.pass_scans(),
+        check.bound_scans(),
+        check.scan_period_ms,
+    )
 }
 
 /// Writes the program of `project`: the configuration, the board and the
@@ -284,7 +301,9 @@ fn write_program(
         Backend::Table => {
             "use executor::program::Program;\nuse executor::table::{Rows, SupervisorTable};"
         }
-        Backend::Logic | Backend::Match => "use executor::program::Program;",
+        Backend::Logic | Backend::Match => {
+            "use executor::program::Program;\nuse executor::table::SupervisorTable;"
+        }
     };
     let _ = writeln!(
         e.out,
@@ -293,24 +312,35 @@ fn write_program(
     e.names();
     e.config();
     e.out.push_str(&crate::board::board_module(project));
-    let (stats, crc) = match backend {
+    let (stats, crc, image) = match backend {
         Backend::Table => {
             let image = TableImage::new(project)?;
-            (e.tables(&image), image.crc)
+            let check = ImageCheck::of(&image);
+            let doc = image_crc_doc(&check, "configuration and tables");
+            (e.tables(&image, &doc), image.crc, check)
         }
         Backend::Logic => {
             let image = LogicImage::with_progress(project, progress)?;
-            (e.logic(&image.supervisors, image.crc), image.crc)
+            let check = ImageCheck::of(&image);
+            let doc = image_crc_doc(&check, "the configuration; the supervisors are code");
+            (e.logic(&image.supervisors, image.crc, &doc), image.crc, check)
         }
         Backend::Match => {
-            let crc = executor::table::config_crc(&pools.config());
-            (e.matches(crc), crc)
+            let program = executor::table::TableProgram {
+                config: pools.config(),
+                tables: &[],
+                crc: executor::image::config_crc(&pools.config()),
+            };
+            let check = ImageCheck::of(&program);
+            let doc = image_crc_doc(&check, "the configuration; the supervisors are code");
+            (e.matches(program.crc, &doc), program.crc, check)
         }
     };
     Ok(Unformatted {
         text: e.out,
         stats,
         crc,
+        image,
     })
 }
 
@@ -352,6 +382,7 @@ pub fn generate_with_progress(
         code: header + &body,
         stats: program.stats,
         crc: program.crc,
+        image: program.image,
     })
 }
 
