@@ -6,6 +6,7 @@ use crate::memory::{Memory, Ram};
 use crate::pacing::{Pacer, ScanStart};
 use crate::program::{Action, Config, EventSpec, Index, Program, Trigger, UnexpectedPolicy};
 use crate::record::{Counters, Fault, ScanRecord};
+use crate::rom_test::{ImageTest, RomTest};
 use crate::timers::{due, earliest};
 
 /// The memory does not match the program's sizes.
@@ -34,17 +35,22 @@ pub struct Controller<P: Program, M: Memory> {
     outputs_stale: bool,
     /// The earliest deadline of the running timers.
     next_due: Option<u32>,
+    /// The background image check.
+    rom_test: RomTest,
 }
 
 impl<P: Program, M: Memory> Controller<P, M> {
-    /// A controller in its initial state. The program image is checked
-    /// first: a mismatch starts the controller in fault mode (`Corrupt`).
+    /// A controller in its initial state. The whole program image is
+    /// checked first: a mismatch starts the controller in fault mode
+    /// (`Corrupt`). From the first scan on, the image is checked again in
+    /// the background, a share per scan.
     pub fn new(program: P, mut memory: M) -> Result<Self, SizeMismatch> {
         if !memory.fits(&program.config()) {
             return Err(SizeMismatch);
         }
         initialise(&program, &program.config(), &mut memory.ram());
-        let fault = (!program.image_intact()).then_some(Fault::Corrupt);
+        let rom_test = RomTest::new(&program);
+        let fault = (!rom_test.status().verified).then_some(Fault::Corrupt);
         let mut controller = Controller {
             program,
             memory,
@@ -58,6 +64,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
             idle: false,
             outputs_stale: true,
             next_due: None,
+            rom_test,
         };
         if fault.is_some() {
             controller.counters.faults += 1;
@@ -145,9 +152,17 @@ impl<P: Program, M: Memory> Controller<P, M> {
         }
     }
 
-    /// Checks the program image now; a mismatch is a `Corrupt` fault.
+    /// What the background image test has done.
+    pub fn image_test(&self) -> ImageTest {
+        self.rom_test.status()
+    }
+
+    /// Checks the whole program image now, as at start-up, apart from the
+    /// background test (whose pass goes on where it was); a mismatch is a
+    /// `Corrupt` fault.
     pub fn check_image(&mut self) -> bool {
-        let intact = self.program.image_intact();
+        let intact = crate::image::crc(&self.program) == self.program.recorded_crc();
+        self.rom_test.record(intact);
         if !intact {
             self.enter_fault(Fault::Corrupt);
         }
@@ -191,12 +206,15 @@ impl<P: Program, M: Memory> Controller<P, M> {
         self.executed_len = 0;
         self.unexpected_len = 0;
 
-        // A state index out of range can only come from corruption.
-        let corrupt = ram
-            .states
-            .iter()
-            .zip(config.supervisors)
-            .any(|(&x, spec)| x >= spec.states);
+        // A state index out of range can only come from corruption; so can
+        // a background image pass that ends on another CRC.
+        let image_failed = self.rom_test.step(&self.program) == Some(false);
+        let corrupt = image_failed
+            || ram
+                .states
+                .iter()
+                .zip(config.supervisors)
+                .any(|(&x, spec)| x >= spec.states);
         if corrupt && self.fault.is_none() {
             self.fault = Some(Fault::Corrupt);
             self.counters.faults = self.counters.faults.wrapping_add(1);
@@ -207,7 +225,8 @@ impl<P: Program, M: Memory> Controller<P, M> {
             let reset = config
                 .reset
                 .is_some_and(|r| inputs::input_rose(usize::from(r), &ram));
-            if reset && self.program.image_intact() {
+            // Only onto an image whose last complete check matched.
+            if reset && self.rom_test.status().verified {
                 initialise(&self.program, config, &mut ram);
                 self.fault = None;
                 self.idle = false;

@@ -127,29 +127,35 @@ fn main() -> ! {
         fail("the scenario has no valid header");
     };
     let config = program::PROGRAM.config();
-    if header.config_crc != executor::table::config_crc(&config)
+    if header.config_crc != executor::image::config_crc(&config)
         || usize::from(header.inputs) != config.inputs.len()
     {
         hprintln!(
             "scenario configuration CRC {:#010x}, program {:#010x}",
             header.config_crc,
-            executor::table::config_crc(&config)
+            executor::image::config_crc(&config)
         );
         fail("the scenario was recorded for another project (configuration CRC differs)");
     }
     let Ok(mut controller) = Controller::new(&program::PROGRAM, program::Memory::new()) else {
         fail("generated memory does not fit the program");
     };
-    // The whole-image CRC, as at start-up and on each reset out of fault
-    // mode (that scan pays for it): it must fit the overrun limit.
+    // The whole-image CRC, as at start-up (scans check the image in the
+    // background, `rom_test_bytes_per_scan` bytes each, and pay for that
+    // share in their own counts).
     let mut intact = false;
     let check = instructions_long(&mut core.SYST, || intact = controller.check_image());
     if !intact {
         fail("the program image's CRC does not match");
     }
+    let bytes = executor::image::bytes(&program::PROGRAM);
+    let per_scan = usize::from(config.rom_test_bytes_per_scan / 4).max(1) * 4;
     hprintln!(
-        "image_check instr={} (CRC-32 of the program image, at start-up and on reset)",
-        check
+        "image_check instr={} image_bytes={} rom_test_bytes_per_scan={} pass_scans={} (CRC-32 of the whole program image, as at start-up)",
+        check,
+        bytes,
+        per_scan,
+        bytes.div_ceil(per_scan)
     );
 
     // The cost of reading the counter twice, subtracted from every sample.
