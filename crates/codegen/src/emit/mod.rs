@@ -237,9 +237,9 @@ impl SupervisorStats {
 }
 
 /// Puts a blank line between consecutive items (prettyplease leaves none):
-/// before a doc comment or attribute that follows the end of an item (a
-/// line of code ending in `;` or `}`, not a comment) at the same
-/// indentation.
+/// before a doc comment, an attribute or a function that follows the end
+/// of an item (a line of code ending in `;` or `}`, not a comment) at the
+/// same indentation.
 fn separate_items(code: &str) -> String {
     let mut out = String::with_capacity(code.len() + code.len() / 16);
     let mut prev: Option<&str> = None;
@@ -248,7 +248,10 @@ fn separate_items(code: &str) -> String {
         let indent = line.len() - trimmed.len();
         if let Some(p) = prev {
             let p_trimmed = p.trim_start();
-            let starts_item = trimmed.starts_with("///") || trimmed.starts_with("#[");
+            let starts_item = trimmed.starts_with("///")
+                || trimmed.starts_with("#[")
+                || trimmed.starts_with("fn ")
+                || trimmed.starts_with("pub fn ");
             let ends_item = !p_trimmed.starts_with("//")
                 && (p_trimmed.ends_with(';') || p_trimmed.ends_with('}'));
             if starts_item && ends_item && p.len() - p_trimmed.len() == indent {

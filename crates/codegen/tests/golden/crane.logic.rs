@@ -829,6 +829,7 @@ impl Program for Logic {
     fn config(&self) -> Config<'_> {
         CONFIG
     }
+
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
             supervisor::SUP_CRANE1 => logic::sup_crane1::sup_crane1_step(state, local),
@@ -836,9 +837,11 @@ impl Program for Logic {
             _ => None,
         }
     }
+
     fn table(&self, _supervisor: Index) -> Option<SupervisorTable<'_>> {
         None
     }
+
     fn recorded_crc(&self) -> u32 {
         IMAGE_CRC
     }

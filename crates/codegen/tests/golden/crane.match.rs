@@ -743,6 +743,7 @@ impl Program for Match {
     fn config(&self) -> Config<'_> {
         CONFIG
     }
+
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
             supervisor::SUP_CRANE1 => matches::sup_crane1(state, local),
@@ -750,9 +751,11 @@ impl Program for Match {
             _ => None,
         }
     }
+
     fn table(&self, _supervisor: Index) -> Option<SupervisorTable<'_>> {
         None
     }
+
     fn recorded_crc(&self) -> u32 {
         IMAGE_CRC
     }

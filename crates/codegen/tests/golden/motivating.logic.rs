@@ -702,15 +702,18 @@ impl Program for Logic {
     fn config(&self) -> Config<'_> {
         CONFIG
     }
+
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
             supervisor::MOTIVATING => logic::motivating::motivating_step(state, local),
             _ => None,
         }
     }
+
     fn table(&self, _supervisor: Index) -> Option<SupervisorTable<'_>> {
         None
     }
+
     fn recorded_crc(&self) -> u32 {
         IMAGE_CRC
     }

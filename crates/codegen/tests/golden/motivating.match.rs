@@ -626,15 +626,18 @@ impl Program for Match {
     fn config(&self) -> Config<'_> {
         CONFIG
     }
+
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
             supervisor::MOTIVATING => matches::motivating(state, local),
             _ => None,
         }
     }
+
     fn table(&self, _supervisor: Index) -> Option<SupervisorTable<'_>> {
         None
     }
+
     fn recorded_crc(&self) -> u32 {
         IMAGE_CRC
     }

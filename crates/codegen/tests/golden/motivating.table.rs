@@ -645,9 +645,11 @@ impl Program for Tables {
     fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
         TABLES.get(supervisor as usize).map_or(0, |t| t.enabled(state, from, len))
     }
+
     fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {
         TABLES.get(supervisor as usize).copied()
     }
+
     fn recorded_crc(&self) -> u32 {
         IMAGE_CRC
     }
