@@ -189,11 +189,12 @@
 //! image whose CRC does not match is a `Corrupt` fault: the whole image is
 //! checked at start-up, then again in the background, pass after pass,
 //! `rom_test_bytes_per_scan` bytes per scan, so a flipped bit is found
-//! within a bound of scans ([`image`], [`Controller::image_test`]). Late scans and lost
-//! edges are found by the code that paces the scans and reads the pins
-//! (the board firmware, host-sim's simulated stalls) and reported with
-//! [`Controller::report_overrun`] and [`Controller::report_lost_edge`]:
-//! counted, and faults when the project says so.
+//! within a bound of scans ([`image`], [`Controller::image_test`]). Late
+//! scans and lost edges are found by the code that paces the scans and
+//! reads the pins (the board firmware, host-sim's simulated stalls) and
+//! reported with [`Controller::report_overrun`] and
+//! [`Controller::report_lost_edge`]: counted, and faults when the project
+//! says so.
 //!
 //! Memory is sized in its type ([`memory::StaticMemory`]) and sealed:
 //! [`Controller::new`] refuses memory whose sizes differ from the

@@ -2,10 +2,10 @@
 //! fixed number of words per scan, pass after pass (docs/semantics.md,
 //! "Image check").
 //!
-//! A pass feeds the whole [`Image`] stream, `rom_test_bytes_per_scan / 4`
-//! words per scan, and compares the CRC with the one recorded at
-//! generation in the scan that feeds its last word; the next pass starts
-//! in the next scan. A pass therefore takes exactly
+//! A pass feeds the whole image stream ([`crate::image`]),
+//! `rom_test_bytes_per_scan / 4` words per scan, and compares the CRC with
+//! the one recorded at generation in the scan that feeds its last word;
+//! the next pass starts in the next scan. A pass therefore takes exactly
 //! P = ⌈image words / words per scan⌉ scans, and a bit that flips is found
 //! at the latest by the (2P − 1)-th scan after it flips: the pass under
 //! way may have read its word already, the next one reads it.
