@@ -9,7 +9,7 @@
 //!   `supervisor`, `states`), `CONFIG` and `IMAGE_CRC` agree with the
 //!   project and with the run-time image `codegen::image` builds from it
 //!   (`TableImage::new(&project).crc` for tables, the configuration CRC of
-//!   `LogicImage` for logic), and `PROGRAM.image_intact()` holds;
+//!   `LogicImage` for logic), and the CRC of `PROGRAM`'s image is it;
 //! - the generated δ (const tables or logic functions) equals the run-time
 //!   table on every (supervisor, state, local event);
 //! - `executor::Controller::new(&PROGRAM, Memory::new())` produces, scan by
@@ -474,19 +474,19 @@ fn check<P: Program + 'static, M: Memory>(g: Generated<P, M>) {
     let expected_crc = if g.backend == Backend::Table {
         image.crc
     } else {
-        executor::table::config_crc(&image.config())
+        executor::image::config_crc(&image.config())
     };
     assert_eq!(g.crc, expected_crc, "{what}: IMAGE_CRC");
     if g.backend == Backend::Logic {
         assert_eq!(g.crc, LogicImage::new(p).unwrap().crc, "{what}: IMAGE_CRC");
     }
-    assert!(
-        g.program.image_intact(),
-        "{what}: PROGRAM.image_intact() is false, so the controller would start in \
-         Corrupt fault mode (IMAGE_CRC {:#010x}, CRC of the generated CONFIG {:#010x})",
-        g.crc,
-        executor::table::config_crc(&g.config)
+    assert_eq!(
+        executor::image::crc(g.program),
+        g.program.recorded_crc(),
+        "{what}: the CRC of PROGRAM's image is not the one it records, so the \
+         controller would start in Corrupt fault mode"
     );
+    assert_eq!(g.program.recorded_crc(), g.crc, "{what}: recorded_crc()");
 
     // δ on every (supervisor, state, local event).
     for (j, sup) in p.supervisors.iter().enumerate() {

@@ -46,6 +46,10 @@ pub struct Figures {
     pub quiet_median: u64,
     /// Largest quiet scan.
     pub quiet_max: u64,
+    /// Mean instructions of the background image share of a scan.
+    pub share_mean: u64,
+    /// Largest image share.
+    pub share_max: u64,
 }
 
 impl Figures {
@@ -73,6 +77,14 @@ impl Figures {
                 }
                 "quiet_max" => {
                     f.quiet_max = value;
+                    continue;
+                }
+                "share_mean" => {
+                    f.share_mean = value;
+                    continue;
+                }
+                "share_max" => {
+                    f.share_max = value;
                     continue;
                 }
                 _ => continue,
@@ -383,7 +395,7 @@ fn ratio(ours: u64, base: u64) -> String {
 
 fn print_report(rows: &[(String, Vec<(&str, Figures)>)], budgets: &Budgets) {
     println!(
-        "\n{:<12} {:<6} {:>6} {:>5} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6}  {:>13} {:>13}",
+        "\n{:<12} {:<6} {:>6} {:>5} {:>8} {:>8} {:>8} {:>8} {:>6} {:>8} {:>6}  {:>13} {:>13}",
         "model",
         "backend",
         "scans",
@@ -392,6 +404,7 @@ fn print_report(rows: &[(String, Vec<(&str, Figures)>)], budgets: &Budgets) {
         "instr_99",
         "instr_mx",
         "quiet_md",
+        "share",
         "flash",
         "ram",
         "instr vs match",
@@ -405,7 +418,7 @@ fn print_report(rows: &[(String, Vec<(&str, Figures)>)], budgets: &Budgets) {
             .unwrap_or_default();
         for (backend, f) in per {
             println!(
-                "{:<12} {:<6} {:>6} {:>5} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6}  {:>13} {:>13}",
+                "{:<12} {:<6} {:>6} {:>5} {:>8} {:>8} {:>8} {:>8} {:>6} {:>8} {:>6}  {:>13} {:>13}",
                 name,
                 backend,
                 f.scans,
@@ -414,6 +427,7 @@ fn print_report(rows: &[(String, Vec<(&str, Figures)>)], budgets: &Budgets) {
                 f.p99,
                 f.max,
                 f.quiet_median,
+                f.share_mean,
                 f.flash,
                 f.ram,
                 ratio(f.median, base.median),

@@ -12,8 +12,9 @@ use crate::backend::table::EncodedTable;
 use crate::error::{Error, Result};
 use crate::ops::Progress;
 use crate::project::{Action, Drive, Project, Trigger, Unexpected};
+use executor::image::{self as ex_image, config_crc, table_image_crc};
 use executor::program::{self as ex, Config, Index, Program, Span};
-use executor::table::{config_crc, image_crc, SupervisorTable};
+use executor::table::SupervisorTable;
 
 /// The executor's description of a project, in owned vectors.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -34,6 +35,8 @@ pub struct ConfigPools {
     pub overrun_fault: bool,
     /// Lost edges are faults.
     pub lost_edge_fault: bool,
+    /// Bytes of the image the background test checks per scan.
+    pub rom_test_bytes_per_scan: u16,
     /// Inputs.
     pub inputs: Vec<ex::InputSpec>,
     /// The debounced inputs, in order.
@@ -319,6 +322,7 @@ impl ConfigPools {
             overrun_limit: project.overrun_limit,
             overrun_fault: project.overrun_fault,
             lost_edge_fault: project.lost_edge_fault,
+            rom_test_bytes_per_scan: project.rom_test_bytes_per_scan,
             inputs,
             debounced,
             debounce_mask,
@@ -348,6 +352,7 @@ impl ConfigPools {
             overrun_limit: self.overrun_limit,
             overrun_fault: self.overrun_fault,
             lost_edge_fault: self.lost_edge_fault,
+            rom_test_bytes_per_scan: self.rom_test_bytes_per_scan,
             inputs: &self.inputs,
             debounced: &self.debounced,
             debounce_mask: self.debounce_mask,
@@ -364,6 +369,46 @@ impl ConfigPools {
             memberships: &self.memberships,
             state_map: &self.state_map,
         }
+    }
+}
+
+/// What the background image test costs a program and how fast it finds
+/// a flipped bit (docs/semantics.md, "Image check").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct ImageCheck {
+    /// Bytes the image CRC covers.
+    pub image_bytes: usize,
+    /// Bytes the background test checks per scan.
+    pub bytes_per_scan: usize,
+    /// The scan period.
+    pub scan_period_ms: u32,
+}
+
+impl ImageCheck {
+    /// The figures of `program`'s image.
+    pub fn of<P: Program + ?Sized>(program: &P) -> ImageCheck {
+        let config = program.config();
+        ImageCheck {
+            image_bytes: ex_image::bytes(program),
+            bytes_per_scan: usize::from(config.rom_test_bytes_per_scan / 4).max(1) * 4,
+            scan_period_ms: config.scan_period_ms,
+        }
+    }
+
+    /// Scans a background pass takes: ⌈image bytes / bytes per scan⌉.
+    pub fn pass_scans(&self) -> usize {
+        self.image_bytes.div_ceil(self.bytes_per_scan)
+    }
+
+    /// The most scans from a flipped bit to the `Corrupt` fault: 2P − 1,
+    /// counting the first scan after the flip as 1.
+    pub fn bound_scans(&self) -> usize {
+        2 * self.pass_scans() - 1
+    }
+
+    /// [`ImageCheck::bound_scans`] in milliseconds at the scan period.
+    pub fn bound_ms(&self) -> u64 {
+        self.bound_scans() as u64 * u64::from(self.scan_period_ms)
     }
 }
 
@@ -391,14 +436,13 @@ impl TableImage {
             })
             .collect();
         let views: Vec<SupervisorTable<'_>> = tables.iter().map(EncodedTable::view).collect();
-        let crc = image_crc(&pools.config(), &views);
+        let crc = table_image_crc(&pools.config(), &views);
         Ok(TableImage { pools, tables, crc })
     }
 
     /// Recomputes the CRC of the current contents.
     pub fn computed_crc(&self) -> u32 {
-        let views: Vec<SupervisorTable<'_>> = self.tables.iter().map(EncodedTable::view).collect();
-        image_crc(&self.pools.config(), &views)
+        executor::image::crc(self)
     }
 }
 
@@ -422,8 +466,14 @@ impl Program for TableImage {
             .map_or(0, |t| t.view().enabled(state, from, len))
     }
 
-    fn image_intact(&self) -> bool {
-        self.computed_crc() == self.crc
+    fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {
+        self.tables
+            .get(usize::from(supervisor))
+            .map(EncodedTable::view)
+    }
+
+    fn recorded_crc(&self) -> u32 {
+        self.crc
     }
 }
 
@@ -496,7 +546,11 @@ impl Program for LogicImage {
         })
     }
 
-    fn image_intact(&self) -> bool {
-        config_crc(&self.pools.config()) == self.crc
+    fn table(&self, _supervisor: Index) -> Option<SupervisorTable<'_>> {
+        None
+    }
+
+    fn recorded_crc(&self) -> u32 {
+        self.crc
     }
 }

@@ -719,6 +719,9 @@ struct ProjectSpec {
     max_commands_per_scan: u16,
     unexpected: Unexpected,
     reset: Option<Pick>,
+    /// The background image test's share per scan: a few words, so that
+    /// passes complete (and compare) many times in a run.
+    rom_test_bytes_per_scan: u16,
     debounce: Vec<u8>,
     timers: Vec<PresetSpec>,
     outputs: Vec<OutputSpec>,
@@ -769,6 +772,7 @@ impl ProjectSpec {
             overrun_limit: 1,
             overrun_fault: false,
             lost_edge_fault: false,
+            rom_test_bytes_per_scan: self.rom_test_bytes_per_scan,
             inputs,
             outputs,
             timers,
@@ -1105,6 +1109,7 @@ fn project(
         0u16..=3,
         prop_oneof![Just(Unexpected::Fault), Just(Unexpected::Ignore)],
         proptest::option::weighted(0.85, any::<Pick>()),
+        (1u16..=16).prop_map(|words| 4 * words),
         vec(0u8..=3, shape.inputs.clone()),
         vec(preset(), 0..=3),
         vec(output(), 1..=5),
@@ -1112,12 +1117,24 @@ fn project(
         vec(supervisor, 1..=4),
     )
         .prop_map(
-            |(period, max, unexpected, reset, debounce, timers, outputs, events, supervisors)| {
+            |(
+                period,
+                max,
+                unexpected,
+                reset,
+                rom_test_bytes_per_scan,
+                debounce,
+                timers,
+                outputs,
+                events,
+                supervisors,
+            )| {
                 ProjectSpec {
                     scan_period_ms: period,
                     max_commands_per_scan: max,
                     unexpected,
                     reset,
+                    rom_test_bytes_per_scan,
                     debounce,
                     timers,
                     outputs,
@@ -1716,6 +1733,7 @@ fn hand_project(
         overrun_limit: 1,
         overrun_fault: false,
         lost_edge_fault: false,
+        rom_test_bytes_per_scan: 64,
         inputs,
         outputs,
         timers,

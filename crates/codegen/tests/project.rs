@@ -299,6 +299,18 @@ const ERRORS: &[(&str, &str)] = &[
         "overrun_limit must be between 0 and 65535",
     ),
     (
+        "[plc]\nname = \"x\"\nrom_test_bytes_per_scan = 0 # <-\n",
+        "rom_test_bytes_per_scan must be between 4 and 65532, found 0",
+    ),
+    (
+        "[plc]\nname = \"x\"\nrom_test_bytes_per_scan = 65536 # <-\n",
+        "rom_test_bytes_per_scan must be between 4 and 65532, found 65536",
+    ),
+    (
+        "[plc]\nname = \"x\"\nrom_test_bytes_per_scan = 66 # <-\n",
+        "rom_test_bytes_per_scan must be a multiple of 4 (the image is checked in 32-bit words), found 66",
+    ),
+    (
         "[plc]\nname = \"x\"\n[inputs]\ni = { debounce_scans = 256 } # <-\n",
         "debounce_scans must be between 0 and 255, found 256",
     ),
@@ -738,6 +750,7 @@ reset = "reset_pb"
 overrun_limit = 3
 overrun_fault = true
 lost_edge_fault = true
+rom_test_bytes_per_scan = 128
 
 [inputs]
 auto_pb  = {}
@@ -777,6 +790,7 @@ file = "formats_example/press.toml"
         (p.overrun_limit, p.overrun_fault, p.lost_edge_fault),
         (3, true, true)
     );
+    assert_eq!(p.rom_test_bytes_per_scan, 128);
     let e = &p.events[p.event("manual_x").unwrap()];
     assert_eq!(e.request, p.input("x_pb"));
     assert_eq!(e.origin, Origin::Controller);

@@ -6,6 +6,7 @@ use crate::memory::{Memory, Ram};
 use crate::pacing::{Pacer, ScanStart};
 use crate::program::{Action, Config, EventSpec, Index, Program, Trigger, UnexpectedPolicy};
 use crate::record::{Counters, Fault, ScanRecord};
+use crate::rom_test::{ImageTest, RomTest};
 use crate::timers::{due, earliest};
 
 /// The memory does not match the program's sizes.
@@ -37,17 +38,22 @@ pub struct Controller<P: Program, M: Memory> {
     next_due: Option<u32>,
     /// The supervisor whose state this scan checks for range.
     pub(crate) range_check: usize,
+    /// The background image check.
+    rom_test: RomTest,
 }
 
 impl<P: Program, M: Memory> Controller<P, M> {
-    /// A controller in its initial state. The program image is checked
-    /// first: a mismatch starts the controller in fault mode (`Corrupt`).
+    /// A controller in its initial state. The whole program image is
+    /// checked first: a mismatch starts the controller in fault mode
+    /// (`Corrupt`). From the first scan on, the image is checked again in
+    /// the background, a share per scan.
     pub fn new(program: P, mut memory: M) -> Result<Self, SizeMismatch> {
         if !memory.fits(&program.config()) {
             return Err(SizeMismatch);
         }
         initialise(&program, &program.config(), &mut memory);
-        let fault = (!program.image_intact()).then_some(Fault::Corrupt);
+        let rom_test = RomTest::new(&program);
+        let fault = (!rom_test.status().verified).then_some(Fault::Corrupt);
         let mut controller = Controller {
             program,
             memory,
@@ -62,6 +68,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
             outputs_stale: true,
             next_due: None,
             range_check: 0,
+            rom_test,
         };
         if fault.is_some() {
             controller.counters.faults += 1;
@@ -149,9 +156,17 @@ impl<P: Program, M: Memory> Controller<P, M> {
         }
     }
 
-    /// Checks the program image now; a mismatch is a `Corrupt` fault.
+    /// What the background image test has done.
+    pub fn image_test(&self) -> ImageTest {
+        self.rom_test.status()
+    }
+
+    /// Checks the whole program image now, as at start-up, apart from the
+    /// background test (whose pass goes on where it was); a mismatch is a
+    /// `Corrupt` fault.
     pub fn check_image(&mut self) -> bool {
-        let intact = self.program.image_intact();
+        let intact = crate::image::crc(&self.program) == self.program.recorded_crc();
+        self.rom_test.record(intact);
         if !intact {
             self.enter_fault(Fault::Corrupt);
         }
@@ -169,6 +184,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
     /// (one value per input in declaration order; missing inputs read as
     /// 0) and returns its record.
     pub fn scan(&mut self, now_ms: u32, raw: &[bool]) -> ScanRecord<'_> {
+        self.check_image_share();
         let inputs = self.program.config().inputs.len();
         inputs::pack(raw, inputs, self.memory.ram().raw);
         self.run(now_ms);
@@ -179,14 +195,33 @@ impl<P: Program, M: Memory> Controller<P, M> {
     /// word, input `i` at bit `i % 32` of word `i / 32`, as a board reads
     /// its ports (missing words read as 0, bits of no input are ignored).
     pub fn scan_packed(&mut self, now_ms: u32, raw: &[u32]) -> ScanRecord<'_> {
+        self.check_image_share();
         self.step_packed(now_ms, raw);
         self.record()
     }
 
-    /// [`Controller::scan_packed`] without building the record: what a
-    /// board runs each period, reading the outputs
+    /// The background image test's share of one scan
+    /// (`rom_test_bytes_per_scan` bytes of the program image,
+    /// docs/semantics.md, "Image check"): every scan starts with it.
+    /// [`Controller::scan`] and [`Controller::scan_packed`] run it
+    /// themselves; a board runs it before sampling its inputs, then
+    /// [`Controller::step_packed`], so that the input-to-output path does
+    /// not include it. A pass that ends on another CRC is a `Corrupt`
+    /// fault, which the scan that follows handles (safe image). `Some`
+    /// with the verdict when this share completed a pass.
+    pub fn check_image_share(&mut self) -> Option<bool> {
+        let verdict = self.rom_test.step(&self.program);
+        if verdict == Some(false) {
+            self.enter_fault(Fault::Corrupt);
+        }
+        verdict
+    }
+
+    /// The rest of a scan after its image share: sample `raw` (packed as
+    /// in [`Controller::scan_packed`]), run the phases, write the output
+    /// image, without building the record. Read the outputs
     /// ([`Controller::outputs`]) or the record ([`Controller::record`])
-    /// after it when it needs them.
+    /// after it when needed.
     pub fn step_packed(&mut self, now_ms: u32, raw: &[u32]) {
         let inputs = self.program.config().inputs.len();
         inputs::copy_packed(raw, inputs, self.memory.ram().raw);
@@ -231,7 +266,8 @@ impl<P: Program, M: Memory> Controller<P, M> {
             let reset = config
                 .reset
                 .is_some_and(|r| inputs::input_rose(usize::from(r), &self.memory.ram()));
-            if reset && self.program.image_intact() {
+            // Only onto an image whose last complete check matched.
+            if reset && self.rom_test.status().verified {
                 initialise(&self.program, config, &mut self.memory);
                 self.fault = None;
                 self.idle = false;

@@ -22,7 +22,8 @@
 //!     mask_word, Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Program,
 //!     Span, SupervisorSpec, Trigger, UnexpectedPolicy,
 //! };
-//! use executor::table::config_crc;
+//! use executor::table::SupervisorTable;
+//! use executor::image::config_crc;
 //! use executor::{Controller, Fault, SizeMismatch};
 //!
 //! // Indices in declaration order: one input, one output, two events.
@@ -44,6 +45,7 @@
 //!     overrun_limit: 1,
 //!     overrun_fault: false,
 //!     lost_edge_fault: false,
+//!     rom_test_bytes_per_scan: 64,
 //!     // The button's edges can raise `pressed` (event_lists[0..1]).
 //!     inputs: &[InputSpec { debounce_scans: 0, raises: Span::new(0, 1) }],
 //!     debounced: &[],
@@ -91,7 +93,8 @@
 //!     state_map: &[],
 //! };
 //!
-//! /// The supervisor as a `match` on (state, local event).
+//! /// The supervisor as a `match` on (state, local event); its image is
+//! /// the configuration alone.
 //! struct Starter {
 //!     /// The image CRC recorded when the program was made.
 //!     crc: u32,
@@ -108,8 +111,11 @@
 //!             _ => None,
 //!         }
 //!     }
-//!     fn image_intact(&self) -> bool {
-//!         config_crc(&CONFIG) == self.crc
+//!     fn table(&self, _supervisor: Index) -> Option<SupervisorTable<'_>> {
+//!         None // the supervisor is code, not a table
+//!     }
+//!     fn recorded_crc(&self) -> u32 {
+//!         self.crc
 //!     }
 //! }
 //!
@@ -158,9 +164,9 @@
 //!    sample (a filter has no history to hold against at power-on).
 //!    Filtering goes on in fault mode and is not reset by a fault reset.
 //! 2. **In fault mode** writes the safe output image, unless the `reset`
-//!    input rises and the program image is intact: then everything is
-//!    re-initialised and the initial image written; either way the scan
-//!    ends there.
+//!    input rises and the last complete check of the program image
+//!    matched: then everything is re-initialised and the initial image
+//!    written; either way the scan ends there.
 //! 3. **Timers** whose deadline is reached stop; their bound events occur.
 //!    A timer started in scan k is first checked in scan k+1.
 //! 4. **Uncontrollable events** that occurred (edges with their
@@ -180,11 +186,15 @@
 //! so every executed controllable event is allowed by every supervisor that
 //! has it (control equivalence with the supervisors, modular or not; the
 //! product is never built). A supervisor state out of range or a program
-//! image whose CRC does not match is a `Corrupt` fault. Late scans and lost
-//! edges are found by the code that paces the scans and reads the pins
-//! (the board firmware, host-sim's simulated stalls) and reported with
-//! [`Controller::report_overrun`] and [`Controller::report_lost_edge`]:
-//! counted, and faults when the project says so.
+//! image whose CRC does not match is a `Corrupt` fault: the whole image is
+//! checked at start-up, then again in the background, pass after pass,
+//! `rom_test_bytes_per_scan` bytes per scan, so a flipped bit is found
+//! within a bound of scans ([`image`], [`Controller::image_test`]). Late
+//! scans and lost edges are found by the code that paces the scans and
+//! reads the pins (the board firmware, host-sim's simulated stalls) and
+//! reported with [`Controller::report_overrun`] and
+//! [`Controller::report_lost_edge`]: counted, and faults when the project
+//! says so.
 //!
 //! Memory is sized in its type ([`memory::StaticMemory`]) and sealed:
 //! [`Controller::new`] refuses memory whose sizes differ from the
@@ -209,8 +219,9 @@
 //!
 //! - [`program`]: the static description ([`Config`]) and the [`Program`]
 //!   trait for supervisor dynamics.
-//! - [`table`]: bit-packed transition tables ([`TableProgram`]) and the
-//!   image CRC.
+//! - [`table`]: bit-packed transition tables ([`TableProgram`]).
+//! - [`image`]: the program image, its CRC, and the stream the background
+//!   image test walks.
 //! - [`memory`]: RAM with sizes in the types ([`memory::StaticMemory`]).
 //! - [`Controller`]: the scan cycle.
 //! - [`pacing`]: when scans start: the fixed grid, skipped periods,
@@ -231,6 +242,7 @@ extern crate alloc;
 
 mod bits;
 mod controller;
+pub mod image;
 mod inputs;
 pub mod memory;
 pub mod pacing;
@@ -238,6 +250,7 @@ pub mod program;
 mod record;
 #[cfg(feature = "replay")]
 pub mod replay;
+mod rom_test;
 pub mod table;
 mod timers;
 
@@ -245,6 +258,7 @@ pub use controller::{Controller, SizeMismatch};
 pub use memory::Memory;
 pub use program::{Config, Program};
 pub use record::{Counters, Fault, ScanRecord};
+pub use rom_test::ImageTest;
 pub use table::TableProgram;
 
 #[cfg(test)]

@@ -177,6 +177,7 @@ mod tests {
             overrun_limit: 3,
             overrun_fault: true,
             lost_edge_fault: false,
+            rom_test_bytes_per_scan: 64,
             inputs: &[],
             debounced: &[],
             debounce_mask: crate::program::Span::EMPTY,

@@ -11,6 +11,8 @@
 //! [`Program`] trait, implemented by bit-packed tables ([`crate::table`])
 //! and by generated CMSSM logic functions alike.
 
+use crate::table::SupervisorTable;
+
 /// Index of an input, output, timer, event or supervisor.
 pub type Index = u16;
 
@@ -222,6 +224,10 @@ pub struct Config<'a> {
     pub overrun_fault: bool,
     /// Lost edges are faults rather than just counted.
     pub lost_edge_fault: bool,
+    /// Bytes of the program image the background test checks per scan
+    /// (whole 32-bit words: a multiple of 4, at least 4; smaller values
+    /// count as 4). See [`crate::image`].
+    pub rom_test_bytes_per_scan: u16,
     /// Inputs in declaration order.
     pub inputs: &'a [InputSpec],
     /// The debounced inputs (`debounce_scans ≥ 2`) in declaration order:
@@ -289,7 +295,14 @@ pub trait Program {
 
     /// Recomputes the program image's checksum and compares it with the
     /// one recorded at generation; `false` means corrupt.
-    fn image_intact(&self) -> bool;
+    /// The transition table of supervisor `supervisor`, part of the
+    /// program image ([`crate::image`]); `None` past the last table, and
+    /// for every supervisor of a program whose supervisors are code.
+    fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>>;
+
+    /// The CRC of the program image ([`crate::image::crc`]) recorded at
+    /// generation.
+    fn recorded_crc(&self) -> u32;
 }
 
 impl<P: Program + ?Sized> Program for &P {
@@ -305,7 +318,11 @@ impl<P: Program + ?Sized> Program for &P {
         (**self).enabled(supervisor, state, from, len)
     }
 
-    fn image_intact(&self) -> bool {
-        (**self).image_intact()
+    fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {
+        (**self).table(supervisor)
+    }
+
+    fn recorded_crc(&self) -> u32 {
+        (**self).recorded_crc()
     }
 }

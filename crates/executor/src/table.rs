@@ -37,13 +37,12 @@
 //!
 //! # Integrity
 //!
-//! [`image_crc`] is a CRC-32 (ISO-HDLC, the Ethernet/zip polynomial) over
-//! the whole program image: every field of the [`Config`] in a fixed order
-//! and every table word. The generator records it; [`TableProgram`]
-//! recomputes it on demand.
+//! The tables are part of the program image ([`crate::image`]): every
+//! word of `defined`, `targets` and `row_starts` is covered by the image
+//! CRC ([`crate::image::table_image_crc`]), which the generator records and the controller
+//! checks at start-up and, in the background, scan after scan.
 
 use crate::program::{Config, Index, Program};
-use crc::{Crc, Digest, CRC_32_ISO_HDLC};
 
 /// How the targets of a [`SupervisorTable`] are laid out.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -181,165 +180,6 @@ impl SupervisorTable<'_> {
         }
         read_bits_at(self.defined, state as usize * m + from, len as u8)
     }
-
-    fn digest(&self, d: &mut Digest<'_, u32>) {
-        feed(d, &self.events.to_le_bytes());
-        feed(d, &[self.state_bits]);
-        words(d, self.defined);
-        words(d, self.targets);
-        match self.rows {
-            Rows::Dense => feed(d, &[0]),
-            Rows::Sparse {
-                row_starts,
-                start_bits,
-            } => {
-                feed(d, &[1, start_bits]);
-                words(d, row_starts);
-            }
-        }
-    }
-}
-
-fn words(d: &mut Digest<'_, u32>, words: &[u32]) {
-    feed(d, &(words.len() as u32).to_le_bytes());
-    for w in words {
-        feed(d, &w.to_le_bytes());
-    }
-}
-
-/// Feeds `bytes` into `d`. Kept out of line: the digest of a
-/// configuration makes a few hundred calls, and inlining the CRC loop into
-/// each of them costs kilobytes of flash for a check that runs at start-up.
-#[inline(never)]
-fn feed(d: &mut Digest<'_, u32>, bytes: &[u8]) {
-    d.update(bytes);
-}
-
-/// The CRC-32 algorithm of program images.
-pub const IMAGE_CRC: Crc<u32> = Crc::<u32>::new(&CRC_32_ISO_HDLC);
-
-/// Feeds every field of `config` into `d` in a fixed order.
-pub fn digest_config(d: &mut Digest<'_, u32>, config: &Config<'_>) {
-    use crate::program::{Action, Trigger, UnexpectedPolicy};
-    let u16s = |d: &mut Digest<'_, u32>, v: &[u16]| {
-        feed(d, &(v.len() as u32).to_le_bytes());
-        for x in v {
-            feed(d, &x.to_le_bytes());
-        }
-    };
-    let span = |d: &mut Digest<'_, u32>, s: crate::program::Span| {
-        feed(d, &s.start.to_le_bytes());
-        feed(d, &s.len.to_le_bytes());
-    };
-    feed(d, &(config.name.len() as u32).to_le_bytes());
-    feed(d, config.name.as_bytes());
-    feed(d, &config.scan_period_ms.to_le_bytes());
-    feed(d, &config.max_commands_per_scan.to_le_bytes());
-    feed(
-        d,
-        &[match config.unexpected {
-            UnexpectedPolicy::Fault => 0,
-            UnexpectedPolicy::Ignore => 1,
-        }],
-    );
-    feed(d, &config.reset.map_or(u32::MAX, u32::from).to_le_bytes());
-    feed(d, &config.overrun_limit.to_le_bytes());
-    feed(
-        d,
-        &[config.overrun_fault as u8, config.lost_edge_fault as u8],
-    );
-    feed(d, &(config.inputs.len() as u32).to_le_bytes());
-    for i in config.inputs {
-        feed(d, &[i.debounce_scans]);
-        span(d, i.raises);
-    }
-    u16s(d, config.debounced);
-    span(d, config.debounce_mask);
-    feed(d, &(config.outputs.len() as u32).to_le_bytes());
-    for o in config.outputs {
-        feed(d, &[o.safe as u8, o.initial as u8]);
-        span(d, o.state_map);
-    }
-    feed(d, &(config.timers.len() as u32).to_le_bytes());
-    for t in config.timers {
-        feed(d, &t.preset_ms.to_le_bytes());
-        span(d, t.raises);
-    }
-    feed(d, &(config.events.len() as u32).to_le_bytes());
-    for e in config.events {
-        match e.trigger {
-            Trigger::Command => feed(d, &[0]),
-            Trigger::Rising(s) => {
-                feed(d, &[1]);
-                span(d, s);
-            }
-            Trigger::Falling(s) => {
-                feed(d, &[2]);
-                span(d, s);
-            }
-            Trigger::Expired(t) => {
-                feed(d, &[3]);
-                feed(d, &t.to_le_bytes());
-            }
-        }
-        span(d, e.when);
-        span(d, e.unless);
-        feed(d, &e.request.map_or(u32::MAX, u32::from).to_le_bytes());
-        span(d, e.actions);
-        span(d, e.members);
-    }
-    feed(d, &(config.supervisors.len() as u32).to_le_bytes());
-    for s in config.supervisors {
-        feed(d, &s.states.to_le_bytes());
-        feed(d, &s.initial.to_le_bytes());
-        span(d, s.alphabet);
-        span(d, s.outside);
-    }
-    words(d, config.input_masks);
-    u16s(d, config.event_lists);
-    words(d, config.event_masks);
-    span(d, config.commands);
-    span(d, config.requested);
-    feed(d, &(config.actions.len() as u32).to_le_bytes());
-    for a in config.actions {
-        let (tag, x) = match *a {
-            Action::Set(o) => (0u8, o),
-            Action::Clear(o) => (1, o),
-            Action::Start(t) => (2, t),
-            Action::Reset(t) => (3, t),
-        };
-        feed(d, &[tag]);
-        feed(d, &x.to_le_bytes());
-    }
-    feed(d, &(config.memberships.len() as u32).to_le_bytes());
-    for m in config.memberships {
-        feed(d, &m.supervisor.to_le_bytes());
-        feed(d, &m.local.to_le_bytes());
-    }
-    feed(d, &(config.state_map.len() as u32).to_le_bytes());
-    for s in config.state_map {
-        feed(d, &s.supervisor.to_le_bytes());
-        feed(d, &s.state.to_le_bytes());
-    }
-}
-
-/// The CRC-32 of a table program image: its config, then every table.
-pub fn image_crc(config: &Config<'_>, tables: &[SupervisorTable<'_>]) -> u32 {
-    let mut d = IMAGE_CRC.digest();
-    digest_config(&mut d, config);
-    feed(&mut d, &(tables.len() as u32).to_le_bytes());
-    for t in tables {
-        t.digest(&mut d);
-    }
-    d.finalize()
-}
-
-/// The CRC-32 of a program image without tables (logic backend: the
-/// supervisors are code, the config is data).
-pub fn config_crc(config: &Config<'_>) -> u32 {
-    let mut d = IMAGE_CRC.digest();
-    digest_config(&mut d, config);
-    d.finalize()
 }
 
 /// A program made of a [`Config`] and one [`SupervisorTable`] per
@@ -350,7 +190,8 @@ pub struct TableProgram<'a> {
     pub config: Config<'a>,
     /// One table per supervisor, in order.
     pub tables: &'a [SupervisorTable<'a>],
-    /// [`image_crc`] as computed by the generator.
+    /// The image CRC as computed by the generator
+    /// ([`crate::image::table_image_crc`]).
     pub crc: u32,
 }
 
@@ -373,8 +214,12 @@ impl Program for TableProgram<'_> {
             .map_or(0, |t| t.enabled(state, from, len))
     }
 
-    fn image_intact(&self) -> bool {
-        image_crc(&self.config, self.tables) == self.crc
+    fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {
+        self.tables.get(usize::from(supervisor)).copied()
+    }
+
+    fn recorded_crc(&self) -> u32 {
+        self.crc
     }
 }
 

@@ -9,6 +9,7 @@ extern crate std;
 use crate::memory::StaticMemory;
 use crate::pacing::Pacer;
 use crate::program::*;
+use crate::table::SupervisorTable;
 use crate::{Controller, Fault};
 use std::boxed::Box;
 
@@ -26,6 +27,7 @@ const STOP: Index = 4;
 
 struct Conveyor {
     config: Config<'static>,
+    /// The CRC recorded for the image is its CRC (else its complement).
     intact: bool,
 }
 
@@ -112,6 +114,7 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
         overrun_limit: 1,
         overrun_fault: false,
         lost_edge_fault: true,
+        rom_test_bytes_per_scan: 64,
         inputs,
         debounced: if debounced { &[LS] } else { &[] },
         debounce_mask: if debounced {
@@ -179,8 +182,17 @@ impl Program for Conveyor {
         }
     }
 
-    fn image_intact(&self) -> bool {
-        self.intact
+    fn table(&self, _supervisor: Index) -> Option<SupervisorTable<'_>> {
+        None
+    }
+
+    fn recorded_crc(&self) -> u32 {
+        let crc = crate::image::config_crc(&self.config);
+        if self.intact {
+            crc
+        } else {
+            !crc
+        }
     }
 }
 

@@ -109,6 +109,9 @@ fn main() -> ! {
         if start.overrun {
             report::overrun(controller.next_scan(), &start, pacer.period_ms());
         }
+        // The background image test's share first, so that the path from
+        // sampling the inputs to writing the outputs does not include it.
+        controller.check_image_share();
         let (raw, changes) = edges::sample(&io);
         for (input, count) in changes.lost() {
             controller.report_lost_edge();

@@ -31,7 +31,7 @@ pub enum RecordError {
 pub fn record(sim: &mut Sim, rows: &[InputRow]) -> Result<Vec<u8>, RecordError> {
     let config = sim.controller().program().config();
     let header = ScenarioHeader {
-        config_crc: executor::table::config_crc(&config),
+        config_crc: executor::image::config_crc(&config),
         inputs: config.inputs.len() as u16,
         outputs: config.outputs.len() as u16,
         scans: rows.len() as u32,

@@ -16,6 +16,7 @@ use codegen::project::{self, Project};
 use executor::memory::HeapMemory;
 use executor::pacing::{Pacer, ScanStart};
 use executor::program::{Config, Index, Program};
+use executor::table::SupervisorTable;
 use executor::Controller;
 use std::path::Path;
 
@@ -89,10 +90,17 @@ impl Program for RuntimeProgram {
         }
     }
 
-    fn image_intact(&self) -> bool {
+    fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {
         match self {
-            RuntimeProgram::Table(t) => t.image_intact(),
-            RuntimeProgram::Logic(l) => l.image_intact(),
+            RuntimeProgram::Table(t) => t.table(supervisor),
+            RuntimeProgram::Logic(l) => l.table(supervisor),
+        }
+    }
+
+    fn recorded_crc(&self) -> u32 {
+        match self {
+            RuntimeProgram::Table(t) => t.recorded_crc(),
+            RuntimeProgram::Logic(l) => l.recorded_crc(),
         }
     }
 }

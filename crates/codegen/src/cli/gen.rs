@@ -6,6 +6,7 @@ use super::Outcome;
 use codegen::backend::table::EncodedTable;
 use codegen::emit::{generate_with_progress, Backend, SupervisorStats};
 use codegen::formats;
+use codegen::image::ImageCheck;
 use codegen::{project, Error};
 use std::path::{Path, PathBuf};
 
@@ -72,6 +73,7 @@ pub fn run(args: &GenArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> 
             return Ok(Outcome::Holds);
         }
         print_stats(out, &args.project, &generated.stats, backend);
+        print_image_check(out, &generated.image);
         return Ok(Outcome::Holds);
     }
     match &args.output {
@@ -108,6 +110,20 @@ fn automaton_stats(args: &GenArgs, json: bool, out: &mut Out) -> Result<Outcome,
 
 fn write(path: &Path, code: &str) -> Result<(), Error> {
     std::fs::write(path, code).map_err(|e| Error::io(path, e))
+}
+
+/// The image's size and how fast the background test covers it.
+fn print_image_check(out: &mut Out, check: &ImageCheck) {
+    outln!(
+        out,
+        "  image: {} bytes under the CRC; background check {} bytes per scan: a pass every {} scans, a flipped bit found within {} scans ({} ms at {} ms a scan)",
+        check.image_bytes,
+        check.bytes_per_scan,
+        check.pass_scans(),
+        check.bound_scans(),
+        check.bound_ms(),
+        check.scan_period_ms
+    );
 }
 
 fn print_stats(out: &mut Out, project: &Path, stats: &[SupervisorStats], backend: Backend) {

@@ -683,16 +683,22 @@ impl Emitter<'_> {
             .map_or("None".to_owned(), |r| format!("Some({})", self.input(r)));
         let _ = writeln!(
             self.out,
-            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, inputs: &INPUTS, debounced: &DEBOUNCED, debounce_mask: {}, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_masks: &INPUT_MASKS, event_lists: &EVENT_LISTS, event_masks: &EVENT_MASKS, commands: {}, requested: {}, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP }};",
+            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, rom_test_bytes_per_scan: {}, inputs: &INPUTS, debounced: &DEBOUNCED, debounce_mask: {}, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_masks: &INPUT_MASKS, event_lists: &EVENT_LISTS, event_masks: &EVENT_MASKS, commands: {}, requested: {}, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP }};",
             pools.name,
             pools.scan_period_ms,
             pools.max_commands_per_scan,
             pools.overrun_limit,
             pools.overrun_fault,
             pools.lost_edge_fault,
+            pools.rom_test_bytes_per_scan,
             self.span(pools.debounce_mask),
             self.span(pools.commands),
             self.span(pools.requested),
+        );
+        let _ = writeln!(
+            self.out,
+            "/// CRC of the configuration alone (the program image without tables): how recorded\n/// scenarios name the project they belong to.\npub const CONFIG_CRC: u32 = {:#010x};",
+            executor::image::config_crc(&pools.config())
         );
         let _ = writeln!(
             self.out,

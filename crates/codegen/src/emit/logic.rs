@@ -364,7 +364,12 @@ pub fn equations(logic: &LogicSupervisor, event_names: &[&str]) -> String {
 impl Emitter<'_> {
     /// `pub mod logic` with one [`supervisor_module`] per supervisor,
     /// `IMAGE_CRC` and the `Logic` program.
-    pub(super) fn logic(&mut self, logic: &[LogicSupervisor], crc: u32) -> Vec<SupervisorStats> {
+    pub(super) fn logic(
+        &mut self,
+        logic: &[LogicSupervisor],
+        crc: u32,
+        crc_doc: &str,
+    ) -> Vec<SupervisorStats> {
         let mut stats = Vec::new();
         let mut arms = Vec::new();
         let _ = writeln!(
@@ -412,7 +417,7 @@ impl Emitter<'_> {
         let _ = writeln!(self.out, "}}");
         let _ = writeln!(
             self.out,
-            "/// CRC-32 of the configuration (the supervisors are code), checked at start.\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program: supervisors as minimised boolean functions.\npub struct Logic;\nimpl Program for Logic {{\n    fn config(&self) -> Config<'_> {{ CONFIG }}\n    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n    fn image_intact(&self) -> bool {{ executor::table::config_crc(&CONFIG) == IMAGE_CRC }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Logic = Logic;",
+            "{crc_doc}\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program: supervisors as minimised boolean functions.\npub struct Logic;\nimpl Program for Logic {{\n    fn config(&self) -> Config<'_> {{ CONFIG }}\n    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n    fn table(&self, _supervisor: Index) -> Option<SupervisorTable<'_>> {{ None }}\n    fn recorded_crc(&self) -> u32 {{ IMAGE_CRC }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Logic = Logic;",
             arms.join("\n")
         );
         stats

@@ -9,7 +9,7 @@ use std::fmt::Write;
 
 impl Emitter<'_> {
     /// The baseline: each supervisor as one `match` on (state, local event).
-    pub(super) fn matches(&mut self, crc: u32) -> Vec<SupervisorStats> {
+    pub(super) fn matches(&mut self, crc: u32, crc_doc: &str) -> Vec<SupervisorStats> {
         let mut stats = Vec::new();
         let mut arms = Vec::new();
         let _ = writeln!(
@@ -53,7 +53,7 @@ impl Emitter<'_> {
         let _ = writeln!(self.out, "}}");
         let _ = writeln!(
             self.out,
-            "/// CRC-32 of the configuration (the supervisors are code), checked at start.\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program: supervisors as `match` statements.\npub struct Match;\nimpl Program for Match {{\n    fn config(&self) -> Config<'_> {{ CONFIG }}\n    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n    fn image_intact(&self) -> bool {{ executor::table::config_crc(&CONFIG) == IMAGE_CRC }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Match = Match;",
+            "{crc_doc}\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program: supervisors as `match` statements.\npub struct Match;\nimpl Program for Match {{\n    fn config(&self) -> Config<'_> {{ CONFIG }}\n    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n    fn table(&self, _supervisor: Index) -> Option<SupervisorTable<'_>> {{ None }}\n    fn recorded_crc(&self) -> u32 {{ IMAGE_CRC }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Match = Match;",
             arms.join("\n")
         );
         stats

@@ -20,7 +20,7 @@ mod table;
 
 use crate::backend::table::{EncodedTable, Layout};
 use crate::error::{Error, Result};
-use crate::image::{ConfigPools, LogicImage, TableImage};
+use crate::image::{ConfigPools, ImageCheck, LogicImage, TableImage};
 use crate::project::ident::sanitize;
 use crate::project::{Project, SupervisorSource};
 use executor::program as ex;
@@ -94,6 +94,8 @@ pub struct Generated {
     pub stats: Vec<SupervisorStats>,
     /// The image CRC recorded in the code.
     pub crc: u32,
+    /// The image's size and the background test's figures.
+    pub image: ImageCheck,
 }
 
 /// A sanitised identifier (validation guarantees one exists).
@@ -235,9 +237,9 @@ impl SupervisorStats {
 }
 
 /// Puts a blank line between consecutive items (prettyplease leaves none):
-/// before a doc comment or attribute that follows the end of an item (a
-/// line of code ending in `;` or `}`, not a comment) at the same
-/// indentation.
+/// before a doc comment, an attribute or a function that follows the end
+/// of an item (a line of code ending in `;` or `}`, not a comment) at the
+/// same indentation.
 fn separate_items(code: &str) -> String {
     let mut out = String::with_capacity(code.len() + code.len() / 16);
     let mut prev: Option<&str> = None;
@@ -246,7 +248,10 @@ fn separate_items(code: &str) -> String {
         let indent = line.len() - trimmed.len();
         if let Some(p) = prev {
             let p_trimmed = p.trim_start();
-            let starts_item = trimmed.starts_with("///") || trimmed.starts_with("#[");
+            let starts_item = trimmed.starts_with("///")
+                || trimmed.starts_with("#[")
+                || trimmed.starts_with("fn ")
+                || trimmed.starts_with("pub fn ");
             let ends_item = !p_trimmed.starts_with("//")
                 && (p_trimmed.ends_with(';') || p_trimmed.ends_with('}'));
             if starts_item && ends_item && p.len() - p_trimmed.len() == indent {
@@ -265,6 +270,47 @@ struct Unformatted {
     text: String,
     stats: Vec<SupervisorStats>,
     crc: u32,
+    image: ImageCheck,
+}
+
+/// The doc comment of `IMAGE_CRC`: what the image is, and how fast the
+/// background test covers it.
+fn image_crc_doc(check: &ImageCheck, covers: &str) -> String {
+    let text = format!(
+        "CRC-32/MPEG-2 of the program image ({covers}, {} bytes), recorded at \
+         generation. The controller checks the whole image at start-up, then in the \
+         background, {} bytes per scan: a pass every {} scans, a flipped bit found \
+         within {} scans ({} at {} ms a scan). See `executor::image`.",
+        check.image_bytes,
+        check.bytes_per_scan,
+        check.pass_scans(),
+        check.bound_scans(),
+        duration(check.bound_ms()),
+        check.scan_period_ms,
+    );
+    let mut doc = String::new();
+    let mut line = String::from("///");
+    for word in text.split(' ') {
+        if line.len() + 1 + word.len() > 78 {
+            doc.push_str(&line);
+            doc.push('\n');
+            line = String::from("///");
+        }
+        line.push(' ');
+        line.push_str(word);
+    }
+    doc.push_str(&line);
+    doc
+}
+
+/// `ms` as a reader reads it: milliseconds below 10 s, else seconds with
+/// one decimal.
+fn duration(ms: u64) -> String {
+    if ms < 10_000 {
+        format!("{ms} ms")
+    } else {
+        format!("{}.{} s", ms / 1000, ms % 1000 / 100)
+    }
 }
 
 /// Writes the program of `project`: the configuration, the board and the
@@ -284,7 +330,9 @@ fn write_program(
         Backend::Table => {
             "use executor::program::Program;\nuse executor::table::{Rows, SupervisorTable};"
         }
-        Backend::Logic | Backend::Match => "use executor::program::Program;",
+        Backend::Logic | Backend::Match => {
+            "use executor::program::Program;\nuse executor::table::SupervisorTable;"
+        }
     };
     let _ = writeln!(
         e.out,
@@ -293,24 +341,39 @@ fn write_program(
     e.names();
     e.config();
     e.out.push_str(&crate::board::board_module(project));
-    let (stats, crc) = match backend {
+    let (stats, crc, image) = match backend {
         Backend::Table => {
             let image = TableImage::new(project)?;
-            (e.tables(&image), image.crc)
+            let check = ImageCheck::of(&image);
+            let doc = image_crc_doc(&check, "the configuration and the tables");
+            (e.tables(&image, &doc), image.crc, check)
         }
         Backend::Logic => {
             let image = LogicImage::with_progress(project, progress)?;
-            (e.logic(&image.supervisors, image.crc), image.crc)
+            let check = ImageCheck::of(&image);
+            let doc = image_crc_doc(&check, "the configuration; the supervisors are code");
+            (
+                e.logic(&image.supervisors, image.crc, &doc),
+                image.crc,
+                check,
+            )
         }
         Backend::Match => {
-            let crc = executor::table::config_crc(&pools.config());
-            (e.matches(crc), crc)
+            let program = executor::table::TableProgram {
+                config: pools.config(),
+                tables: &[],
+                crc: executor::image::config_crc(&pools.config()),
+            };
+            let check = ImageCheck::of(&program);
+            let doc = image_crc_doc(&check, "the configuration; the supervisors are code");
+            (e.matches(program.crc, &doc), program.crc, check)
         }
     };
     Ok(Unformatted {
         text: e.out,
         stats,
         crc,
+        image,
     })
 }
 
@@ -352,6 +415,7 @@ pub fn generate_with_progress(
         code: header + &body,
         stats: program.stats,
         crc: program.crc,
+        image: program.image,
     })
 }
 

@@ -50,7 +50,7 @@ impl Emitter<'_> {
 
     /// The supervisors as constant tables, `TABLES`, `IMAGE_CRC` and the
     /// `Tables` program.
-    pub(super) fn tables(&mut self, image: &TableImage) -> Vec<SupervisorStats> {
+    pub(super) fn tables(&mut self, image: &TableImage, crc_doc: &str) -> Vec<SupervisorStats> {
         let mut stats = Vec::new();
         let mut views = Vec::new();
         for (j, (sup, table)) in self
@@ -106,7 +106,7 @@ impl Emitter<'_> {
         }
         let _ = writeln!(
             self.out,
-            "/// One table per supervisor.\nconst TABLES: [SupervisorTable<'static>; {}] = [{}];\n/// CRC-32 of the program image (configuration and tables), checked at start.\npub const IMAGE_CRC: u32 = {:#010x};\n/// The program: the configuration and the tables above, as constants the\n/// compiler can see through (a zero-sized type rather than a `static` holding them).\npub struct Tables;\nimpl Program for Tables {{\n    fn config(&self) -> Config<'_> {{ CONFIG }}\n    #[inline]\n    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        TABLES.get(supervisor as usize)?.next_state(state, local)\n    }}\n    #[inline]\n    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {{\n        TABLES.get(supervisor as usize).map_or(0, |t| t.enabled(state, from, len))\n    }}\n    fn image_intact(&self) -> bool {{ executor::table::image_crc(&CONFIG, &TABLES) == IMAGE_CRC }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Tables = Tables;",
+            "/// One table per supervisor.\nconst TABLES: [SupervisorTable<'static>; {}] = [{}];\n{crc_doc}\npub const IMAGE_CRC: u32 = {:#010x};\n/// The program: the configuration and the tables above, as constants the\n/// compiler can see through (a zero-sized type rather than a `static` holding them).\npub struct Tables;\nimpl Program for Tables {{\n    fn config(&self) -> Config<'_> {{ CONFIG }}\n    #[inline]\n    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        TABLES.get(supervisor as usize)?.next_state(state, local)\n    }}\n    #[inline]\n    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {{\n        TABLES.get(supervisor as usize).map_or(0, |t| t.enabled(state, from, len))\n    }}\n    fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {{ TABLES.get(supervisor as usize).copied() }}\n    fn recorded_crc(&self) -> u32 {{ IMAGE_CRC }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Tables = Tables;",
             views.len(),
             views.join(", "),
             image.crc

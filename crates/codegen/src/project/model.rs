@@ -329,6 +329,8 @@ pub struct Project {
     pub overrun_fault: bool,
     /// Lost edges are faults.
     pub lost_edge_fault: bool,
+    /// Bytes of the program image the background test checks per scan.
+    pub rom_test_bytes_per_scan: u16,
     /// Inputs in declaration order.
     pub inputs: Vec<Input>,
     /// Outputs in declaration order.

@@ -142,6 +142,8 @@ pub(crate) struct RawPlc {
     pub overrun_fault: bool,
     #[serde(default)]
     pub lost_edge_fault: bool,
+    #[serde(default)]
+    pub rom_test_bytes_per_scan: Option<Spanned<i64>>,
 }
 
 /// An entry of `[inputs]`.

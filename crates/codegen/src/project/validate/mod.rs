@@ -166,6 +166,7 @@ impl Validator<'_> {
             overrun_limit: plc.overrun_limit,
             overrun_fault: plc.overrun_fault,
             lost_edge_fault: plc.lost_edge_fault,
+            rom_test_bytes_per_scan: plc.rom_test_bytes_per_scan,
             inputs: inputs.items,
             outputs,
             timers: timers.items,

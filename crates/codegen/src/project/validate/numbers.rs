@@ -3,7 +3,7 @@
 //! `scan_period_ms` and `preset_ms` lie in `1..2^31` (time differences
 //! must stay wrap-safe on a 32-bit millisecond clock);
 //! `max_commands_per_scan` and `overrun_limit` in `0..=65535`;
-//! `debounce_scans` in `0..=255`.
+//! `rom_test_bytes_per_scan` in `4..=65532`; `debounce_scans` in `0..=255`.
 
 use super::Validator;
 use crate::error::Result;
@@ -35,6 +35,12 @@ pub(super) const MAX_COMMANDS_PER_SCAN: Field = Field {
 pub(super) const OVERRUN_LIMIT: Field = Field {
     name: "overrun_limit",
     range: 0..=u16::MAX as i64,
+};
+
+/// `[plc] rom_test_bytes_per_scan` (also a multiple of 4).
+pub(super) const ROM_TEST_BYTES_PER_SCAN: Field = Field {
+    name: "rom_test_bytes_per_scan",
+    range: 4..=u16::MAX as i64 - 3,
 };
 
 /// `debounce_scans` of an input.
@@ -93,6 +99,7 @@ mod tests {
         assert_eq!(p.reset, None);
         assert_eq!(p.overrun_limit, 1);
         assert!(!p.overrun_fault && !p.lost_edge_fault);
+        assert_eq!(p.rom_test_bytes_per_scan, 64);
         assert_eq!(p.inputs[0].debounce_scans, 0);
         assert!(!p.outputs[0].safe);
         assert_eq!(p.outputs[0].drive, Drive::Actions { initial: false });
@@ -119,9 +126,12 @@ mod tests {
             "{err}"
         );
         let p = load(&format!(
-            "{HEAD}max_commands_per_scan = 0\noverrun_limit = 65535\n"
+            "{HEAD}max_commands_per_scan = 0\noverrun_limit = 65535\nrom_test_bytes_per_scan = 65532\n"
         ))
         .unwrap();
         assert_eq!((p.max_commands_per_scan, p.overrun_limit), (0, 65535));
+        assert_eq!(p.rom_test_bytes_per_scan, 65532);
+        let p = load(&format!("{HEAD}rom_test_bytes_per_scan = 4\n")).unwrap();
+        assert_eq!(p.rom_test_bytes_per_scan, 4);
     }
 }

@@ -2,11 +2,14 @@
 //! input (its numbers' ranges are in [`super::numbers`]).
 //!
 //! `unexpected` is `"fault"` (the default) or `"ignore"`; `reset` names a
-//! declared input.
+//! declared input; `rom_test_bytes_per_scan` is a whole number of 32-bit
+//! words (the image is checked word by word).
 
 use super::super::model::{Input, Unexpected};
 use super::super::parse::RawPlc;
-use super::numbers::{MAX_COMMANDS_PER_SCAN, OVERRUN_LIMIT, SCAN_PERIOD_MS};
+use super::numbers::{
+    MAX_COMMANDS_PER_SCAN, OVERRUN_LIMIT, ROM_TEST_BYTES_PER_SCAN, SCAN_PERIOD_MS,
+};
 use super::{Declared, Validator};
 use crate::error::Result;
 
@@ -19,6 +22,7 @@ pub(super) struct Settings {
     pub overrun_limit: u16,
     pub overrun_fault: bool,
     pub lost_edge_fault: bool,
+    pub rom_test_bytes_per_scan: u16,
 }
 
 impl Validator<'_> {
@@ -32,6 +36,22 @@ impl Validator<'_> {
             1,
         )? as u16;
         let overrun_limit = self.number_or(plc.overrun_limit.as_ref(), &OVERRUN_LIMIT, 1)? as u16;
+        let rom_test_bytes_per_scan = self.number_or(
+            plc.rom_test_bytes_per_scan.as_ref(),
+            &ROM_TEST_BYTES_PER_SCAN,
+            64,
+        )? as u16;
+        if let Some(v) = plc.rom_test_bytes_per_scan.as_ref() {
+            if v.get_ref() % 4 != 0 {
+                return Err(self.error(
+                    &v.span(),
+                    format!(
+                        "rom_test_bytes_per_scan must be a multiple of 4 (the image is checked in 32-bit words), found {}",
+                        v.get_ref()
+                    ),
+                ));
+            }
+        }
         let unexpected = match &plc.unexpected {
             None => Unexpected::Fault,
             Some(u) => match u.get_ref().as_str() {
@@ -57,6 +77,7 @@ impl Validator<'_> {
             overrun_limit,
             overrun_fault: plc.overrun_fault,
             lost_edge_fault: plc.lost_edge_fault,
+            rom_test_bytes_per_scan,
         })
     }
 }
