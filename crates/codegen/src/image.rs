@@ -412,6 +412,43 @@ impl ImageCheck {
     }
 }
 
+/// What the executor keeps to decide feasibility by word operations
+/// (docs/architecture.md, "What a scan costs"): the supervisors'
+/// alphabets and event sets in flash, one event set per supervisor and the
+/// feasible set in RAM. The enabled events themselves are the tables' rows
+/// of defined-bits (or the logic backend's φ functions), counted there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct ScanSets {
+    /// Words of an event set (32 events per word).
+    pub event_words: usize,
+    /// Flash bytes of the alphabets (local to event number, 2 bytes per
+    /// local event).
+    pub alphabet_bytes: usize,
+    /// Flash bytes of the event masks (what each supervisor never blocks,
+    /// the commands).
+    pub mask_bytes: usize,
+    /// RAM bytes of the sets: one per supervisor, and the feasible set.
+    pub ram_bytes: usize,
+}
+
+impl ScanSets {
+    /// The figures of `pools`.
+    pub fn of(pools: &ConfigPools) -> ScanSets {
+        let event_words = ex::words(pools.events.len());
+        let alphabet = pools
+            .supervisors
+            .iter()
+            .map(|s| usize::from(s.alphabet.len))
+            .sum::<usize>();
+        ScanSets {
+            event_words,
+            alphabet_bytes: 2 * alphabet,
+            mask_bytes: 4 * pools.event_masks.len(),
+            ram_bytes: 4 * event_words * (pools.supervisors.len() + 1),
+        }
+    }
+}
+
 /// A project as bit-packed tables, runnable on the host.
 #[derive(Debug, Clone)]
 pub struct TableImage {

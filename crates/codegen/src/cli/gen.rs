@@ -74,6 +74,7 @@ pub fn run(args: &GenArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> 
         }
         print_stats(out, &args.project, &generated.stats, backend);
         print_image_check(out, &generated.image);
+        print_scan_sets(out, &generated.sets);
         return Ok(Outcome::Holds);
     }
     match &args.output {
@@ -123,6 +124,18 @@ fn print_image_check(out: &mut Out, check: &ImageCheck) {
         check.bound_scans(),
         check.bound_ms(),
         check.scan_period_ms
+    );
+}
+
+/// What the enabled-event sets cost.
+fn print_scan_sets(out: &mut Out, sets: &codegen::image::ScanSets) {
+    outln!(
+        out,
+        "  enabled-event sets: {} word(s) per set; flash {} bytes of alphabets and {} bytes of masks (the enabled events are the rows above); RAM {} bytes",
+        sets.event_words,
+        sets.alphabet_bytes,
+        sets.mask_bytes,
+        sets.ram_bytes
     );
 }
 

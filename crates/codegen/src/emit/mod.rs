@@ -20,7 +20,7 @@ mod table;
 
 use crate::backend::table::{EncodedTable, Layout};
 use crate::error::{Error, Result};
-use crate::image::{ConfigPools, ImageCheck, LogicImage, TableImage};
+use crate::image::{ConfigPools, ImageCheck, LogicImage, ScanSets, TableImage};
 use crate::project::ident::sanitize;
 use crate::project::{Project, SupervisorSource};
 use executor::program as ex;
@@ -96,6 +96,8 @@ pub struct Generated {
     pub crc: u32,
     /// The image's size and the background test's figures.
     pub image: ImageCheck,
+    /// The sizes of the enabled-event sets.
+    pub sets: ScanSets,
 }
 
 /// A sanitised identifier (validation guarantees one exists).
@@ -416,6 +418,7 @@ pub fn generate_with_progress(
         stats: program.stats,
         crc: program.crc,
         image: program.image,
+        sets: ScanSets::of(&ConfigPools::from_project(project)?),
     })
 }
 
