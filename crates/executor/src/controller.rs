@@ -482,7 +482,7 @@ fn refresh_allowed<P: Program>(
 
 /// Supervisor `j`'s words of the `allowed` sets (empty past the last).
 #[inline]
-fn allowed_of<'r>(allowed: &'r mut [u32], event_words: usize, j: usize) -> &'r mut [u32] {
+fn allowed_of(allowed: &mut [u32], event_words: usize, j: usize) -> &mut [u32] {
     allowed
         .get_mut(j * event_words..(j + 1) * event_words)
         .unwrap_or_default()
