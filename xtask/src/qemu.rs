@@ -372,7 +372,10 @@ fn thumbv6m_size(
     std::fs::copy(&elf, &copy).map_err(|e| format!("{}: {e}", copy.display()))?;
     let f = run_qemu(qemu, &copy)?;
     if f.mismatches > 0 {
-        return Err(format!("{name} (table, thumbv6m): {} mismatches", f.mismatches));
+        return Err(format!(
+            "{name} (table, thumbv6m): {} mismatches",
+            f.mismatches
+        ));
     }
     Ok(Some(format!(
         "thumbv6m-none-eabi (Cortex-M0+) harness of {name}: flash {} bytes without the scenario, static RAM {ram} bytes; instructions per scan median {}, p99 {}, max {}, quiet median {} ({} scans, 0 mismatches)",
