@@ -76,23 +76,10 @@ pub struct SupervisorTable<'a> {
 /// The `width`-bit entry `index` of a packed array (0 if out of range).
 #[inline]
 pub fn read_bits(words: &[u32], index: usize, width: u8) -> u32 {
-    let width = width as usize;
     if width == 0 {
         return 0;
     }
-    let bit = index * width;
-    let (word, offset) = (bit / 32, bit % 32);
-    let low = words.get(word).copied().unwrap_or(0) >> offset;
-    let value = if offset + width > 32 {
-        low | (words.get(word + 1).copied().unwrap_or(0) << (32 - offset))
-    } else {
-        low
-    };
-    if width >= 32 {
-        value
-    } else {
-        value & ((1u32 << width) - 1)
-    }
+    read_bits_at(words, index * usize::from(width), width)
 }
 
 /// The `width` bits (`1..=32`) starting at bit `bit` of a bit array (bits
