@@ -404,6 +404,15 @@ pub fn read_component(text: &str, origin: &Path) -> Result<Component> {
             "missing `State size` section (expected `State size (…):` followed by the number of states)",
         ));
     };
+    // TCT writes every section; a file without `Transitions:` was cut
+    // short, and reading it as a model without transitions would be wrong
+    // without a word.
+    if !seen.contains(&Section::Transitions) {
+        return Err(r.syntax(
+            text.len(),
+            "missing `Transitions:` section (is the file cut short? TCT writes it even when empty)",
+        ));
+    }
 
     let name = name_comment
         .or(name_line.map(str::to_owned))
@@ -697,6 +706,14 @@ mod tests {
         let text = write(&a);
         assert!(!text.contains("# event"), "{text}");
         assert_eq!(read(&text, p()).unwrap(), a);
+    }
+
+    #[test]
+    fn a_file_cut_before_its_transitions_is_an_error() {
+        let cut = &TCT[..TCT.find("Transitions:").unwrap()];
+        let err = read(cut, p()).unwrap_err().to_string();
+        assert!(err.contains("missing `Transitions:` section"), "{err}");
+        assert!(read(TCT, p()).is_ok());
     }
 
     #[test]

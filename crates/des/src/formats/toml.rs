@@ -65,7 +65,9 @@ struct File {
     #[serde(default)]
     states: Option<Vec<Name>>,
     #[serde(default)]
-    transitions: Vec<Spanned<(Name, Name, Name)>>,
+    /// `[source, event, target]`; read as a list so that a wrong length is
+    /// a located error rather than extra elements silently dropped.
+    transitions: Vec<Spanned<Vec<Name>>>,
 }
 
 /// Parses a native TOML automaton; `origin` names the file in errors.
@@ -125,7 +127,16 @@ pub fn read(text: &str, origin: &Path) -> Result<Component> {
     }
 
     for t in &file.transitions {
-        let (source, event, target) = t.get_ref();
+        let [source, event, target] = t.get_ref().as_slice() else {
+            return Err(Error::model(
+                at(t.span()),
+                format!(
+                    "a transition is [source, event, target]: this one has {} element{}",
+                    t.get_ref().len(),
+                    if t.get_ref().len() == 1 { "" } else { "s" }
+                ),
+            ));
+        };
         let e = b.alphabet().id(event.get_ref()).ok_or_else(|| {
             Error::model(
                 at(event.span()),
@@ -343,6 +354,22 @@ transitions = [
             .alphabet()
             .is_controllable(a.alphabet().id("break").unwrap()));
         assert_eq!(a.marked_states().collect::<Vec<_>>(), [StateId(0)]);
+    }
+
+    #[test]
+    fn a_transition_of_other_than_three_elements_is_a_located_error() {
+        for (row, n) in [
+            (r#"["a", "e", "b", "c"]"#, "4 elements"),
+            (r#"["a", "e"]"#, "2 elements"),
+            (r#"["a"]"#, "1 element"),
+        ] {
+            let text = format!(
+                "name = \"x\"\ninitial = \"a\"\ncontrollable = [\"e\"]\ntransitions = [{row}]\n"
+            );
+            let err = read(&text, p()).unwrap_err().to_string();
+            assert!(err.contains(":4:16:"), "{err}");
+            assert!(err.contains(n), "{err}");
+        }
     }
 
     #[test]
