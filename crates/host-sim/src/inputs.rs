@@ -34,18 +34,35 @@ pub fn parse(text: &str, file: &Path, project: &Project) -> Result<Vec<InputRow>
         line,
         message,
     };
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim_end_matches('\r')))
-        .filter(|(_, l)| !l.trim().is_empty());
-    let Some((hline, header)) = lines.next() else {
+    // A byte-order mark (spreadsheet exports write one) is not part of the
+    // header; fields may be quoted as the trace writer quotes them.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let mut records = reader.records().filter(|r| {
+        r.as_ref()
+            .map_or(true, |r| !(r.len() == 1 && r[0].is_empty()))
+    });
+    let line_of = |r: &csv::StringRecord| r.position().map_or(1, |p| p.line() as usize);
+    let record = |r: Option<Result<csv::StringRecord, csv::Error>>| match r {
+        Some(Ok(r)) => Ok(Some(r)),
+        Some(Err(e)) => {
+            let line = e.position().map_or(1, |p| p.line() as usize);
+            Err(err(line, format!("not CSV: {e}")))
+        }
+        None => Ok(None),
+    };
+    let Some(header) = record(records.next())? else {
         return Err(err(
             1,
             "empty file: expected the header `scan,time_ms,<inputs…>`".into(),
         ));
     };
-    let columns: Vec<&str> = header.split(',').map(str::trim).collect();
+    let hline = line_of(&header);
+    let columns: Vec<&str> = header.iter().collect();
     if columns.len() < 2 || columns[0] != "scan" || columns[1] != "time_ms" {
         return Err(err(
             hline,
@@ -79,8 +96,9 @@ pub fn parse(text: &str, file: &Path, project: &Project) -> Result<Vec<InputRow>
     }
     let mut rows = Vec::new();
     let mut last_time = 0u64;
-    for (n, line) in lines {
-        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+    while let Some(row) = record(records.next())? {
+        let n = line_of(&row);
+        let cells: Vec<&str> = row.iter().collect();
         if cells.len() != columns.len() {
             return Err(err(
                 n,
@@ -103,6 +121,17 @@ pub fn parse(text: &str, file: &Path, project: &Project) -> Result<Vec<InputRow>
             return Err(err(
                 n,
                 format!("time_ms goes back from {last_time} to {time}"),
+            ));
+        }
+        // The controller's clock compares times modulo 2^32 as signed
+        // differences: a longer gap would hide every timer expiry in it.
+        if !rows.is_empty() && time - last_time >= 1 << 31 {
+            return Err(err(
+                n,
+                format!(
+                    "time_ms jumps by {} ms from {last_time}: gaps between scans must stay below 2^31 ms (about 24.8 days)",
+                    time - last_time
+                ),
             ));
         }
         last_time = time;
@@ -132,7 +161,7 @@ pub fn to_csv(project: &Project, rows: &[InputRow]) -> String {
     let mut out = String::from("scan,time_ms");
     for i in &project.inputs {
         out.push(',');
-        out.push_str(&i.name);
+        out.push_str(&crate::trace::field(&i.name));
     }
     out.push('\n');
     for (k, r) in rows.iter().enumerate() {

@@ -68,6 +68,49 @@ fn press_cycle_replays_to_the_reviewed_trace_on_both_backends() {
 }
 
 #[test]
+fn a_bom_and_quoted_fields_read_as_the_plain_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let plain = std::fs::read_to_string(repo("models/press/cycle.inputs.csv")).unwrap();
+    // A spreadsheet's export: byte-order mark, quoted header cells, CRLF.
+    let exported = format!(
+        "\u{feff}{}",
+        plain
+            .replacen(
+                "scan,time_ms,auto_pb",
+                "\"scan\",\"time_ms\",\"auto_pb\"",
+                1
+            )
+            .replace('\n', "\r\n")
+    );
+    let inputs = dir.path().join("exported.csv");
+    std::fs::write(&inputs, exported).unwrap();
+    let out = dir.path().join("t.csv");
+    let result = replay(&inputs, &out, &[]);
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let expected = std::fs::read_to_string(repo("models/press/cycle.trace.csv")).unwrap();
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), expected);
+}
+
+#[test]
+fn a_time_gap_the_clock_cannot_compare_is_an_error_at_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let inputs = dir.path().join("gap.csv");
+    let text = std::fs::read_to_string(repo("models/press/cycle.inputs.csv"))
+        .unwrap()
+        .replace("\n4,40,", "\n4,2147483688,");
+    std::fs::write(&inputs, text.replace("\n5,50,", "\n5,2147483698,")).unwrap();
+    let result = replay(&inputs, &dir.path().join("t.csv"), &[]);
+    assert_eq!(result.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(stderr.contains("gap.csv:6"), "{stderr}");
+    assert!(stderr.contains("below 2^31 ms"), "{stderr}");
+}
+
+#[test]
 fn a_bad_inputs_file_is_an_error_at_its_line() {
     let dir = tempfile::tempdir().unwrap();
     let inputs = dir.path().join("bad.csv");
