@@ -161,6 +161,11 @@ pub fn write_string(format: Format, components: &[Component]) -> Result<String> 
             components.len()
         )));
     }
+    if format == Format::Wmod {
+        if let Some(why) = wmod::unwritable_name(components) {
+            return Err(Error::Incompatible(why));
+        }
+    }
     Ok(match format {
         Format::Toml => toml::write(&components[0]),
         Format::Gen => gen::write_component(&components[0]),

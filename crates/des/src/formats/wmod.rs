@@ -40,8 +40,10 @@
 //! nodes into one edge, and lists alphabet events that occur on no edge
 //! in the graph's `<LabelBlock>`. A component with states but no marked
 //! state lists `:accepting` there too, so that it does not read back as
-//! "all marked". Characters that XML 1.0 cannot carry at all (most ASCII
-//! control characters) are written as U+FFFD.
+//! "all marked". A name holding a character that XML 1.0 cannot carry at
+//! all (most ASCII control characters) is refused by
+//! [`super::write_string`] ([`unwritable_name`]); [`write()`] itself
+//! writes such a character as U+FFFD.
 
 use super::{Component, Kind};
 use crate::automaton::{Alphabet, AutomatonBuilder, BuildError, StateId};
@@ -506,7 +508,8 @@ fn read_component(
 }
 
 /// Escapes text for an XML attribute value; characters XML 1.0 cannot
-/// carry become U+FFFD.
+/// carry become U+FFFD ([`write_string`](super::write_string) refuses
+/// names holding them first, see [`unwritable_name`]).
 fn escape_into(out: &mut String, s: &str) {
     for c in s.chars() {
         match c {
@@ -537,6 +540,38 @@ fn identifier(out: &mut String, indent: &str, name: &str) {
     out.push_str("<SimpleIdentifier");
     attr(out, "Name", name);
     out.push_str("/>\n");
+}
+
+/// A character XML 1.0 cannot carry (escaping cannot help).
+fn unwritable(c: char) -> bool {
+    matches!(c, '\u{0}'..='\u{8}' | '\u{b}' | '\u{c}' | '\u{e}'..='\u{1f}' | '\u{fffe}' | '\u{ffff}')
+}
+
+/// The first name of `components` (automaton, event or state) holding a
+/// character a `.wmod` file cannot carry, described for an error: written
+/// anyway it would become U+FFFD, and two names could collapse into one.
+pub fn unwritable_name(components: &[Component]) -> Option<String> {
+    let bad = |what: String, name: &str| {
+        name.chars().find(|&c| unwritable(c)).map(|c| {
+            format!(
+                "{what} {name:?} holds U+{:04X}, which a .wmod file (XML 1.0) cannot carry; rename it",
+                c as u32
+            )
+        })
+    };
+    components.iter().find_map(|c| {
+        let a = &c.automaton;
+        bad("automaton".into(), a.name())
+            .or_else(|| {
+                a.alphabet()
+                    .iter()
+                    .find_map(|(_, e)| bad(format!("event of `{}`", a.name()), &e.name))
+            })
+            .or_else(|| {
+                a.states()
+                    .find_map(|s| bad(format!("state of `{}`", a.name()), &a.state_name(s)))
+            })
+    })
 }
 
 /// Renders components as one Waters module.
@@ -678,6 +713,29 @@ fn write_component(out: &mut String, c: &Component, accepting: bool) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn names_xml_cannot_carry_are_refused_not_collapsed() {
+        let mut b = AutomatonBuilder::new("m");
+        b.add_event("go\u{1}", true).unwrap();
+        b.add_event("go\u{2}", true).unwrap();
+        let c = Component {
+            kind: Kind::Plant,
+            automaton: b.build().unwrap(),
+        };
+        let err = super::super::write_string(super::super::Format::Wmod, &[c])
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("U+0001"), "{err}");
+        // Tabs and line breaks are escaped, not refused.
+        let mut b = AutomatonBuilder::new("m\tn");
+        b.add_event("go\nnow", true).unwrap();
+        let c = Component {
+            kind: Kind::Plant,
+            automaton: b.build().unwrap(),
+        };
+        assert!(super::super::write_string(super::super::Format::Wmod, &[c]).is_ok());
+    }
 
     const SMALL: &str = r#"<?xml version="1.0" encoding="UTF-8" standalone="yes"?>
 <Module Name="small" xmlns="http://waters.sourceforge.net/xsd/module" xmlns:B="http://waters.sourceforge.net/xsd/base">
