@@ -932,3 +932,55 @@ fn a_million_transitions_read_fast() {
     );
     assert!(read.as_secs_f64() < 1.0, "{read:?}");
 }
+
+/// A flat entity amplification (no nesting, which the XML parser catches
+/// on its own): 1,000 references to a 1,000-byte entity, a file of about
+/// 10 KB that would expand to 1 MB, and proportionally more for larger
+/// files. Refused at the declaration, before any expansion.
+#[test]
+fn xml_entity_declarations_are_refused_at_their_line() {
+    let entity = "a".repeat(1000);
+    let refs = "&e;".repeat(1000);
+    for (format, text) in [
+        (
+            Format::Wmod,
+            format!(
+                "<?xml version=\"1.0\"?>\n<!DOCTYPE Module [\n<!ENTITY e \"{entity}\">\n]>\n<Module Name=\"{refs}\"/>\n"
+            ),
+        ),
+        (
+            Format::Gen,
+            format!(
+                "<?xml version=\"1.0\"?>\n<!DOCTYPE Generator [\n<!ENTITY e \"{entity}\">\n]>\n<Generator name=\"{refs}\"/>\n"
+            ),
+        ),
+    ] {
+        let err = read_str(&text, format, Path::new("amplified")).unwrap_err();
+        assert_eq!(location(&err).0, 3, "{err}");
+        assert!(err.to_string().contains("entity declarations"), "{err}");
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn devices_fifos_and_directories_are_not_model_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let zero = dir.path().join("zero.gen");
+    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    let fifo = dir.path().join("pipe.toml");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    let folder = dir.path().join("folder.wmod");
+    std::fs::create_dir(&folder).unwrap();
+    let mut paths = vec![zero, folder];
+    if made.is_ok_and(|s| s.success()) {
+        paths.push(fifo);
+    }
+    for path in paths {
+        let err = formats::read_file(&path).unwrap_err().to_string();
+        assert!(
+            err.contains("not a regular file"),
+            "{}: {err}",
+            path.display()
+        );
+    }
+}

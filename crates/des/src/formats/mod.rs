@@ -128,6 +128,23 @@ pub fn read_str(text: &str, format: Format, origin: &Path) -> Result<Vec<Compone
 /// Reads every automaton in the file at `path` (format by extension).
 pub fn read_file(path: &Path) -> Result<Vec<Component>> {
     let format = Format::from_path(path)?;
+    // A device or a FIFO could be read forever; a file larger than any
+    // model is a mistake rather than a model.
+    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+    if !meta.is_file() {
+        return Err(Error::Incompatible(format!(
+            "{}: not a regular file (a model must be a file, not a device, FIFO or directory)",
+            path.display()
+        )));
+    }
+    if meta.len() > MAX_MODEL_BYTES {
+        return Err(Error::Incompatible(format!(
+            "{}: {} bytes, more than the {} MiB a model file may have",
+            path.display(),
+            meta.len(),
+            MAX_MODEL_BYTES >> 20
+        )));
+    }
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     // libFAUDES writes ISO-8859-1; accept it by mapping bytes to chars
     // when the file is not UTF-8 (names stay intact for ASCII input).
@@ -137,6 +154,10 @@ pub fn read_file(path: &Path) -> Result<Vec<Component>> {
     };
     read_str(&text, format, path)
 }
+
+/// The largest model file [`read_file`] reads (256 MiB: the largest
+/// benchmark results, phil10's 459,250 transitions, take 12 MiB as `.gen`).
+pub const MAX_MODEL_BYTES: u64 = 256 << 20;
 
 /// Reads the file at `path`, which must hold exactly one automaton.
 pub fn read_automaton(path: &Path) -> Result<Automaton> {
@@ -180,9 +201,18 @@ pub fn write_file(path: &Path, components: &[Component]) -> Result<()> {
     std::fs::write(path, text).map_err(|e| Error::io(path, e))
 }
 
-/// Parses XML (DTDs allowed, as Supremica and libFAUDES write them), with a
-/// syntax error at the offending line and column of `origin`.
+/// Parses XML (DTDs allowed, as Supremica and libFAUDES write them, but no
+/// entity declarations), with a syntax error at the offending line and
+/// column of `origin`.
 fn parse_xml<'t>(text: &'t str, origin: &Path) -> Result<roxmltree::Document<'t>> {
+    // Entities are the one way a small XML file expands into gigabytes
+    // (flat repetition as well as nesting); no model format needs them.
+    if let Some(at) = text.find("<!ENTITY") {
+        return Err(Error::syntax(
+            Location::at_offset(origin, text, at),
+            "XML entity declarations are not accepted (they can expand a small file into gigabytes): write the text out",
+        ));
+    }
     let opts = roxmltree::ParsingOptions {
         allow_dtd: true,
         ..roxmltree::ParsingOptions::default()
