@@ -33,6 +33,10 @@ pub struct SynthArgs {
     /// states (saves memory on very large models).
     #[arg(long)]
     no_state_names: bool,
+    /// Refuse a composition beyond this many states (memory grows with
+    /// them: about 100 bytes a state and more with names).
+    #[arg(long, default_value_t = ops::sync::DEFAULT_MAX_STATES)]
+    max_states: usize,
 }
 
 #[derive(Debug, serde::Serialize)]
@@ -94,8 +98,8 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, Error
     let options = SynthesisOptions {
         compose: ComposeOptions {
             name_states: !args.no_state_names,
+            max_states: args.max_states,
             progress: &spinner,
-            ..ComposeOptions::default()
         },
         minstate: args.minstate,
     };
