@@ -170,23 +170,35 @@ fn run(cli: Cli) -> Result<(), String> {
             for w in &sim.project().warnings {
                 note!("warning: {}:{}: {}", project.display(), w.line, w.message);
             }
-            let rows = inputs::parse(&read(&inputs_path)?, &inputs_path, sim.project())
-                .map_err(|e| e.to_string())?;
-            let trace_rows = replay::replay(&mut sim, &rows).map_err(|e| e.to_string())?;
-            write(&out, trace::to_csv(sim.project(), &trace_rows).as_bytes())?;
-            if let Some(path) = vcd_path {
-                let mut buf = Vec::new();
-                vcd::write(&mut buf, sim.project(), &rows, &trace_rows)
-                    .map_err(|e| e.to_string())?;
-                write(&path, &buf)?;
+            match vcd_path {
+                // The waveform needs the whole run; without it the replay
+                // streams: constant memory however long the inputs file.
+                Some(path) => {
+                    let rows = inputs::parse(&read(&inputs_path)?, &inputs_path, sim.project())
+                        .map_err(|e| e.to_string())?;
+                    let trace_rows = replay::replay(&mut sim, &rows).map_err(|e| e.to_string())?;
+                    write(&out, trace::to_csv(sim.project(), &trace_rows).as_bytes())?;
+                    let mut buf = Vec::new();
+                    vcd::write(&mut buf, sim.project(), &rows, &trace_rows)
+                        .map_err(|e| e.to_string())?;
+                    write(&path, &buf)?;
+                    let faults = trace_rows.iter().filter(|r| r.fault.is_some()).count();
+                    let events = trace_rows.iter().map(|r| r.events.len()).sum::<usize>();
+                    note!(
+                        "replayed {} scans: {events} events executed, {faults} scans in fault mode",
+                        trace_rows.len()
+                    );
+                }
+                None => {
+                    let totals = replay::stream(&mut sim, &inputs_path, &out)?;
+                    note!(
+                        "replayed {} scans: {} events executed, {} scans in fault mode",
+                        totals.scans,
+                        totals.events,
+                        totals.faults
+                    );
+                }
             }
-            let faults = trace_rows.iter().filter(|r| r.fault.is_some()).count();
-            note!(
-                "replayed {} scans: {} events executed, {} scans in fault mode",
-                trace_rows.len(),
-                trace_rows.iter().map(|r| r.events.len()).sum::<usize>(),
-                faults
-            );
             Ok(())
         }
         Command::Boiler {

@@ -118,6 +118,8 @@ pub struct Sim {
     pacer: Pacer,
     last_start: Option<ScanStart>,
     trace: Vec<TraceRow>,
+    /// Keep every row in `trace` (else only the last one).
+    retain_trace: bool,
 }
 
 impl Sim {
@@ -143,7 +145,15 @@ impl Sim {
             pacer,
             last_start: None,
             trace: Vec::new(),
+            retain_trace: true,
         })
+    }
+
+    /// Whether the trace keeps every scan (the default) or only the last
+    /// one, so that a long run streamed elsewhere holds constant memory.
+    pub fn retain_trace(&mut self, keep: bool) -> &mut Self {
+        self.retain_trace = keep;
+        self
     }
 
     /// The project.
@@ -247,6 +257,9 @@ impl Sim {
         }
         let record = self.controller.scan(time_ms as u32, raw);
         let row = TraceRow::from_record(&record, time_ms, &self.project);
+        if !self.retain_trace {
+            self.trace.clear();
+        }
         self.trace.push(row);
         Ok(self.trace.last().expect("just pushed"))
     }
