@@ -22,8 +22,18 @@ fn env(name: &str) -> Option<String> {
     std::env::var(name).ok().filter(|v| !v.is_empty())
 }
 
+/// `path` as cargo reads it back from a `cargo:` line; exits with an error
+/// for a path that would break or inject a line (`PLC_SCENARIO` and the
+/// checkout's directory come from the user).
+fn printable(path: &Path) -> &str {
+    codegen::build::printable_path(path).unwrap_or_else(|reason| {
+        eprintln!("error: {path:?} cannot be named to cargo: {reason}");
+        std::process::exit(1);
+    })
+}
+
 fn copy(from: &Path, to: &Path) {
-    println!("cargo:rerun-if-changed={}", from.display());
+    println!("cargo:rerun-if-changed={}", printable(from));
     if let Err(e) = std::fs::copy(from, to) {
         eprintln!("error: copying {} to {}: {e}", from.display(), to.display());
         std::process::exit(1);
@@ -72,8 +82,11 @@ fn main() {
         "layout/stm32f411re.x"
     });
     copy(&layout, &out.join("plc-layout.x"));
-    println!("cargo:rerun-if-changed={}", root.join("memory.x").display());
-    println!("cargo:rustc-link-search={}", out.display());
+    println!(
+        "cargo:rerun-if-changed={}",
+        printable(&root.join("memory.x"))
+    );
+    println!("cargo:rustc-link-search={}", printable(&out));
     if bare_metal {
         println!("cargo:rustc-link-arg-bins=-Tlink.x");
         if board {

@@ -20,11 +20,93 @@
 //! plant and specification files of synthesised supervisors) is announced
 //! with `cargo:rerun-if-changed`, and validation warnings become
 //! `cargo:warning` lines.
+//!
+//! Cargo reads a build script's standard output as lines split at `\n`,
+//! each trimmed, a line that is not UTF-8 skipped, and every line starting
+//! with `cargo:` taken as a directive. A path with a line break would start
+//! a directive of its own choosing (`cargo:rustc-env=…`, linker arguments),
+//! so a path is printed only if cargo reads it back unchanged
+//! ([`printable_path`]); anything else fails the build, naming the file,
+//! before a single line is printed. Warning text has its control
+//! characters replaced ([`warning_line`]).
 
 use crate::emit::{generate, Backend, Generated};
 use crate::error::{Error, Result};
 use crate::project;
+use std::fmt;
 use std::path::{Path, PathBuf};
+
+/// Why a path cannot go into a `cargo:` line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UnprintablePath {
+    /// Not valid UTF-8: cargo skips a line that is not UTF-8.
+    NotUtf8,
+    /// A control character: a line feed ends the directive and starts
+    /// another, a carriage return hides text on a terminal.
+    Control(char),
+    /// Whitespace at the end, which cargo trims off the line.
+    TrailingWhitespace,
+}
+
+impl fmt::Display for UnprintablePath {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            UnprintablePath::NotUtf8 => f.write_str("it is not valid UTF-8"),
+            UnprintablePath::Control(c) => {
+                write!(f, "it holds the control character U+{:04X}", u32::from(*c))
+            }
+            UnprintablePath::TrailingWhitespace => f.write_str("it ends in whitespace"),
+        }
+    }
+}
+
+/// `path` as text that cargo reads back unchanged from a `cargo:` line, or
+/// why there is none.
+pub fn printable_path(path: &Path) -> std::result::Result<&str, UnprintablePath> {
+    let text = path.to_str().ok_or(UnprintablePath::NotUtf8)?;
+    if let Some(c) = text.chars().find(|c| c.is_control()) {
+        return Err(UnprintablePath::Control(c));
+    }
+    if text.ends_with(char::is_whitespace) {
+        return Err(UnprintablePath::TrailingWhitespace);
+    }
+    Ok(text)
+}
+
+/// The `cargo:rerun-if-changed` line of every file of a project (the
+/// project file `project` first), or an error naming the first file that
+/// cannot be printed.
+pub fn rerun_lines(project: &Path, files: &[PathBuf]) -> Result<Vec<String>> {
+    files
+        .iter()
+        .map(|file| match printable_path(file) {
+            Ok(text) => Ok(format!("cargo:rerun-if-changed={text}")),
+            Err(reason) if file == project => Err(Error::Incompatible(format!(
+                "the project file {file:?} cannot be named to cargo (`cargo:rerun-if-changed`): \
+                 {reason}; rename it"
+            ))),
+            Err(reason) => Err(Error::Incompatible(format!(
+                "{project:?}: the model file {file:?} cannot be named to cargo \
+                 (`cargo:rerun-if-changed`): {reason}; rename it"
+            ))),
+        })
+        .collect()
+}
+
+/// The `cargo:warning` line of `text`: line breaks become spaces and every
+/// other control character its escape (`\u{1b}`), so that the warning
+/// stays one line and prints as it reads.
+pub fn warning_line(text: &str) -> String {
+    let mut line = String::from("cargo:warning=");
+    for c in text.chars() {
+        match c {
+            '\n' | '\r' => line.push(' '),
+            c if c.is_control() => line.extend(c.escape_default()),
+            c => line.push(c),
+        }
+    }
+    line
+}
 
 /// A generation request.
 #[derive(Debug, Clone)]
@@ -91,16 +173,15 @@ impl Build {
             })?,
         };
         let project = project::load(&self.project)?;
-        for file in &project.files {
-            println!("cargo:rerun-if-changed={}", file.display());
+        // Every line is checked before any is printed: a refused path
+        // fails the build without half its directives.
+        let rerun = rerun_lines(&self.project, &project.files)?;
+        for line in rerun {
+            println!("{line}");
         }
         for w in &project.warnings {
-            println!(
-                "cargo:warning={}:{}: {}",
-                self.project.display(),
-                w.line,
-                w.message.replace('\n', " ")
-            );
+            let text = format!("{}:{}: {}", self.project.display(), w.line, w.message);
+            println!("{}", warning_line(&text));
         }
         let backend = self.backend.name();
         let regenerate = format!(
@@ -132,8 +213,85 @@ impl Build {
 
 #[cfg(test)]
 mod tests {
-    use super::output_stem;
-    use std::path::Path;
+    use super::{output_stem, printable_path, rerun_lines, warning_line, UnprintablePath};
+    use std::path::{Path, PathBuf};
+
+    #[test]
+    fn ordinary_paths_become_one_rerun_line_each() {
+        let files = [
+            PathBuf::from("models/press.plc.toml"),
+            PathBuf::from("models/plant/motor 1.toml"),
+            PathBuf::from("/abs/é/spec.gen"),
+        ];
+        assert_eq!(
+            rerun_lines(&files[0], &files).unwrap(),
+            [
+                "cargo:rerun-if-changed=models/press.plc.toml",
+                "cargo:rerun-if-changed=models/plant/motor 1.toml",
+                "cargo:rerun-if-changed=/abs/é/spec.gen",
+            ]
+        );
+    }
+
+    #[test]
+    fn a_path_cargo_would_misread_is_refused() {
+        let refused = |path: &str| printable_path(Path::new(path)).unwrap_err();
+        assert_eq!(
+            refused("plant/a\ncargo:rustc-env=PWNED=1.toml"),
+            UnprintablePath::Control('\n')
+        );
+        assert_eq!(refused("plant/a\r.toml"), UnprintablePath::Control('\r'));
+        assert_eq!(
+            refused("plant/a\u{1b}[2K.toml"),
+            UnprintablePath::Control('\u{1b}')
+        );
+        assert_eq!(
+            refused("plant/a.toml "),
+            UnprintablePath::TrailingWhitespace
+        );
+        assert_eq!(
+            refused("plant/a.toml\u{a0}"),
+            UnprintablePath::TrailingWhitespace
+        );
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_path_that_is_not_utf8_is_refused() {
+        use std::os::unix::ffi::OsStrExt;
+        let path = Path::new(std::ffi::OsStr::from_bytes(b"plant/\xff.toml"));
+        assert_eq!(printable_path(path), Err(UnprintablePath::NotUtf8));
+    }
+
+    #[test]
+    fn a_refused_file_fails_the_whole_list_naming_the_file_and_the_project() {
+        let project = PathBuf::from("p.plc.toml");
+        let files = [
+            project.clone(),
+            PathBuf::from("plant/a\ncargo:rustc-cfg=x.toml"),
+        ];
+        assert_eq!(
+            rerun_lines(&project, &files).unwrap_err().to_string(),
+            "\"p.plc.toml\": the model file \"plant/a\\ncargo:rustc-cfg=x.toml\" cannot be named \
+             to cargo (`cargo:rerun-if-changed`): it holds the control character U+000A; rename it"
+        );
+        let project = PathBuf::from("p\r.plc.toml");
+        assert_eq!(
+            rerun_lines(&project, std::slice::from_ref(&project))
+                .unwrap_err()
+                .to_string(),
+            "the project file \"p\\r.plc.toml\" cannot be named to cargo \
+             (`cargo:rerun-if-changed`): it holds the control character U+000D; rename it"
+        );
+    }
+
+    #[test]
+    fn a_warning_stays_one_line_with_its_control_characters_visible() {
+        assert_eq!(
+            warning_line("p.plc.toml:3: event `a\ncargo:rustc-cfg=x`\r\u{1b}[31m"),
+            "cargo:warning=p.plc.toml:3: event `a cargo:rustc-cfg=x` \\u{1b}[31m"
+        );
+    }
 
     #[test]
     fn output_names_come_from_the_file_name() {

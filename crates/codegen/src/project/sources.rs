@@ -20,11 +20,17 @@
 //! reported at the line of the project that names it; errors inside a
 //! model file propagate unchanged (they point into that file). Every file
 //! read is recorded, once, for `rerun-if-changed` ([`Project::files`](super::Project::files)).
+//! A model path that a build script could not print for cargo (a line
+//! break or other control character, not UTF-8, trailing whitespace:
+//! [`printable_path`]) is refused at the line that names it, with the
+//! pattern that matched it: such a name is never what the user meant, and
+//! printed it could inject a `cargo:` directive into their build.
 
 use super::locate::ProjectFile;
 use super::model::SupervisorSource;
 use super::parse::{names, Name, RawSupervisor};
 use crate::automaton::{Alphabet, Automaton};
+use crate::build::printable_path;
 use crate::error::{Error, Result};
 use crate::formats::{self, Component, Kind};
 use crate::ops;
@@ -209,9 +215,31 @@ impl Loader<'_> {
         })
     }
 
+    /// Refuses a model path that a build script could not print for cargo
+    /// ([`printable_path`]), at `span`, naming the glob `pattern` that
+    /// matched it if any.
+    fn check_printable(
+        &self,
+        file: &Path,
+        span: &Range<usize>,
+        pattern: Option<&str>,
+    ) -> Result<()> {
+        printable_path(file).map(drop).map_err(|reason| {
+            let matched = pattern.map_or(String::new(), |p| format!(" (matched by `{p}`)"));
+            self.error(
+                span,
+                format!(
+                    "model file {file:?}{matched}: {reason}; rename the file \
+                     (a build script could not name it to cargo)"
+                ),
+            )
+        })
+    }
+
     /// Reads a model file named at `span`; I/O and format errors are
     /// reported at that line, errors inside the file propagate unchanged.
     fn read_model(&mut self, file: &Path, span: &Range<usize>) -> Result<Vec<Component>> {
+        self.check_printable(file, span, None)?;
         self.depend_on(file);
         formats::read_file(file).map_err(|e| match e {
             Error::Io { path, source } => self.error(
@@ -329,6 +357,7 @@ impl Loader<'_> {
                 if !file.is_file() {
                     continue;
                 }
+                self.check_printable(&file, &span, Some(p))?;
                 any = true;
                 if !files.iter().any(|(f, _)| *f == file) {
                     files.push((file, span.clone()));
@@ -406,6 +435,66 @@ mod tests {
         assert!(
             err.starts_with("dir/p.plc.toml:5:8: cannot read model file `dir/absent.toml`"),
             "{err}"
+        );
+    }
+
+    /// A project in a fresh directory whose only supervisor is synthesised
+    /// from `plants = [pattern]`, with the model file `plant/<name>`.
+    fn globbed_project(name: &std::ffi::OsStr) -> (tempfile::TempDir, String) {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join("plant")).unwrap();
+        std::fs::write(dir.path().join("plant").join(name), "").unwrap();
+        let project = dir.path().join("p.plc.toml");
+        let text =
+            "[plc]\nname = \"p\"\n[[supervisor]]\nsynthesize = { plants = [\"plant/*.toml\"] }\n";
+        let err = from_str(text, &project).unwrap_err().to_string();
+        (dir, err)
+    }
+
+    #[test]
+    fn a_globbed_model_file_with_a_line_break_in_its_name_is_refused_at_its_pattern() {
+        let (dir, err) = globbed_project("plant\ncargo:rustc-env=PWNED=1.toml".as_ref());
+        let dir = dir.path().display();
+        assert_eq!(
+            err,
+            format!(
+                "{dir}/p.plc.toml:4:26: model file \"{dir}/plant/plant\\ncargo:rustc-env=PWNED=1.toml\" \
+                 (matched by `plant/*.toml`): it holds the control character U+000A; rename the file \
+                 (a build script could not name it to cargo)"
+            )
+        );
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_model_path_that_is_not_utf8_is_refused_at_its_line() {
+        use std::os::unix::ffi::OsStrExt;
+        let project = Path::new(std::ffi::OsStr::from_bytes(b"\xff/p.plc.toml"));
+        let err = from_str(
+            "[plc]\nname = \"p\"\n[[supervisor]]\nfile = \"m.toml\"\n",
+            project,
+        )
+        .unwrap_err()
+        .to_string();
+        assert_eq!(
+            err,
+            "\u{fffd}/p.plc.toml:4:8: model file \"\\xFF/m.toml\": it is not valid UTF-8; \
+             rename the file (a build script could not name it to cargo)"
+        );
+    }
+
+    #[test]
+    fn a_named_model_file_with_a_carriage_return_is_refused_at_its_line() {
+        let err = from_str(
+            "[plc]\nname = \"p\"\n[[supervisor]]\nfile = \"m\\r.toml\"\n",
+            Path::new("dir/p.plc.toml"),
+        )
+        .unwrap_err()
+        .to_string();
+        assert_eq!(
+            err,
+            "dir/p.plc.toml:4:8: model file \"dir/m\\r.toml\": it holds the control character \
+             U+000D; rename the file (a build script could not name it to cargo)"
         );
     }
 
