@@ -163,6 +163,22 @@ fn the_small_factory_is_synthesised_into_the_12_state_supervisor() {
 }
 
 #[test]
+fn a_synthesis_beyond_its_max_states_is_refused_at_its_line() {
+    // The small factory's plant composes to 9 states.
+    let base = std::fs::read_to_string(fixture("factory.plc.toml")).unwrap();
+    let text = base.replace("*SPEC.gen\"] }", "*SPEC.gen\"], max_states = 5 }");
+    assert_ne!(text, base);
+    let err = load_err(&text);
+    assert!(err.contains("exceeds the limit of 5 states"), "{err}");
+    let line = base.lines().position(|l| l.contains("synthesize")).unwrap() + 1;
+    assert!(err.contains(&format!("t.plc.toml:{line}:")), "{err}");
+    let zero = base.replace("*SPEC.gen\"] }", "*SPEC.gen\"], max_states = 0 }");
+    assert!(load_err(&zero).contains("max_states must be a positive number"));
+    let enough = base.replace("*SPEC.gen\"] }", "*SPEC.gen\"], max_states = 100 }");
+    assert_eq!(load_ok(&enough).supervisors[0].automaton.num_states(), 12);
+}
+
+#[test]
 fn minimize_runs_minstate_on_the_synthesised_supervisor() {
     let text = std::fs::read_to_string(fixture("factory.plc.toml"))
         .unwrap()

@@ -221,7 +221,7 @@ pub(crate) struct RawSupervisor {
     pub synthesize: Option<Spanned<RawSynthesize>>,
 }
 
-/// `synthesize = { plants, specs, minimize }`.
+/// `synthesize = { plants, specs, minimize, max_states }`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawSynthesize {
@@ -230,6 +230,10 @@ pub(crate) struct RawSynthesize {
     pub specs: Option<Spanned<Names>>,
     #[serde(default)]
     pub minimize: bool,
+    /// The most states a composition may reach (default
+    /// [`crate::ops::sync::DEFAULT_MAX_STATES`]).
+    #[serde(default)]
+    pub max_states: Option<Spanned<u64>>,
 }
 
 /// `[board]`: the chip and the pin of each signal.

@@ -185,9 +185,23 @@ impl Loader<'_> {
             "specification",
             &mut origins,
         )?;
+        let max_states = match &s.max_states {
+            None => ops::sync::DEFAULT_MAX_STATES,
+            Some(n) => match usize::try_from(*n.get_ref()) {
+                Ok(n) if n > 0 => n,
+                _ => {
+                    return Err(
+                        self.error(&n.span(), "max_states must be a positive number of states")
+                    )
+                }
+            },
+        };
         let options = ops::SynthesisOptions {
             minstate: s.minimize,
-            ..ops::SynthesisOptions::default()
+            compose: ops::ComposeOptions {
+                max_states,
+                ..ops::ComposeOptions::default()
+            },
         };
         let automaton = ops::synthesize(&plant_automata, &spec_automata, options)
             .map_err(|e| match e {
