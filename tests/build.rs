@@ -15,6 +15,13 @@ use codegen::emit::Backend;
 const MODELS: [&str; 5] = ["motivating", "press", "press7", "conveyor", "crane"];
 
 fn main() {
+    // Names chosen to break generated code: compiled by `generated.rs`.
+    for backend in Backend::ALL {
+        Build::new("fixtures/hostile/hostile.plc.toml")
+            .backend(backend)
+            .file_name(format!("hostile_{}", backend.name()))
+            .generate_or_exit();
+    }
     for model in MODELS {
         for backend in Backend::ALL {
             let suffix = backend.name();

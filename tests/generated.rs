@@ -59,7 +59,34 @@ generated!(
     press7_match,
     conveyor_match,
     crane_match,
+    hostile_table,
+    hostile_logic,
+    hostile_match,
 );
+
+/// Supervisors named `fn`, `fn_`, `Self` and `type`, bidirectional
+/// overrides and non-ASCII letters in names (`tests/fixtures/hostile/`):
+/// every backend compiled above under `#[deny(warnings)]`, and the names
+/// come through as written.
+#[test]
+fn hostile_names_compile_on_every_backend_and_keep_their_text() {
+    let supervisors = ["fn", "fn_", "Self", "type"];
+    assert_eq!(hostile_table::supervisor::NAMES, supervisors);
+    assert_eq!(hostile_logic::supervisor::NAMES, supervisors);
+    assert_eq!(hostile_match::supervisor::NAMES, supervisors);
+    assert_eq!(hostile_table::input::NAMES[0], "go\u{2066}sensor");
+    assert_eq!(hostile_logic::states::FN[1], "busy \u{202e} evil");
+    for program in [
+        &hostile_table::PROGRAM as &dyn Program,
+        &hostile_logic::PROGRAM,
+        &hostile_match::PROGRAM,
+    ] {
+        // `go` is enabled in every supervisor's initial state.
+        for j in 0..4 {
+            assert_eq!(program.next_state(j, 0, 0), Some(1), "supervisor {j}");
+        }
+    }
+}
 
 /// What a generated module exports, gathered for the generic checks.
 struct Generated<P: Program + 'static, M: Memory> {

@@ -276,6 +276,15 @@ fn a_file_with_only_a_plant_runs_it_when_named() {
 /// Each case: a project with the offending line marked `# <-`, and what
 /// the error must say. The error must name the project file and that line.
 const ERRORS: &[(&str, &str)] = &[
+    // Identifiers the generated code reserves in every kind's module.
+    (
+        "[plc]\nname = \"x\"\n[inputs]\nCount = {} # <-\n",
+        "input name `Count` becomes the identifier `COUNT`, which generated code reserves",
+    ),
+    (
+        "[plc]\nname = \"x\"\n[outputs]\nnames = {} # <-\n",
+        "output name `names` becomes the identifier `NAMES`",
+    ),
     // Shape.
     (
         "[plc]\nname = \"x\"\n[eventz] # <-\n",

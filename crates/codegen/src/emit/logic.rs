@@ -8,7 +8,7 @@
 
 use super::{doc_text, one_line, quoted, Emitter, SupervisorStats};
 use crate::backend::logic::{Cover, Cube, LogicSupervisor};
-use crate::project::ident::snake_ident;
+use crate::project::ident::{snake_ident, supervisor_item};
 use executor::program as ex;
 use std::collections::HashSet;
 use std::fmt::Write;
@@ -75,7 +75,7 @@ fn code_literal(code: u32, bits: usize) -> String {
 /// identifiers, or into one-line text in doc comments, so no name can
 /// inject code; the functions use neither `std`, allocation nor `unsafe`.
 pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
-    let prefix = snake_ident(names.supervisor);
+    let prefix = supervisor_item(names.supervisor);
     let l = usize::from(logic.bits());
     let m = logic.events();
     // Identifiers of the event wires, unique and clear of the fixed locals;
@@ -93,7 +93,8 @@ pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
 
     let mut out = String::new();
     module_doc(&mut out, logic, names);
-    let _ = writeln!(out, "pub mod {prefix} {{");
+    // Names are lower-cased identifiers: unique, but free to hold `__`.
+    let _ = writeln!(out, "#[allow(non_snake_case)]\npub mod {prefix} {{");
     for (i, constant) in constants.iter().enumerate() {
         let _ = writeln!(
             out,
@@ -200,7 +201,12 @@ pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
             }
         })
         .collect();
-    let _ = writeln!(out, "    {}", assembled.join(" | "));
+    // One bit alone needs no parentheses (rustc warns about them).
+    let body = match assembled.as_slice() {
+        [one] => one.trim_start_matches('(').trim_end_matches(')').to_owned(),
+        _ => assembled.join(" | "),
+    };
+    let _ = writeln!(out, "    {body}");
     let _ = writeln!(out, "}}\n");
 
     // Φ
@@ -377,7 +383,7 @@ impl Emitter<'_> {
             "/// The supervisors as CMSSM next-state (`_next`) and enable (`_defined`) functions.\npub mod logic {{"
         );
         for (j, (sup, l)) in self.project.supervisors.iter().zip(logic).enumerate() {
-            let fn_name = snake_ident(&sup.name);
+            let fn_name = supervisor_item(&sup.name);
             let events: Vec<&str> = sup
                 .local_events
                 .iter()
@@ -553,7 +559,7 @@ mod tests {
         let [syn::Item::Mod(module)] = &file.items[..] else {
             panic!("one module expected:\n{code}");
         };
-        assert_eq!(module.ident, "sup__evil");
+        assert_eq!(module.ident, "sup_sup__evil");
         let items: Vec<String> = module
             .content
             .as_ref()
@@ -573,9 +579,9 @@ mod tests {
                 "X__FN_PWN____2",
                 "Q_2",
                 "BREAK_",
-                "sup__evil_next",
-                "sup__evil_defined",
-                "sup__evil_step"
+                "sup_sup__evil_next",
+                "sup_sup__evil_defined",
+                "sup_sup__evil_step"
             ]
         );
         assert!(code.contains("let q_2 = e == Q_2;"), "{code}");
@@ -687,7 +693,7 @@ mod tests {
         // As a program printing every (code, event) pair.
         let main = format!(
             "{code}\nfn main() {{\n    for q in 0..4u32 {{\n        for e in 0..6u16 {{\n            \
-             println!(\"{{q}} {{e}} {{:?}} {{}}\", mach_1::mach_1_step(q, e), mach_1::mach_1_next(q, e));\n        \
+             println!(\"{{q}} {{e}} {{:?}} {{}}\", sup_mach_1::sup_mach_1_step(q, e), sup_mach_1::sup_mach_1_next(q, e));\n        \
              }}\n    }}\n}}\n"
         );
         let exe = rustc(dir.path(), "emitted_main", &main, &[]);

@@ -3,7 +3,7 @@
 //! the `Match` program over them. Used to measure the other backends.
 
 use super::{ident, quoted, Emitter, SupervisorStats};
-use crate::project::ident::snake_ident;
+use crate::project::ident::supervisor_item;
 use executor::program as ex;
 use std::fmt::Write;
 
@@ -18,7 +18,7 @@ impl Emitter<'_> {
         );
         for (j, sup) in self.project.supervisors.iter().enumerate() {
             let a = &sup.automaton;
-            let fn_name = snake_ident(&sup.name);
+            let fn_name = supervisor_item(&sup.name);
             let mut cases = String::new();
             for s in a.states() {
                 for (local, &(_, id)) in sup.local_events.iter().enumerate() {
@@ -29,7 +29,7 @@ impl Emitter<'_> {
             }
             let _ = writeln!(
                 self.out,
-                "/// Supervisor {} ({}).\n///\n/// {} States are the indices of `states::{}`.\npub fn {fn_name}(state: u32, event: u16) -> Option<u32> {{ match (state, event) {{ {cases} _ => None }} }}",
+                "/// Supervisor {} ({}).\n///\n/// {} States are the indices of `states::{}`.\n#[allow(non_snake_case)]\npub fn {fn_name}(state: u32, event: u16) -> Option<u32> {{ match (state, event) {{ {cases} _ => None }} }}",
                 quoted(&sup.name),
                 self.source_line(j),
                 self.local_events_line(j),

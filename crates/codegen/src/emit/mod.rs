@@ -108,15 +108,20 @@ fn ident(name: &str) -> String {
 /// Text on one line: control characters (line breaks among them) become
 /// spaces, so it cannot end a comment.
 fn one_line(text: &str) -> String {
-    text.chars()
-        .map(|c| {
-            if c.is_control() || c == '\u{2028}' || c == '\u{2029}' {
-                ' '
-            } else {
-                c
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            // Bidirectional overrides and isolates would make the comment
+            // read differently from what it says (rustc denies them in
+            // comments): written as escapes, visibly.
+            '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' => {
+                out.push_str(&c.escape_unicode().to_string());
             }
-        })
-        .collect()
+            c if c.is_control() || c == '\u{2028}' || c == '\u{2029}' => out.push(' '),
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 /// Text safe on one line of a doc comment and inside its Markdown code
@@ -471,6 +476,7 @@ mod tests {
     #[test]
     fn doc_text_stays_on_its_line_and_out_of_code_spans() {
         assert_eq!(doc_text("a\nb\r\u{2028}c`d"), "a b  c'd");
+        assert_eq!(doc_text("x\u{202e}y\u{2066}"), "x\\u{202e}y\\u{2066}");
         assert_eq!(quoted("x`\n"), "`x' `");
         assert_eq!(one_line("`a`\tb"), "`a` b");
     }

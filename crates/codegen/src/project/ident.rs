@@ -44,6 +44,25 @@ pub fn sanitize(name: &str) -> Option<String> {
     Some(out)
 }
 
+/// The lower-case item name of a supervisor in generated code (its module
+/// and functions in the logic and `match` backends): `sup_` and its
+/// identifier ([`sanitize`]) in lower case. Validation keeps identifiers
+/// unique, lower-casing keeps them apart, and the prefix keeps them clear
+/// of every Rust keyword, so no two supervisors can meet (`fn` and `fn_`
+/// give `sup_fn` and `sup_fn_`).
+///
+/// ```
+/// use codegen::project::ident::supervisor_item;
+/// assert_eq!(supervisor_item("fn"), "sup_fn");
+/// assert_eq!(supervisor_item("fn_"), "sup_fn_");
+/// assert_eq!(supervisor_item("Self"), "sup_self");
+/// assert_eq!(supervisor_item("2nd-stage"), "sup__2nd_stage");
+/// ```
+pub fn supervisor_item(name: &str) -> String {
+    let ident = sanitize(name).unwrap_or_else(|| "X".to_owned());
+    format!("sup_{}", ident.to_ascii_lowercase())
+}
+
 /// Rust keywords (strict and reserved, all editions) that cannot name a
 /// local variable.
 const KEYWORDS: &[&str] = &[

@@ -413,7 +413,8 @@ pub mod logic {
     /// - 0b101 `clear.off.idle.wanted`: re_ls → blocked.off.idle.wanted, start → clear.on.idle.running
     /// - 0b110 `clear.on.idle.done`: re_ls → blocked.on.idle.running, stop → clear.off.idle.idle
     /// - 0b111 `clear.on.idle.running`: re_ls → blocked.on.idle.running
-    pub mod conveyor {
+    #[allow(non_snake_case)]
+    pub mod sup_conveyor {
         /// Local event 0: `gone`.
         pub const GONE: u16 = 0;
 
@@ -429,11 +430,11 @@ pub mod logic {
         /// Local event 4: `stop`.
         pub const STOP: u16 = 4;
 
-        /// `conveyor`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
+        /// `sup_conveyor`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
         ///
         /// `q`: state code (3 bits); `e`: local event index. An event the state does
         /// not define, or an index of no event, leaves the code unchanged.
-        pub fn conveyor_next(q: u32, e: u16) -> u32 {
+        pub fn sup_conveyor_next(q: u32, e: u16) -> u32 {
             let q2 = (q >> 2) & 1 != 0;
             let q1 = (q >> 1) & 1 != 0;
             let q0 = q & 1 != 0;
@@ -451,9 +452,9 @@ pub mod logic {
             ((w2 as u32) << 2) | ((w1 as u32) << 1) | (w0 as u32)
         }
 
-        /// `conveyor`: whether local event `e` is defined in state code `q`: enabled
+        /// `sup_conveyor`: whether local event `e` is defined in state code `q`: enabled
         /// for a controllable event, expected for an uncontrollable one.
-        pub fn conveyor_defined(q: u32, e: u16) -> bool {
+        pub fn sup_conveyor_defined(q: u32, e: u16) -> bool {
             let q2 = (q >> 2) & 1 != 0;
             let q1 = (q >> 1) & 1 != 0;
             let q0 = q & 1 != 0;
@@ -467,10 +468,10 @@ pub mod logic {
             }
         }
 
-        /// `conveyor`: the code reached from `q` on local event `e`, `None` when the
+        /// `sup_conveyor`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
-        pub fn conveyor_step(q: u32, e: u16) -> Option<u32> {
-            if conveyor_defined(q, e) { Some(conveyor_next(q, e)) } else { None }
+        pub fn sup_conveyor_step(q: u32, e: u16) -> Option<u32> {
+            if sup_conveyor_defined(q, e) { Some(sup_conveyor_next(q, e)) } else { None }
         }
     }
 }
@@ -491,7 +492,7 @@ impl Program for Logic {
 
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
-            supervisor::CONVEYOR => logic::conveyor::conveyor_step(state, local),
+            supervisor::CONVEYOR => logic::sup_conveyor::sup_conveyor_step(state, local),
             _ => None,
         }
     }

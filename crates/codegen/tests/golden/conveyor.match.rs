@@ -406,7 +406,8 @@ pub mod matches {
     /// Supervisor `conveyor` (synthesised from 3 plant and 1 specification files, minimised).
     ///
     /// Local events: 0 `gone`, 1 `re_ls`, 2 `fe_ls`, 3 `start`, 4 `stop`. States are the indices of `states::CONVEYOR`.
-    pub fn conveyor(state: u32, event: u16) -> Option<u32> {
+    #[allow(non_snake_case)]
+    pub fn sup_conveyor(state: u32, event: u16) -> Option<u32> {
         match (state, event) {
             (0, 1) => Some(1),
             (1, 2) => Some(2),
@@ -443,7 +444,7 @@ impl Program for Match {
 
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
-            supervisor::CONVEYOR => matches::conveyor(state, local),
+            supervisor::CONVEYOR => matches::sup_conveyor(state, local),
             _ => None,
         }
     }

@@ -706,7 +706,8 @@ pub mod logic {
     /// - 0b00 `idle`: t1_at13 → train1, t2_at13 → train2, run_t1 → idle, run_t2 → idle
     /// - 0b01 `train1`: f_ld1 → idle, st_ld1 → train1, run_t2 → train1
     /// - 0b10 `train2`: f_ld1 → idle, st_ld1 → train2, run_t1 → train2
-    pub mod sup_crane1 {
+    #[allow(non_snake_case)]
+    pub mod sup_sup_crane1 {
         /// Local event 0: `t1_at13`.
         pub const T1_AT13: u16 = 0;
 
@@ -725,11 +726,11 @@ pub mod logic {
         /// Local event 5: `run_t2`.
         pub const RUN_T2: u16 = 5;
 
-        /// `sup_crane1`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
+        /// `sup_sup_crane1`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
         ///
         /// `q`: state code (2 bits); `e`: local event index. An event the state does
         /// not define, or an index of no event, leaves the code unchanged.
-        pub fn sup_crane1_next(q: u32, e: u16) -> u32 {
+        pub fn sup_sup_crane1_next(q: u32, e: u16) -> u32 {
             let q1 = (q >> 1) & 1 != 0;
             let q0 = q & 1 != 0;
             let t1_at13 = e == T1_AT13;
@@ -740,9 +741,9 @@ pub mod logic {
             ((w1 as u32) << 1) | (w0 as u32)
         }
 
-        /// `sup_crane1`: whether local event `e` is defined in state code `q`: enabled
+        /// `sup_sup_crane1`: whether local event `e` is defined in state code `q`: enabled
         /// for a controllable event, expected for an uncontrollable one.
-        pub fn sup_crane1_defined(q: u32, e: u16) -> bool {
+        pub fn sup_sup_crane1_defined(q: u32, e: u16) -> bool {
             let q1 = (q >> 1) & 1 != 0;
             let q0 = q & 1 != 0;
             match e {
@@ -756,10 +757,14 @@ pub mod logic {
             }
         }
 
-        /// `sup_crane1`: the code reached from `q` on local event `e`, `None` when the
+        /// `sup_sup_crane1`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
-        pub fn sup_crane1_step(q: u32, e: u16) -> Option<u32> {
-            if sup_crane1_defined(q, e) { Some(sup_crane1_next(q, e)) } else { None }
+        pub fn sup_sup_crane1_step(q: u32, e: u16) -> Option<u32> {
+            if sup_sup_crane1_defined(q, e) {
+                Some(sup_sup_crane1_next(q, e))
+            } else {
+                None
+            }
         }
     }
 
@@ -769,7 +774,8 @@ pub mod logic {
     /// - 0b00 `free`: run_t1 → t1_in, run_t2 → t2_in
     /// - 0b01 `t1_in`: t1_at14 → free
     /// - 0b10 `t2_in`: t2_at14 → free
-    pub mod sup_section {
+    #[allow(non_snake_case)]
+    pub mod sup_sup_section {
         /// Local event 0: `t1_at14`.
         pub const T1_AT14: u16 = 0;
 
@@ -782,11 +788,11 @@ pub mod logic {
         /// Local event 3: `run_t2`.
         pub const RUN_T2: u16 = 3;
 
-        /// `sup_section`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
+        /// `sup_sup_section`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
         ///
         /// `q`: state code (2 bits); `e`: local event index. An event the state does
         /// not define, or an index of no event, leaves the code unchanged.
-        pub fn sup_section_next(q: u32, e: u16) -> u32 {
+        pub fn sup_sup_section_next(q: u32, e: u16) -> u32 {
             let q1 = (q >> 1) & 1 != 0;
             let q0 = q & 1 != 0;
             let t1_at14 = e == T1_AT14;
@@ -798,9 +804,9 @@ pub mod logic {
             ((w1 as u32) << 1) | (w0 as u32)
         }
 
-        /// `sup_section`: whether local event `e` is defined in state code `q`: enabled
+        /// `sup_sup_section`: whether local event `e` is defined in state code `q`: enabled
         /// for a controllable event, expected for an uncontrollable one.
-        pub fn sup_section_defined(q: u32, e: u16) -> bool {
+        pub fn sup_sup_section_defined(q: u32, e: u16) -> bool {
             let q1 = (q >> 1) & 1 != 0;
             let q0 = q & 1 != 0;
             match e {
@@ -812,10 +818,14 @@ pub mod logic {
             }
         }
 
-        /// `sup_section`: the code reached from `q` on local event `e`, `None` when the
+        /// `sup_sup_section`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
-        pub fn sup_section_step(q: u32, e: u16) -> Option<u32> {
-            if sup_section_defined(q, e) { Some(sup_section_next(q, e)) } else { None }
+        pub fn sup_sup_section_step(q: u32, e: u16) -> Option<u32> {
+            if sup_sup_section_defined(q, e) {
+                Some(sup_sup_section_next(q, e))
+            } else {
+                None
+            }
         }
     }
 }
@@ -836,8 +846,12 @@ impl Program for Logic {
 
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
-            supervisor::SUP_CRANE1 => logic::sup_crane1::sup_crane1_step(state, local),
-            supervisor::SUP_SECTION => logic::sup_section::sup_section_step(state, local),
+            supervisor::SUP_CRANE1 => {
+                logic::sup_sup_crane1::sup_sup_crane1_step(state, local)
+            }
+            supervisor::SUP_SECTION => {
+                logic::sup_sup_section::sup_sup_section_step(state, local)
+            }
             _ => None,
         }
     }

@@ -704,7 +704,8 @@ pub mod matches {
     /// Supervisor `sup_crane1` (from `models/crane/sup_crane1.toml`).
     ///
     /// Local events: 0 `t1_at13`, 1 `t2_at13`, 2 `f_ld1`, 3 `st_ld1`, 4 `run_t1`, 5 `run_t2`. States are the indices of `states::SUP_CRANE1`.
-    pub fn sup_crane1(state: u32, event: u16) -> Option<u32> {
+    #[allow(non_snake_case)]
+    pub fn sup_sup_crane1(state: u32, event: u16) -> Option<u32> {
         match (state, event) {
             (0, 0) => Some(1),
             (0, 1) => Some(2),
@@ -723,7 +724,8 @@ pub mod matches {
     /// Supervisor `sup_section` (from `models/crane/sup_section.toml`).
     ///
     /// Local events: 0 `t1_at14`, 1 `t2_at14`, 2 `run_t1`, 3 `run_t2`. States are the indices of `states::SUP_SECTION`.
-    pub fn sup_section(state: u32, event: u16) -> Option<u32> {
+    #[allow(non_snake_case)]
+    pub fn sup_sup_section(state: u32, event: u16) -> Option<u32> {
         match (state, event) {
             (0, 2) => Some(1),
             (0, 3) => Some(2),
@@ -750,8 +752,8 @@ impl Program for Match {
 
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
-            supervisor::SUP_CRANE1 => matches::sup_crane1(state, local),
-            supervisor::SUP_SECTION => matches::sup_section(state, local),
+            supervisor::SUP_CRANE1 => matches::sup_sup_crane1(state, local),
+            supervisor::SUP_SECTION => matches::sup_sup_section(state, local),
             _ => None,
         }
     }

@@ -605,7 +605,8 @@ pub mod logic {
     /// - 0b0110 `6`: c_cl → 7
     /// - 0b0111 `7`: d_off → 0
     /// - … 2 more states
-    pub mod motivating {
+    #[allow(non_snake_case)]
+    pub mod sup_motivating {
         /// Local event 0: `a`.
         pub const A: u16 = 0;
 
@@ -633,11 +634,11 @@ pub mod logic {
         /// Local event 8: `d_off`.
         pub const D_OFF: u16 = 8;
 
-        /// `motivating`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
+        /// `sup_motivating`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
         ///
         /// `q`: state code (4 bits); `e`: local event index. An event the state does
         /// not define, or an index of no event, leaves the code unchanged.
-        pub fn motivating_next(q: u32, e: u16) -> u32 {
+        pub fn sup_motivating_next(q: u32, e: u16) -> u32 {
             let q3 = (q >> 3) & 1 != 0;
             let q2 = (q >> 2) & 1 != 0;
             let q1 = (q >> 1) & 1 != 0;
@@ -664,9 +665,9 @@ pub mod logic {
             ((w3 as u32) << 3) | ((w2 as u32) << 2) | ((w1 as u32) << 1) | (w0 as u32)
         }
 
-        /// `motivating`: whether local event `e` is defined in state code `q`: enabled
+        /// `sup_motivating`: whether local event `e` is defined in state code `q`: enabled
         /// for a controllable event, expected for an uncontrollable one.
-        pub fn motivating_defined(q: u32, e: u16) -> bool {
+        pub fn sup_motivating_defined(q: u32, e: u16) -> bool {
             let q3 = (q >> 3) & 1 != 0;
             let q2 = (q >> 2) & 1 != 0;
             let q1 = (q >> 1) & 1 != 0;
@@ -685,10 +686,14 @@ pub mod logic {
             }
         }
 
-        /// `motivating`: the code reached from `q` on local event `e`, `None` when the
+        /// `sup_motivating`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
-        pub fn motivating_step(q: u32, e: u16) -> Option<u32> {
-            if motivating_defined(q, e) { Some(motivating_next(q, e)) } else { None }
+        pub fn sup_motivating_step(q: u32, e: u16) -> Option<u32> {
+            if sup_motivating_defined(q, e) {
+                Some(sup_motivating_next(q, e))
+            } else {
+                None
+            }
         }
     }
 }
@@ -709,7 +714,9 @@ impl Program for Logic {
 
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
-            supervisor::MOTIVATING => logic::motivating::motivating_step(state, local),
+            supervisor::MOTIVATING => {
+                logic::sup_motivating::sup_motivating_step(state, local)
+            }
             _ => None,
         }
     }

@@ -597,7 +597,8 @@ pub mod matches {
     /// Supervisor `motivating` (from `models/motivating/motivating.toml`).
     ///
     /// Local events: 0 `a`, 1 `b`, 2 `e`, 3 `f`, 4 `c_lo`, 5 `c_hi`, 6 `c_cl`, 7 `d_on`, 8 `d_off`. States are the indices of `states::MOTIVATING`.
-    pub fn motivating(state: u32, event: u16) -> Option<u32> {
+    #[allow(non_snake_case)]
+    pub fn sup_motivating(state: u32, event: u16) -> Option<u32> {
         match (state, event) {
             (0, 0) => Some(1),
             (1, 1) => Some(2),
@@ -633,7 +634,7 @@ impl Program for Match {
 
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
-            supervisor::MOTIVATING => matches::motivating(state, local),
+            supervisor::MOTIVATING => matches::sup_motivating(state, local),
             _ => None,
         }
     }

@@ -598,7 +598,8 @@ pub mod matches {
     /// Supervisor `press` (from `models/press/press.toml`).
     ///
     /// Local events: 0 `auto`, 1 `stop`, 2 `reset`, 3 `part_in`, 4 `part_out`, 5 `at_bottom`, 6 `at_top`. States are the indices of `states::PRESS`.
-    pub fn press(state: u32, event: u16) -> Option<u32> {
+    #[allow(non_snake_case)]
+    pub fn sup_press(state: u32, event: u16) -> Option<u32> {
         match (state, event) {
             (0, 0) => Some(1),
             (0, 1) => Some(0),
@@ -644,7 +645,7 @@ impl Program for Match {
 
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
-            supervisor::PRESS => matches::press(state, local),
+            supervisor::PRESS => matches::sup_press(state, local),
             _ => None,
         }
     }

@@ -608,7 +608,8 @@ pub mod logic {
     /// - 0b100 `5`: auto → 5, stop → 5, reset → 7
     /// - 0b101 `6`: auto → 6, stop → 6, reset → 6, part_out → 2
     /// - 0b110 `7`: auto → 7, stop → 7, reset → 7, at_top → 1
-    pub mod press {
+    #[allow(non_snake_case)]
+    pub mod sup_press {
         /// Local event 0: `auto`.
         pub const AUTO: u16 = 0;
 
@@ -630,11 +631,11 @@ pub mod logic {
         /// Local event 6: `at_top`.
         pub const AT_TOP: u16 = 6;
 
-        /// `press`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
+        /// `sup_press`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
         ///
         /// `q`: state code (3 bits); `e`: local event index. An event the state does
         /// not define, or an index of no event, leaves the code unchanged.
-        pub fn press_next(q: u32, e: u16) -> u32 {
+        pub fn sup_press_next(q: u32, e: u16) -> u32 {
             let q2 = (q >> 2) & 1 != 0;
             let q1 = (q >> 1) & 1 != 0;
             let q0 = q & 1 != 0;
@@ -654,9 +655,9 @@ pub mod logic {
             ((w2 as u32) << 2) | ((w1 as u32) << 1) | (w0 as u32)
         }
 
-        /// `press`: whether local event `e` is defined in state code `q`: enabled
+        /// `sup_press`: whether local event `e` is defined in state code `q`: enabled
         /// for a controllable event, expected for an uncontrollable one.
-        pub fn press_defined(q: u32, e: u16) -> bool {
+        pub fn sup_press_defined(q: u32, e: u16) -> bool {
             let q2 = (q >> 2) & 1 != 0;
             let q1 = (q >> 1) & 1 != 0;
             let q0 = q & 1 != 0;
@@ -672,10 +673,10 @@ pub mod logic {
             }
         }
 
-        /// `press`: the code reached from `q` on local event `e`, `None` when the
+        /// `sup_press`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
-        pub fn press_step(q: u32, e: u16) -> Option<u32> {
-            if press_defined(q, e) { Some(press_next(q, e)) } else { None }
+        pub fn sup_press_step(q: u32, e: u16) -> Option<u32> {
+            if sup_press_defined(q, e) { Some(sup_press_next(q, e)) } else { None }
         }
     }
 }
@@ -696,7 +697,7 @@ impl Program for Logic {
 
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
-            supervisor::PRESS => logic::press::press_step(state, local),
+            supervisor::PRESS => logic::sup_press::sup_press_step(state, local),
             _ => None,
         }
     }

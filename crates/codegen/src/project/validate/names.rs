@@ -22,6 +22,10 @@ use crate::error::Result;
 use std::collections::HashMap;
 use std::ops::Range;
 
+/// Identifiers the generated code declares next to the names of each kind
+/// (`input::COUNT`, `input::NAMES`, …).
+pub(crate) const RESERVED: &[&str] = &["COUNT", "NAMES"];
+
 /// A name declared in the shared namespace.
 pub(super) struct Claim {
     kind: &'static str,
@@ -45,6 +49,16 @@ impl Validator<'_> {
                 ),
             ));
         };
+        // Each kind's module also holds these generated items.
+        if RESERVED.contains(&ident.as_str()) {
+            return Err(self.error(
+                span,
+                format!(
+                    "{kind} name `{name}` becomes the identifier `{ident}`, which generated code reserves (next to {}); rename it",
+                    RESERVED.join(", ")
+                ),
+            ));
+        }
         if let Some(c) = self.namespace.get(&ident) {
             let message = if c.name == name && c.kind == kind {
                 format!(
