@@ -13,6 +13,7 @@ use executor::program::{Index, Program, Span};
 use executor::table::SupervisorTable;
 use executor::validate::{validate, Flaw, Invalid, Part};
 use executor::{Config, Controller, Fault};
+use proptest::prelude::*;
 use std::cell::Cell;
 use std::path::Path;
 
@@ -36,7 +37,13 @@ fn model(name: &str) -> project::Project {
 }
 
 fn press() -> TableImage {
-    TableImage::new(&model("press.plc.toml")).unwrap()
+    let image = TableImage::new(&model("press.plc.toml")).unwrap();
+    assert_eq!(
+        image.pools.reset,
+        Some(RESET_PB as Index),
+        "the input edges of `stays_corrupt` press reset too"
+    );
+    image
 }
 
 /// The raw input image with `on` at 1.
@@ -64,8 +71,6 @@ fn armed<P: Program>(program: P) -> Controller<P, HeapMemory> {
 /// falling in turn, the reset input among them) without a panic.
 fn stays_corrupt<P: Program>(c: &mut Controller<P, HeapMemory>, mut now: u32) {
     assert_eq!(c.fault(), Some(Fault::Corrupt));
-    let reset = c.program().config().reset.map(usize::from);
-    assert_eq!(reset, Some(RESET_PB), "the loop below presses reset too");
     for i in 0..INPUTS {
         for level in [true, false] {
             now += 10;
@@ -263,5 +268,155 @@ fn an_image_with_a_matching_crc_but_a_broken_structure_is_corrupt_from_start_up(
         assert!(c.check_image(), "{what}: the CRC alone would pass it");
         c.scan(0, &inputs(&[TOP_LS]));
         stays_corrupt(&mut c, 0);
+    }
+}
+
+/// One field of an image rewritten to `value` (`item` picks the item of a
+/// list or pool, modulo its length; an empty one is left alone).
+#[derive(Debug, Clone, Copy)]
+struct Mutation {
+    field: u8,
+    item: usize,
+    value: u32,
+}
+
+/// Values near the sizes of a small project, and any value at all.
+fn value() -> impl Strategy<Value = u32> {
+    prop_oneof![0u32..16, any::<u32>()]
+}
+
+fn mutation() -> impl Strategy<Value = Mutation> {
+    (0u8..26, any::<usize>(), value()).prop_map(|(field, item, value)| Mutation {
+        field,
+        item,
+        value,
+    })
+}
+
+/// A span of the low and high halves of `v`.
+fn span(v: u32) -> Span {
+    Span::new(v as u16, (v >> 16) as u16)
+}
+
+/// Applies `m` to `image` (not its CRC).
+fn apply(image: &mut TableImage, m: Mutation) {
+    use executor::program::{Action, Membership, Trigger};
+    fn at<T>(items: &mut [T], k: usize) -> Option<&mut T> {
+        let n = items.len();
+        (n != 0).then(|| &mut items[k % n])
+    }
+    let (v, k, p) = (m.value, m.item, &mut image.pools);
+    let small = v as Index;
+    match m.field {
+        0 => at(&mut p.inputs, k).map(|x| x.raises = span(v)),
+        1 => at(&mut p.debounced, k).map(|x| *x = small),
+        2 => at(&mut p.outputs, k).map(|x| x.state_map = span(v)),
+        3 => at(&mut p.timers, k).map(|x| x.raises = span(v)),
+        4 => at(&mut p.timers, k).map(|x| x.preset_ms = v),
+        5 => at(&mut p.events, k).map(|x| {
+            x.trigger = match v % 4 {
+                0 => Trigger::Command,
+                1 => Trigger::Rising(span(v >> 2)),
+                2 => Trigger::Falling(span(v >> 2)),
+                _ => Trigger::Expired((v >> 2) as Index),
+            }
+        }),
+        6 => at(&mut p.events, k).map(|x| x.when = span(v)),
+        7 => at(&mut p.events, k).map(|x| x.unless = span(v)),
+        8 => at(&mut p.events, k).map(|x| x.request = Some(small)),
+        9 => at(&mut p.events, k).map(|x| x.actions = span(v)),
+        10 => at(&mut p.events, k).map(|x| x.members = span(v)),
+        11 => at(&mut p.supervisors, k).map(|x| x.states = v),
+        12 => at(&mut p.supervisors, k).map(|x| x.initial = v),
+        13 => at(&mut p.supervisors, k).map(|x| x.alphabet = span(v)),
+        14 => at(&mut p.supervisors, k).map(|x| x.outside = span(v)),
+        15 => at(&mut p.input_masks, k).map(|x| *x = v),
+        16 => at(&mut p.event_lists, k).map(|x| *x = small),
+        17 => at(&mut p.event_masks, k).map(|x| *x = v),
+        18 => Some(p.commands = span(v)),
+        19 => Some(p.requested = span(v)),
+        20 => at(&mut p.actions, k).map(|x| {
+            let i = (v >> 2) as Index;
+            *x = [
+                Action::Set(i),
+                Action::Clear(i),
+                Action::Start(i),
+                Action::Reset(i),
+            ][v as usize % 4]
+        }),
+        21 => at(&mut p.memberships, k).map(|x| {
+            *x = Membership {
+                supervisor: (v >> 16) as Index,
+                local: small,
+            }
+        }),
+        22 => at(&mut p.state_map, k).map(|x| x.state = v),
+        23 => Some(p.reset = Some(small)),
+        24 => at(&mut image.tables, k).and_then(|t| {
+            let words = if v % 2 == 0 {
+                &mut t.defined
+            } else {
+                &mut t.targets
+            };
+            at(words, (v >> 1) as usize).map(|w| *w ^= 1 << (v % 32))
+        }),
+        _ => at(&mut image.tables, k).map(|t| {
+            t.events = small;
+            t.state_bits = (v >> 16) as u8;
+        }),
+    };
+}
+
+/// The intact images the property corrupts: sensors and Moore outputs
+/// (press), commands with request inputs and two supervisors (crane),
+/// a timer and actions (conveyor).
+fn seeds() -> &'static [TableImage] {
+    static SEEDS: std::sync::OnceLock<Vec<TableImage>> = std::sync::OnceLock::new();
+    SEEDS.get_or_init(|| {
+        ["press.plc.toml", "crane.plc.toml", "conveyor.plc.toml"]
+            .into_iter()
+            .map(|name| TableImage::new(&model(name)).unwrap())
+            .collect()
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(3000))]
+
+    /// Whatever is rewritten, under the old CRC or a recomputed one: no
+    /// panic; an image that fails either check runs in fault mode
+    /// `Corrupt` with the safe image on every scan; a controller out of
+    /// fault mode never holds a state out of range.
+    #[test]
+    fn no_corruption_of_an_image_panics_the_controller(
+        seed in 0usize..3,
+        mutations in proptest::collection::vec(mutation(), 1..4),
+        recompute_crc in any::<bool>(),
+        raw in proptest::collection::vec(any::<u16>(), 1..60),
+    ) {
+        let mut image = seeds()[seed].clone();
+        for &m in &mutations {
+            apply(&mut image, m);
+        }
+        if recompute_crc {
+            image.crc = image.computed_crc();
+        }
+        let corrupt = validate(&image).is_err() || image.computed_crc() != image.crc;
+        let config = image.config();
+        let safe: Vec<bool> = config.outputs.iter().map(|o| o.safe).collect();
+        let mut c = Controller::new(&image, HeapMemory::for_config(&config)).unwrap();
+        for (k, &bits) in raw.iter().enumerate() {
+            let levels: Vec<bool> = (0..16).map(|i| bits >> i & 1 == 1).collect();
+            let r = c.scan(10 * k as u32, &levels);
+            if corrupt {
+                prop_assert_eq!(r.fault, Some(Fault::Corrupt));
+                prop_assert_eq!(r.outputs, &safe[..]);
+            }
+            if r.fault.is_none() {
+                for (x, spec) in r.states.iter().zip(config.supervisors) {
+                    prop_assert!(*x < spec.states);
+                }
+            }
+        }
     }
 }

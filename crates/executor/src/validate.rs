@@ -171,7 +171,10 @@ impl fmt::Display for Invalid {
 /// Linear in the image, apart from the memberships (events × supervisors
 /// having them) and a decode of every defined table entry.
 pub fn validate<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
-    let config = program.config();
+    // Opaque to the optimiser: a generated configuration is a constant,
+    // and folding it into the check would unroll every loop over its pools
+    // (kilobytes of flash for a check that runs once).
+    let config = core::hint::black_box(program.config());
     validate_config(&config)?;
     let supervisors = config.supervisors.len();
     // One past the supervisors: a table too many is a flaw too.
@@ -186,7 +189,7 @@ pub fn validate<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
     }
     for j in 0..tables {
         if let Some(table) = Index::try_from(j).ok().and_then(|j| program.table(j)) {
-            validate_table(&config, j, &table)?;
+            validate_table(&config, j, &core::hint::black_box(table))?;
         }
     }
     Ok(())
