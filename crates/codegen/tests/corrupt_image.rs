@@ -333,8 +333,14 @@ fn apply(image: &mut TableImage, m: Mutation) {
         15 => at(&mut p.input_masks, k).map(|x| *x = v),
         16 => at(&mut p.event_lists, k).map(|x| *x = small),
         17 => at(&mut p.event_masks, k).map(|x| *x = v),
-        18 => Some(p.commands = span(v)),
-        19 => Some(p.requested = span(v)),
+        18 => {
+            p.commands = span(v);
+            Some(())
+        }
+        19 => {
+            p.requested = span(v);
+            Some(())
+        }
         20 => at(&mut p.actions, k).map(|x| {
             let i = (v >> 2) as Index;
             *x = [
@@ -351,7 +357,10 @@ fn apply(image: &mut TableImage, m: Mutation) {
             }
         }),
         22 => at(&mut p.state_map, k).map(|x| x.state = v),
-        23 => Some(p.reset = Some(small)),
+        23 => {
+            p.reset = Some(small);
+            Some(())
+        }
         24 => at(&mut image.tables, k).and_then(|t| {
             let words = if v % 2 == 0 {
                 &mut t.defined
