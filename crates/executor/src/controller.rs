@@ -40,20 +40,28 @@ pub struct Controller<P: Program, M: Memory> {
     pub(crate) range_check: usize,
     /// The background image check.
     rom_test: RomTest,
+    /// The image passed the structure check at construction
+    /// ([`crate::validate`]); if not, no reset leaves fault mode.
+    well_formed: bool,
 }
 
 impl<P: Program, M: Memory> Controller<P, M> {
     /// A controller in its initial state. The whole program image is
-    /// checked first: a mismatch starts the controller in fault mode
-    /// (`Corrupt`). From the first scan on, the image is checked again in
-    /// the background, a share per scan.
+    /// checked first, its structure ([`crate::validate`]) and its CRC: a
+    /// flaw or a mismatch starts the controller in fault mode (`Corrupt`),
+    /// and after a flaw of structure nothing of the image is run and no
+    /// reset leaves fault mode. From the first scan on, the CRC is checked
+    /// again in the background, a share per scan.
     pub fn new(program: P, mut memory: M) -> Result<Self, SizeMismatch> {
         if !memory.fits(&program.config()) {
             return Err(SizeMismatch);
         }
-        initialise(&program, &program.config(), &mut memory);
+        let well_formed = crate::validate::validate(&program).is_ok();
+        if well_formed {
+            initialise(&program, &program.config(), &mut memory);
+        }
         let rom_test = RomTest::new(&program);
-        let fault = (!rom_test.status().verified).then_some(Fault::Corrupt);
+        let fault = (!well_formed || !rom_test.status().verified).then_some(Fault::Corrupt);
         let mut controller = Controller {
             program,
             memory,
@@ -69,6 +77,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
             next_due: None,
             range_check: 0,
             rom_test,
+            well_formed,
         };
         if fault.is_some() {
             controller.counters.faults += 1;
@@ -266,8 +275,9 @@ impl<P: Program, M: Memory> Controller<P, M> {
             let reset = config
                 .reset
                 .is_some_and(|r| inputs::input_rose(usize::from(r), &self.memory.ram()));
-            // Only onto an image whose last complete check matched.
-            if reset && self.rom_test.status().verified {
+            // Only onto a well-formed image whose last complete check
+            // matched.
+            if reset && self.well_formed && self.rom_test.status().verified {
                 initialise(&self.program, config, &mut self.memory);
                 self.fault = None;
                 self.idle = false;
@@ -567,8 +577,9 @@ fn conditions_hold(config: &Config<'_>, ram: &Ram<'_>, spec: &EventSpec) -> bool
 /// Moves every supervisor having the (feasible) event, refreshes the
 /// enabled sets of those that moved and applies the event's actions.
 /// `Some(true)` when a timer was started or stopped; `None` when a
-/// supervisor's state is out of range or its program refuses the event its
-/// enabled set allowed (corrupt memory).
+/// supervisor's state is out of range, its program refuses the event its
+/// enabled set allowed (corrupt memory) or gives a state out of range (a
+/// table word flipped since start-up).
 fn execute<P: Program, M: Memory>(
     program: &P,
     config: &Config<'_>,
@@ -585,6 +596,11 @@ fn execute<P: Program, M: Memory>(
             return None;
         }
         let next = program.next_state(m.supervisor, ram.states[j], m.local)?;
+        // Validated tables hold states in range; a word flipped since
+        // is caught here before the state is stored.
+        if next >= config.supervisors[j].states {
+            return None;
+        }
         if next != ram.states[j] {
             ram.states[j] = next;
             let ew = ram.feasible.len();

@@ -185,8 +185,11 @@
 //! The controller only ever moves a supervisor along a defined transition,
 //! so every executed controllable event is allowed by every supervisor that
 //! has it (control equivalence with the supervisors, modular or not; the
-//! product is never built). A supervisor state out of range or a program
-//! image whose CRC does not match is a `Corrupt` fault: the whole image is
+//! product is never built). An image whose structure is wrong (an index
+//! out of range, a span past its pool: [`validate`], checked once at
+//! start-up, so that no index in the scan can panic), a supervisor state
+//! out of range or a program image whose CRC does not match is a `Corrupt`
+//! fault: the whole image is
 //! checked at start-up, then again in the background, pass after pass,
 //! `rom_test_bytes_per_scan` bytes per scan, so a flipped bit is found
 //! within a bound of scans ([`image`], [`Controller::image_test`]). Late
@@ -253,6 +256,7 @@ pub mod replay;
 mod rom_test;
 pub mod table;
 mod timers;
+pub mod validate;
 
 pub use controller::{Controller, SizeMismatch};
 pub use memory::Memory;

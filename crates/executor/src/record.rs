@@ -12,8 +12,9 @@ pub enum Fault {
         /// The event.
         event: Index,
     },
-    /// A supervisor state out of range, or the program image's checksum
-    /// does not match.
+    /// The program image fails its structure check or its checksum, a
+    /// supervisor state is out of range, or a table contradicts the
+    /// enabled sets in RAM.
     Corrupt,
     /// A scan started too late (board only, when configured as a fault).
     Overrun,

@@ -17,8 +17,8 @@ use std::vec::Vec;
 
 /// States of the ring: enough table words for passes of many scans.
 const STATES: u32 = 300;
-/// Local events: `step` (the only one the ring defines) and two unused.
-const EVENTS: u16 = 3;
+/// Local events: `step`, the only one.
+const EVENTS: u16 = 1;
 /// Inputs.
 const STEP: usize = 0;
 const RESET: usize = 1;
@@ -92,8 +92,7 @@ const INPUTS: [InputSpec; 2] = [
         raises: Span::EMPTY,
     },
 ];
-/// The event is local event 0 (event_lists[1..2]); the table's other two
-/// local events are no event of the project.
+/// The event is local event 0 (event_lists[1..2]).
 const SUPERVISORS: [SupervisorSpec; 1] = [SupervisorSpec {
     states: STATES,
     initial: 0,
@@ -697,4 +696,57 @@ fn a_lasting_corruption_refuses_every_reset() {
     assert_eq!(c.fault(), Some(Fault::Corrupt));
     assert!(c.image_test().passes >= 4);
     assert!(!c.image_test().verified);
+}
+
+/// A flipped RAM bit, simulated by writing the sealed state array from
+/// inside the crate: the ring's state leaves its 300 states between two
+/// scans.
+#[test]
+fn a_state_out_of_range_between_scans_is_corrupt_with_the_safe_image() {
+    let program = ring(16);
+    let mut c = Controller::new(&program, Mem::new()).unwrap();
+    let r = c.scan(0, &[false, false]);
+    assert_eq!(r.outputs, [true], "the home lamp: state 0");
+    use crate::memory::sealed::Storage;
+    // 511 fits the 9-bit state width and is no state.
+    c.memory.ram().states[0] = 511;
+    // The edge of `step` would move the ring: the range check comes first.
+    let r = c.scan(10, &[true, false]);
+    assert_eq!(r.fault, Some(Fault::Corrupt));
+    assert!(
+        r.executed.is_empty(),
+        "no transition from a state that is none"
+    );
+    assert_eq!(r.outputs, [false], "the safe image");
+    assert_eq!(c.counters().faults, 1);
+    // The image itself is intact: a reset re-initialises the state.
+    let r = c.scan(20, &[false, true]);
+    assert_eq!(
+        (r.fault, r.states, r.outputs),
+        (None, &[0][..], &[true][..])
+    );
+}
+
+/// A table word flipped after start-up so that a target is no state: the
+/// event that would move there is refused before the state is stored,
+/// long before the background pass (4 bytes a scan) reaches the word.
+#[test]
+fn a_table_target_out_of_range_is_corrupt_before_the_state_is_stored() {
+    let program = ring(4);
+    // State 0's target (entry 0, bits 0..9, value 1) becomes 511.
+    let mut corrupt = program;
+    for b in 1..9 {
+        corrupt = with_table_bit_flipped(corrupt, Part::Targets, 0, b);
+    }
+    assert_eq!(corrupt.tables[0].next_state(0, 0), Some(511));
+    let flippable = Flippable::new(program, corrupt);
+    let mut c = Controller::new(&flippable, Mem::new()).unwrap();
+    c.scan(0, &[false, false]);
+    flippable.flip();
+    let r = c.scan(10, &[true, false]);
+    assert_eq!(r.fault, Some(Fault::Corrupt));
+    assert!(r.executed.is_empty());
+    assert_eq!((r.states, r.outputs), (&[0][..], &[false][..]));
+    assert_eq!(c.counters().faults, 1);
+    assert_eq!(c.image_test().passes, 0, "found by the scan, not the pass");
 }

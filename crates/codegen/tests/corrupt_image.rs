@@ -1,0 +1,431 @@
+//! A real generated program image, corrupted: the stamping press
+//! (`models/press.plc.toml`) as the table backend lays it out. Whatever is
+//! corrupted (a table word under the recorded CRC, or an index, span or
+//! size rewritten with the CRC recomputed to match so that only the
+//! structure check can tell), the controller runs in fault mode `Corrupt`:
+//! the safe output image, one fault counted, no panic whatever the inputs,
+//! and no reset out of it.
+
+use codegen::image::{ImageCheck, LogicImage, TableImage};
+use codegen::project;
+use executor::memory::HeapMemory;
+use executor::program::{Index, Program, Span};
+use executor::table::SupervisorTable;
+use executor::validate::{validate, Flaw, Invalid, Part};
+use executor::{Config, Controller, Fault};
+use proptest::prelude::*;
+use std::cell::Cell;
+use std::path::Path;
+
+/// Inputs of the press, in declaration order.
+const AUTO_PB: usize = 0;
+const RESET_PB: usize = 2;
+const TOP_LS: usize = 4;
+const INPUTS: usize = 6;
+/// Its outputs: `auto_lamp` is on in states 2, 3, 4 and 6; every output's
+/// safe level is 0.
+const AUTO_LAMP: usize = 0;
+const SAFE: [bool; 4] = [false; 4];
+/// The lesson's state 2 ("armed"): index 1.
+const ARMED: u32 = 1;
+
+fn model(name: &str) -> project::Project {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../models")
+        .join(name);
+    project::load(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn press() -> TableImage {
+    let image = TableImage::new(&model("press.plc.toml")).unwrap();
+    assert_eq!(
+        image.pools.reset,
+        Some(RESET_PB as Index),
+        "the input edges of `stays_corrupt` press reset too"
+    );
+    image
+}
+
+/// The raw input image with `on` at 1.
+fn inputs(on: &[usize]) -> [bool; INPUTS] {
+    let mut raw = [false; INPUTS];
+    for &i in on {
+        raw[i] = true;
+    }
+    raw
+}
+
+/// The press armed: `auto` pressed with the ram at the top.
+fn armed<P: Program>(program: P) -> Controller<P, HeapMemory> {
+    let memory = HeapMemory::for_config(&program.config());
+    let mut c = Controller::new(program, memory).unwrap();
+    c.scan(0, &inputs(&[TOP_LS]));
+    let r = c.scan(10, &inputs(&[TOP_LS, AUTO_PB]));
+    assert_eq!((r.fault, r.states), (None, &[ARMED][..]));
+    assert!(r.outputs[AUTO_LAMP], "the auto lamp is on while armed");
+    c
+}
+
+/// `c` is in fault mode `Corrupt` with the safe image, one fault counted,
+/// and stays there through every input edge (each input rising and
+/// falling in turn, the reset input among them) without a panic.
+fn stays_corrupt<P: Program>(c: &mut Controller<P, HeapMemory>, mut now: u32) {
+    assert_eq!(c.fault(), Some(Fault::Corrupt));
+    for i in 0..INPUTS {
+        for level in [true, false] {
+            now += 10;
+            let on: Vec<usize> = if level { vec![i, TOP_LS] } else { vec![TOP_LS] };
+            let r = c.scan(now, &inputs(&on));
+            assert_eq!(r.fault, Some(Fault::Corrupt), "input {i} at {level}");
+            assert_eq!(r.outputs, SAFE, "the safe image");
+            assert!(r.executed.is_empty());
+        }
+    }
+    assert_eq!(c.counters().faults, 1, "one fault, however long it lasts");
+}
+
+#[test]
+fn every_generated_image_of_the_seed_projects_is_well_formed() {
+    for name in [
+        "press.plc.toml",
+        "press7.plc.toml",
+        "crane.plc.toml",
+        "conveyor.plc.toml",
+        "motivating.plc.toml",
+    ] {
+        let project = model(name);
+        assert_eq!(
+            validate(&TableImage::new(&project).unwrap()),
+            Ok(()),
+            "{name}"
+        );
+        assert_eq!(
+            validate(&LogicImage::new(&project).unwrap()),
+            Ok(()),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn a_flipped_table_word_is_corrupt_from_start_up_and_no_reset_clears_it() {
+    let mut image = press();
+    image.tables[0].targets[0] ^= 1 << 4;
+    let memory = HeapMemory::for_config(&image.config());
+    let mut c = Controller::new(&image, memory).unwrap();
+    assert_eq!(c.counters().faults, 1);
+    c.scan(0, &inputs(&[TOP_LS]));
+    stays_corrupt(&mut c, 0);
+}
+
+/// A program whose table words can be swapped for corrupted ones between
+/// two scans (the flash cell that flips while the controller runs).
+struct Flippable {
+    intact: TableImage,
+    corrupt: TableImage,
+    flipped: Cell<bool>,
+}
+
+impl Flippable {
+    fn now(&self) -> &TableImage {
+        if self.flipped.get() {
+            &self.corrupt
+        } else {
+            &self.intact
+        }
+    }
+}
+
+impl Program for Flippable {
+    fn config(&self) -> Config<'_> {
+        self.now().config()
+    }
+    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
+        self.now().next_state(supervisor, state, local)
+    }
+    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        self.now().enabled(supervisor, state, from, len)
+    }
+    fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {
+        self.now().table(supervisor)
+    }
+    fn recorded_crc(&self) -> u32 {
+        self.intact.crc
+    }
+}
+
+#[test]
+fn a_table_word_flipped_while_running_is_found_by_the_background_pass() {
+    let intact = press();
+    let mut corrupt = intact.clone();
+    let last = corrupt.tables[0].defined.len() - 1;
+    corrupt.tables[0].defined[last] ^= 1 << 3;
+    let bound = ImageCheck::of(&intact).bound_scans();
+    let program = Flippable {
+        intact,
+        corrupt,
+        flipped: Cell::new(false),
+    };
+    let mut c = armed(&program);
+    program.flipped.set(true);
+    let mut now = 10;
+    let mut scans = 0;
+    while c.fault().is_none() {
+        assert!(scans < bound, "found within the bound of {bound} scans");
+        now += 10;
+        scans += 1;
+        c.scan(now, &inputs(&[TOP_LS]));
+    }
+    assert_eq!(
+        c.record().outputs,
+        SAFE,
+        "the scan that finds it writes the safe image"
+    );
+    stays_corrupt(&mut c, now);
+}
+
+/// The press with `corrupt` applied and its CRC recomputed: only the
+/// structure check can find what is wrong.
+fn rewritten(corrupt: impl FnOnce(&mut TableImage)) -> TableImage {
+    let mut image = press();
+    corrupt(&mut image);
+    image.crc = image.computed_crc();
+    image
+}
+
+#[test]
+fn an_image_with_a_matching_crc_but_a_broken_structure_is_corrupt_from_start_up() {
+    let at = |part, flaw| Err(Invalid { part, flaw });
+    let out_of_range = |index, count| Flaw::OutOfRange { index, count };
+    let cases: Vec<(&str, TableImage, Result<(), Invalid>)> = vec![
+        (
+            "a membership's local event past its supervisor's alphabet",
+            rewritten(|p| p.pools.memberships[3].local = 99),
+            at(Part::Membership(3), out_of_range(99, 7)),
+        ),
+        (
+            "a membership naming a supervisor that does not exist",
+            rewritten(|p| p.pools.memberships[0].supervisor = 1),
+            at(Part::Membership(0), out_of_range(1, 1)),
+        ),
+        (
+            "a membership naming another event of the alphabet",
+            rewritten(|p| p.pools.memberships.swap(0, 1)),
+            at(Part::Supervisor(0), Flaw::Membership),
+        ),
+        (
+            "an event's actions past the end of the pool",
+            rewritten(|p| p.pools.events[0].actions = Span::new(p.pools.actions.len() as u16, 2)),
+            at(Part::Event(0), Flaw::SpanPastPool),
+        ),
+        (
+            "an input raising an event that does not exist",
+            rewritten(|p| {
+                let span = p.pools.inputs[AUTO_PB].raises;
+                p.pools.event_lists[usize::from(span.start)] = 7;
+            }),
+            at(Part::Input(AUTO_PB), out_of_range(7, 7)),
+        ),
+        (
+            "a Moore output mapped to a state out of range",
+            rewritten(|p| p.pools.state_map[0].state = 6),
+            at(Part::StateMap(0), out_of_range(6, 6)),
+        ),
+        (
+            "an initial state out of range",
+            rewritten(|p| p.pools.supervisors[0].initial = 6),
+            at(Part::Supervisor(0), out_of_range(6, 6)),
+        ),
+        (
+            "the reset input out of range",
+            rewritten(|p| p.pools.reset = Some(INPUTS as Index)),
+            at(Part::Reset, out_of_range(INPUTS as u32, INPUTS as u32)),
+        ),
+        (
+            "a table with fewer local events than the alphabet",
+            rewritten(|p| p.tables[0].events -= 1),
+            at(Part::Table(0), Flaw::TableEvents),
+        ),
+        (
+            "a table cut short",
+            rewritten(|p| {
+                p.tables[0].targets.pop();
+            }),
+            at(Part::Table(0), Flaw::TableLength),
+        ),
+        (
+            "a table entry that is no state (3 bits hold 7, the press has 6)",
+            rewritten(|p| p.tables[0].targets[0] |= 0b111),
+            at(Part::Table(0), out_of_range(7, 6)),
+        ),
+    ];
+    for (what, image, flaw) in &cases {
+        assert_eq!(image.computed_crc(), image.crc, "{what}: the CRC matches");
+        assert_eq!(validate(image), *flaw, "{what}");
+        let memory = HeapMemory::for_config(&image.config());
+        let mut c = Controller::new(image, memory).unwrap();
+        assert_eq!(c.fault(), Some(Fault::Corrupt), "{what}");
+        assert!(c.check_image(), "{what}: the CRC alone would pass it");
+        c.scan(0, &inputs(&[TOP_LS]));
+        stays_corrupt(&mut c, 0);
+    }
+}
+
+/// One field of an image rewritten to `value` (`item` picks the item of a
+/// list or pool, modulo its length; an empty one is left alone).
+#[derive(Debug, Clone, Copy)]
+struct Mutation {
+    field: u8,
+    item: usize,
+    value: u32,
+}
+
+/// Values near the sizes of a small project, and any value at all.
+fn value() -> impl Strategy<Value = u32> {
+    prop_oneof![0u32..16, any::<u32>()]
+}
+
+fn mutation() -> impl Strategy<Value = Mutation> {
+    (0u8..26, any::<usize>(), value()).prop_map(|(field, item, value)| Mutation {
+        field,
+        item,
+        value,
+    })
+}
+
+/// A span of the low and high halves of `v`.
+fn span(v: u32) -> Span {
+    Span::new(v as u16, (v >> 16) as u16)
+}
+
+/// Applies `m` to `image` (not its CRC).
+fn apply(image: &mut TableImage, m: Mutation) {
+    use executor::program::{Action, Membership, Trigger};
+    fn at<T>(items: &mut [T], k: usize) -> Option<&mut T> {
+        let n = items.len();
+        (n != 0).then(|| &mut items[k % n])
+    }
+    let (v, k, p) = (m.value, m.item, &mut image.pools);
+    let small = v as Index;
+    match m.field {
+        0 => at(&mut p.inputs, k).map(|x| x.raises = span(v)),
+        1 => at(&mut p.debounced, k).map(|x| *x = small),
+        2 => at(&mut p.outputs, k).map(|x| x.state_map = span(v)),
+        3 => at(&mut p.timers, k).map(|x| x.raises = span(v)),
+        4 => at(&mut p.timers, k).map(|x| x.preset_ms = v),
+        5 => at(&mut p.events, k).map(|x| {
+            x.trigger = match v % 4 {
+                0 => Trigger::Command,
+                1 => Trigger::Rising(span(v >> 2)),
+                2 => Trigger::Falling(span(v >> 2)),
+                _ => Trigger::Expired((v >> 2) as Index),
+            }
+        }),
+        6 => at(&mut p.events, k).map(|x| x.when = span(v)),
+        7 => at(&mut p.events, k).map(|x| x.unless = span(v)),
+        8 => at(&mut p.events, k).map(|x| x.request = Some(small)),
+        9 => at(&mut p.events, k).map(|x| x.actions = span(v)),
+        10 => at(&mut p.events, k).map(|x| x.members = span(v)),
+        11 => at(&mut p.supervisors, k).map(|x| x.states = v),
+        12 => at(&mut p.supervisors, k).map(|x| x.initial = v),
+        13 => at(&mut p.supervisors, k).map(|x| x.alphabet = span(v)),
+        14 => at(&mut p.supervisors, k).map(|x| x.outside = span(v)),
+        15 => at(&mut p.input_masks, k).map(|x| *x = v),
+        16 => at(&mut p.event_lists, k).map(|x| *x = small),
+        17 => at(&mut p.event_masks, k).map(|x| *x = v),
+        18 => {
+            p.commands = span(v);
+            Some(())
+        }
+        19 => {
+            p.requested = span(v);
+            Some(())
+        }
+        20 => at(&mut p.actions, k).map(|x| {
+            let i = (v >> 2) as Index;
+            *x = [
+                Action::Set(i),
+                Action::Clear(i),
+                Action::Start(i),
+                Action::Reset(i),
+            ][v as usize % 4]
+        }),
+        21 => at(&mut p.memberships, k).map(|x| {
+            *x = Membership {
+                supervisor: (v >> 16) as Index,
+                local: small,
+            }
+        }),
+        22 => at(&mut p.state_map, k).map(|x| x.state = v),
+        23 => {
+            p.reset = Some(small);
+            Some(())
+        }
+        24 => at(&mut image.tables, k).and_then(|t| {
+            let words = if v % 2 == 0 {
+                &mut t.defined
+            } else {
+                &mut t.targets
+            };
+            at(words, (v >> 1) as usize).map(|w| *w ^= 1 << (v % 32))
+        }),
+        _ => at(&mut image.tables, k).map(|t| {
+            t.events = small;
+            t.state_bits = (v >> 16) as u8;
+        }),
+    };
+}
+
+/// The intact images the property corrupts: sensors and Moore outputs
+/// (press), commands with request inputs and two supervisors (crane),
+/// a timer and actions (conveyor).
+fn seeds() -> &'static [TableImage] {
+    static SEEDS: std::sync::OnceLock<Vec<TableImage>> = std::sync::OnceLock::new();
+    SEEDS.get_or_init(|| {
+        ["press.plc.toml", "crane.plc.toml", "conveyor.plc.toml"]
+            .into_iter()
+            .map(|name| TableImage::new(&model(name)).unwrap())
+            .collect()
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(3000))]
+
+    /// Whatever is rewritten, under the old CRC or a recomputed one: no
+    /// panic; an image that fails either check runs in fault mode
+    /// `Corrupt` with the safe image on every scan; a controller out of
+    /// fault mode never holds a state out of range.
+    #[test]
+    fn no_corruption_of_an_image_panics_the_controller(
+        seed in 0usize..3,
+        mutations in proptest::collection::vec(mutation(), 1..4),
+        recompute_crc in any::<bool>(),
+        raw in proptest::collection::vec(any::<u16>(), 1..60),
+    ) {
+        let mut image = seeds()[seed].clone();
+        for &m in &mutations {
+            apply(&mut image, m);
+        }
+        if recompute_crc {
+            image.crc = image.computed_crc();
+        }
+        let corrupt = validate(&image).is_err() || image.computed_crc() != image.crc;
+        let config = image.config();
+        let safe: Vec<bool> = config.outputs.iter().map(|o| o.safe).collect();
+        let mut c = Controller::new(&image, HeapMemory::for_config(&config)).unwrap();
+        for (k, &bits) in raw.iter().enumerate() {
+            let levels: Vec<bool> = (0..16).map(|i| bits >> i & 1 == 1).collect();
+            let r = c.scan(10 * k as u32, &levels);
+            if corrupt {
+                prop_assert_eq!(r.fault, Some(Fault::Corrupt));
+                prop_assert_eq!(r.outputs, &safe[..]);
+            }
+            if r.fault.is_none() {
+                for (x, spec) in r.states.iter().zip(config.supervisors) {
+                    prop_assert!(*x < spec.states);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,451 @@
+//! The structure check of a program image, done once when a
+//! [`crate::Controller`] is built (docs/semantics.md, "Image check").
+//!
+//! The CRC proves that an image is the one the generator wrote; it says
+//! nothing about an image written wrong, by a faulty generator or by hand
+//! with a CRC computed to match. [`validate`] proves what the scan relies
+//! on to index without a check: every index is in range, every span lies
+//! inside its pool and has the length its kind needs, sets have no bits
+//! past their last member, alphabets and memberships agree, and every table
+//! decodes to states of its supervisor. A controller whose image fails it
+//! starts in fault mode (`Corrupt`) and no reset can leave it. Host tools
+//! call [`validate`] themselves to print where an image is wrong.
+
+use core::fmt;
+
+use crate::bits;
+use crate::program::{words, Action, Config, EventSpec, Index, Program, Span, Trigger};
+use crate::table::{bit, read_bits, Rows, SupervisorTable};
+
+/// Where in the image a flaw lies: a field, or an item of a list or pool
+/// by its index.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Part {
+    /// The number of inputs, outputs, timers, events or supervisors.
+    Counts,
+    /// `Config::reset`.
+    Reset,
+    /// `Config::debounced[k]`.
+    Debounced(usize),
+    /// `Config::debounce_mask`.
+    DebounceMask,
+    /// `Config::inputs[i]`.
+    Input(usize),
+    /// `Config::outputs[o]`.
+    Output(usize),
+    /// `Config::timers[t]`.
+    Timer(usize),
+    /// `Config::events[e]`.
+    Event(usize),
+    /// `Config::supervisors[j]`.
+    Supervisor(usize),
+    /// `Config::commands`.
+    Commands,
+    /// `Config::requested`.
+    Requested,
+    /// `Config::actions[k]`.
+    Action(usize),
+    /// `Config::memberships[k]`.
+    Membership(usize),
+    /// `Config::state_map[k]`.
+    StateMap(usize),
+    /// The tables as a whole.
+    Tables,
+    /// The table of supervisor `j`.
+    Table(usize),
+}
+
+/// What is wrong there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Flaw {
+    /// More items than an [`Index`] can number.
+    TooMany,
+    /// A span reaches past the end of its pool.
+    SpanPastPool,
+    /// A mask or event set whose span is neither empty nor one word per
+    /// 32 members.
+    SetLength,
+    /// A mask or event set with a bit past its last member.
+    StrayBits,
+    /// An index (of an input, output, timer, event, supervisor, local
+    /// event or state) at or above the number of them.
+    OutOfRange {
+        /// The index.
+        index: u32,
+        /// The number of items it indexes.
+        count: u32,
+    },
+    /// A timer preset of 0 or of 2^31 ms or more.
+    Preset,
+    /// An event's memberships and the alphabets disagree: a membership
+    /// names a local event that is another event, or an alphabet lists an
+    /// event without exactly one membership for it.
+    Membership,
+    /// A supervisor's `outside` set is not the events outside its alphabet.
+    Outside,
+    /// `commands` or `requested` holds an event that does not belong there
+    /// or leaves out one that does.
+    Commands,
+    /// Tables for some supervisors but not all.
+    TableCount,
+    /// A table's local events are not its supervisor's alphabet's length.
+    TableEvents,
+    /// A table's state width cannot hold its supervisor's states, or
+    /// exceeds 32 bits.
+    StateBits,
+    /// A table's words are too few for its entries.
+    TableLength,
+    /// A sparse table's row start is not the number of defined pairs
+    /// before the row.
+    RowStart {
+        /// The state whose row start is wrong.
+        state: u32,
+    },
+}
+
+/// An image that fails the structure check: where, and what.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Invalid {
+    /// Where.
+    pub part: Part,
+    /// What.
+    pub flaw: Flaw,
+}
+
+impl fmt::Display for Part {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Part::Counts => f.write_str("the numbers of signals, events and supervisors"),
+            Part::Reset => f.write_str("the reset input"),
+            Part::Debounced(k) => write!(f, "debounced input {k}"),
+            Part::DebounceMask => f.write_str("the debounce mask"),
+            Part::Input(i) => write!(f, "input {i}"),
+            Part::Output(o) => write!(f, "output {o}"),
+            Part::Timer(t) => write!(f, "timer {t}"),
+            Part::Event(e) => write!(f, "event {e}"),
+            Part::Supervisor(j) => write!(f, "supervisor {j}"),
+            Part::Commands => f.write_str("the commands without a request input"),
+            Part::Requested => f.write_str("the commands with a request input"),
+            Part::Action(k) => write!(f, "action {k}"),
+            Part::Membership(k) => write!(f, "membership {k}"),
+            Part::StateMap(k) => write!(f, "state-map entry {k}"),
+            Part::Tables => f.write_str("the tables"),
+            Part::Table(j) => write!(f, "the table of supervisor {j}"),
+        }
+    }
+}
+
+impl fmt::Display for Flaw {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Flaw::TooMany => f.write_str("more than 65,536 items"),
+            Flaw::SpanPastPool => f.write_str("a span past the end of its pool"),
+            Flaw::SetLength => f.write_str("a set span of the wrong length"),
+            Flaw::StrayBits => f.write_str("a set with bits past its last member"),
+            Flaw::OutOfRange { index, count } => {
+                write!(f, "index {index} out of range (there are {count})")
+            }
+            Flaw::Preset => f.write_str("a preset outside 1 ms .. 2^31 ms"),
+            Flaw::Membership => f.write_str("memberships and alphabet disagree"),
+            Flaw::Outside => f.write_str("`outside` is not the events outside the alphabet"),
+            Flaw::Commands => f.write_str("the command sets disagree with the events"),
+            Flaw::TableCount => f.write_str("tables for some supervisors only"),
+            Flaw::TableEvents => f.write_str("local events differ from the alphabet's"),
+            Flaw::StateBits => f.write_str("a state width that cannot hold the states"),
+            Flaw::TableLength => f.write_str("fewer words than its entries need"),
+            Flaw::RowStart { state } => write!(f, "a wrong row start for state {state}"),
+        }
+    }
+}
+
+impl fmt::Display for Invalid {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.part, self.flaw)
+    }
+}
+
+/// Checks the whole structure of `program`'s image (see the module docs).
+/// Linear in the image, apart from the memberships (events × supervisors
+/// having them) and a decode of every defined table entry.
+pub fn validate<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
+    // Opaque to the optimiser: a generated configuration is a constant,
+    // and folding it into the check would unroll every loop over its pools
+    // (kilobytes of flash for a check that runs once).
+    let config = core::hint::black_box(program.config());
+    validate_config(&config)?;
+    let supervisors = config.supervisors.len();
+    // One past the supervisors: a table too many is a flaw too.
+    let tables = (0..=supervisors)
+        .take_while(|&j| Index::try_from(j).is_ok_and(|j| program.table(j).is_some()))
+        .count();
+    if tables != 0 && tables != supervisors {
+        return Err(Invalid {
+            part: Part::Tables,
+            flaw: Flaw::TableCount,
+        });
+    }
+    for j in 0..tables {
+        if let Some(table) = Index::try_from(j).ok().and_then(|j| program.table(j)) {
+            validate_table(&config, j, &core::hint::black_box(table))?;
+        }
+    }
+    Ok(())
+}
+
+/// The configuration's part of [`validate`]: everything but the tables
+/// (the whole check for a program whose supervisors are code).
+#[inline(never)]
+pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
+    let (inputs, outputs, timers) = (c.inputs.len(), c.outputs.len(), c.timers.len());
+    let (events, supervisors) = (c.events.len(), c.supervisors.len());
+    let limit = usize::from(Index::MAX) + 1;
+    if [inputs, outputs, timers, events, supervisors]
+        .iter()
+        .any(|&n| n > limit)
+    {
+        return fail(Part::Counts, Flaw::TooMany);
+    }
+    if let Some(r) = c.reset {
+        in_range(Part::Reset, r.into(), inputs)?;
+    }
+    for (k, &i) in c.debounced.iter().enumerate() {
+        in_range(Part::Debounced(k), i.into(), inputs)?;
+    }
+    mask(Part::DebounceMask, c.debounce_mask, c)?;
+    for (i, spec) in c.inputs.iter().enumerate() {
+        event_list(Part::Input(i), spec.raises, c)?;
+    }
+    for (o, spec) in c.outputs.iter().enumerate() {
+        pool(Part::Output(o), spec.state_map, c.state_map)?;
+    }
+    for (t, spec) in c.timers.iter().enumerate() {
+        if spec.preset_ms == 0 || spec.preset_ms >= 1 << 31 {
+            return fail(Part::Timer(t), Flaw::Preset);
+        }
+        event_list(Part::Timer(t), spec.raises, c)?;
+    }
+    for (k, action) in c.actions.iter().enumerate() {
+        match *action {
+            Action::Set(o) | Action::Clear(o) => in_range(Part::Action(k), o.into(), outputs)?,
+            Action::Start(t) | Action::Reset(t) => in_range(Part::Action(k), t.into(), timers)?,
+        }
+    }
+    for (k, m) in c.memberships.iter().enumerate() {
+        let part = Part::Membership(k);
+        in_range(part, m.supervisor.into(), supervisors)?;
+        let alphabet = c.supervisors[usize::from(m.supervisor)].alphabet;
+        in_range(part, m.local.into(), alphabet.len.into())?;
+    }
+    for (k, entry) in c.state_map.iter().enumerate() {
+        let part = Part::StateMap(k);
+        in_range(part, entry.supervisor.into(), supervisors)?;
+        let states = c.supervisors[usize::from(entry.supervisor)].states;
+        if entry.state >= states {
+            return fail(part, out_of_range(entry.state, states));
+        }
+    }
+    for (e, spec) in c.events.iter().enumerate() {
+        let part = Part::Event(e);
+        match spec.trigger {
+            Trigger::Rising(m) | Trigger::Falling(m) => mask(part, m, c)?,
+            Trigger::Expired(t) => in_range(part, t.into(), timers)?,
+            Trigger::Command => {}
+        }
+        mask(part, spec.when, c)?;
+        mask(part, spec.unless, c)?;
+        if let Some(r) = spec.request {
+            in_range(part, r.into(), inputs)?;
+        }
+        pool(part, spec.actions, c.actions)?;
+        pool(part, spec.members, c.memberships)?;
+    }
+    for (j, spec) in c.supervisors.iter().enumerate() {
+        let part = Part::Supervisor(j);
+        if spec.initial >= spec.states {
+            return fail(part, out_of_range(spec.initial, spec.states));
+        }
+        let alphabet = event_list(part, spec.alphabet, c)?;
+        let outside = event_set(part, spec.outside, c)?;
+        for (local, &e) in alphabet.iter().enumerate() {
+            let mut theirs = members(&c.events[usize::from(e)], c).filter(|m| m.0 == j);
+            match (theirs.next(), theirs.next()) {
+                (Some((_, l)), None) if l == local => {}
+                _ => return fail(part, Flaw::Membership),
+            }
+        }
+        for (e, event) in c.events.iter().enumerate() {
+            let member = members(event, c).any(|m| m.0 == j);
+            if member == bits::contains(outside, e) {
+                return fail(part, Flaw::Outside);
+            }
+        }
+    }
+    // Spans checked above: now whether each membership is its alphabet's.
+    for (e, spec) in c.events.iter().enumerate() {
+        for (j, local) in members(spec, c) {
+            let alphabet = c.supervisors[j].alphabet.of(c.event_lists);
+            if alphabet.get(local).map(|&x| usize::from(x)) != Some(e) {
+                return fail(Part::Event(e), Flaw::Membership);
+            }
+        }
+    }
+    let commands = event_set(Part::Commands, c.commands, c)?;
+    let requested = event_list(Part::Requested, c.requested, c)?;
+    for (e, spec) in c.events.iter().enumerate() {
+        let command = spec.is_controllable();
+        let listed = bits::contains(commands, e);
+        if listed != (command && spec.request.is_none()) {
+            return fail(Part::Commands, Flaw::Commands);
+        }
+        let listed = requested.iter().filter(|&&x| usize::from(x) == e).count();
+        if listed != usize::from(command && spec.request.is_some()) {
+            return fail(Part::Requested, Flaw::Commands);
+        }
+    }
+    Ok(())
+}
+
+/// Table `j` against supervisor `j`: sizes, lengths, row starts, and
+/// every defined entry a state of the supervisor.
+#[inline(never)]
+fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Result<(), Invalid> {
+    let part = Part::Table(j);
+    let spec = &c.supervisors[j];
+    if table.events != spec.alphabet.len {
+        return fail(part, Flaw::TableEvents);
+    }
+    let states = u64::from(spec.states);
+    let width = table.state_bits;
+    if !(1..=32).contains(&width) || states.saturating_sub(1) >> width != 0 {
+        return fail(part, Flaw::StateBits);
+    }
+    let m = u64::from(table.events);
+    let pairs = states * m;
+    if bits_of(table.defined) < pairs {
+        return fail(part, Flaw::TableLength);
+    }
+    // `pairs` fits in the defined words, so in a usize.
+    let pairs = pairs as usize;
+    let defined = (0..pairs).filter(|&p| bit(table.defined, p)).count() as u64;
+    let (entries, sparse) = match table.rows {
+        Rows::Dense => (pairs as u64, None),
+        Rows::Sparse {
+            row_starts,
+            start_bits,
+        } => {
+            if !(1..=32).contains(&start_bits)
+                || bits_of(row_starts) < states * u64::from(start_bits)
+            {
+                return fail(part, Flaw::TableLength);
+            }
+            (defined, Some((row_starts, start_bits)))
+        }
+    };
+    if bits_of(table.targets) < entries * u64::from(width) {
+        return fail(part, Flaw::TableLength);
+    }
+    // Every defined pair's target, in the layout's entry order: pair order
+    // when dense, the count of defined pairs before it when sparse.
+    let m = m as usize;
+    let mut before = 0usize;
+    for pair in 0..pairs {
+        let state = (pair / m) as u32;
+        if let Some((row_starts, start_bits)) = sparse {
+            if pair % m == 0 && read_bits(row_starts, state as usize, start_bits) as usize != before
+            {
+                return fail(part, Flaw::RowStart { state });
+            }
+        }
+        if !bit(table.defined, pair) {
+            continue;
+        }
+        let entry = if sparse.is_some() { before } else { pair };
+        let target = read_bits(table.targets, entry, width);
+        if target >= spec.states {
+            return fail(part, out_of_range(target, spec.states));
+        }
+        before += 1;
+    }
+    Ok(())
+}
+
+/// The memberships of `event` as (supervisor, local) pairs; its span is
+/// checked against the pool by the caller, the supervisors by the pool's
+/// check.
+fn members<'c>(event: &EventSpec, c: &Config<'c>) -> impl Iterator<Item = (usize, usize)> + 'c {
+    let span = event.members;
+    span.of(c.memberships)
+        .iter()
+        .map(|m| (usize::from(m.supervisor), usize::from(m.local)))
+}
+
+fn fail<T>(part: Part, flaw: Flaw) -> Result<T, Invalid> {
+    Err(Invalid { part, flaw })
+}
+
+fn out_of_range(index: u32, count: u32) -> Flaw {
+    Flaw::OutOfRange { index, count }
+}
+
+fn in_range(part: Part, index: usize, count: usize) -> Result<(), Invalid> {
+    if index < count {
+        Ok(())
+    } else {
+        fail(part, out_of_range(index as u32, count as u32))
+    }
+}
+
+/// Bits in `words`.
+fn bits_of(words: &[u32]) -> u64 {
+    32 * words.len() as u64
+}
+
+/// The items of `pool` that `span` covers, all of them.
+fn pool<T>(part: Part, span: Span, pool: &[T]) -> Result<&[T], Invalid> {
+    let start = usize::from(span.start);
+    pool.get(start..start + usize::from(span.len))
+        .ok_or(Invalid {
+            part,
+            flaw: Flaw::SpanPastPool,
+        })
+}
+
+/// A list of events in `event_lists`, every one in range.
+fn event_list<'c>(part: Part, span: Span, c: &Config<'c>) -> Result<&'c [Index], Invalid> {
+    let list = pool(part, span, c.event_lists)?;
+    for &e in list {
+        in_range(part, e.into(), c.events.len())?;
+    }
+    Ok(list)
+}
+
+/// A set of `members` members in `sets`: empty, or one word per 32
+/// members with no bit past the last.
+fn set(part: Part, span: Span, sets: &[u32], members: usize) -> Result<&[u32], Invalid> {
+    let words_of_set = pool(part, span, sets)?;
+    if !words_of_set.is_empty() && words_of_set.len() != words(members) {
+        return fail(part, Flaw::SetLength);
+    }
+    let spare = words(members) * 32 - members;
+    let stray = match words_of_set.last() {
+        Some(&last) if spare != 0 => last >> (32 - spare) != 0,
+        _ => false,
+    };
+    if stray {
+        return fail(part, Flaw::StrayBits);
+    }
+    Ok(words_of_set)
+}
+
+/// An input mask.
+fn mask(part: Part, span: Span, c: &Config<'_>) -> Result<(), Invalid> {
+    set(part, span, c.input_masks, c.inputs.len()).map(|_| ())
+}
+
+/// An event set.
+fn event_set<'c>(part: Part, span: Span, c: &Config<'c>) -> Result<&'c [u32], Invalid> {
+    set(part, span, c.event_masks, c.events.len())
+}
