@@ -93,21 +93,33 @@ fn push_span<T: Clone>(pool: &mut Vec<T>, items: &[T], what: &str) -> Result<Spa
     Ok(Span::new(start, len))
 }
 
-/// The pool of input masks under construction: each distinct mask once.
+/// A pool of bit sets under construction (input masks, event sets): each
+/// distinct set once, `words` words each.
 struct MaskPool {
-    /// Words per mask.
+    /// Words per set.
     words: usize,
     pool: Vec<u32>,
+    /// What the members are, for errors (`"input"`, `"event"`).
+    members: &'static str,
 }
 
 impl MaskPool {
-    /// The span of the mask of `inputs` (an empty list: [`Span::EMPTY`]).
-    fn span(&mut self, inputs: &[usize]) -> Result<Span> {
-        if inputs.is_empty() {
+    fn new(members: &'static str, count: usize) -> MaskPool {
+        MaskPool {
+            words: ex::words(count),
+            pool: Vec::new(),
+            members,
+        }
+    }
+
+    /// The span of the set of `members` (an empty list: [`Span::EMPTY`],
+    /// which reads as zeros past any pool).
+    fn span(&mut self, members: &[usize]) -> Result<Span> {
+        if members.is_empty() {
             return Ok(Span::EMPTY);
         }
         let mut mask = vec![0u32; self.words];
-        for &i in inputs {
+        for &i in members {
             mask[i / 32] |= 1 << (i % 32);
         }
         let at = match self.pool.chunks(self.words).position(|m| m == mask) {
@@ -117,10 +129,11 @@ impl MaskPool {
                 self.pool.len() - self.words
             }
         };
-        index(at + self.words, "input masks")?;
+        let pool = format!("{} masks", self.members);
+        index(at + self.words, &pool)?;
         Ok(Span::new(
-            index(at, "input masks")?,
-            index(self.words, "input words")?,
+            index(at, &pool)?,
+            index(self.words, &format!("{} words", self.members))?,
         ))
     }
 }
@@ -128,10 +141,7 @@ impl MaskPool {
 impl ConfigPools {
     /// Lays out `project`.
     pub fn from_project(project: &Project) -> Result<ConfigPools> {
-        let mut masks = MaskPool {
-            words: ex::words(project.inputs.len()),
-            pool: Vec::new(),
-        };
+        let mut masks = MaskPool::new("input", project.inputs.len());
         let mut actions = Vec::new();
         let mut memberships = Vec::new();
         let mut state_map = Vec::new();
@@ -248,38 +258,17 @@ impl ConfigPools {
 
         // Event sets: what each supervisor never blocks, then the commands
         // the controller may choose without a request.
-        let event_words = ex::words(project.events.len());
-        let mut event_masks = Vec::new();
-        let mut event_set = |members: &mut dyn Iterator<Item = usize>| -> Result<Span> {
-            let mut set = vec![0u32; event_words];
-            for e in members {
-                set[e / 32] |= 1 << (e % 32);
-            }
-            // The empty set reads as zeros past any pool; equal sets once.
-            if set.iter().all(|&w| w == 0) {
-                return Ok(Span::EMPTY);
-            }
-            let start = match event_masks.chunks(event_words).position(|m| m == set) {
-                Some(found) => found * event_words,
-                None => {
-                    event_masks.extend_from_slice(&set);
-                    event_masks.len() - event_words
-                }
-            };
-            index(start + event_words, "event masks")?;
-            Ok(Span::new(
-                index(start, "event masks")?,
-                index(event_words, "event words")?,
-            ))
-        };
+        let mut event_masks = MaskPool::new("event", project.events.len());
         let mut supervisors = Vec::with_capacity(project.supervisors.len());
         for s in &project.supervisors {
             let initial = s.automaton.initial().ok_or_else(|| {
                 Error::Incompatible(format!("supervisor `{}` has no initial state", s.name))
             })?;
             let alphabet: Vec<usize> = s.local_events.iter().map(|&(e, _)| e).collect();
-            let outside =
-                event_set(&mut (0..project.events.len()).filter(|e| !alphabet.contains(e)))?;
+            let outside: Vec<usize> = (0..project.events.len())
+                .filter(|e| !alphabet.contains(e))
+                .collect();
+            let outside = event_masks.span(&outside)?;
             supervisors.push(ex::SupervisorSpec {
                 states: s.automaton.num_states() as u32,
                 initial: initial.0,
@@ -292,10 +281,10 @@ impl ConfigPools {
             });
         }
         let is_command = |e: &usize| project.events[*e].trigger == Trigger::Command;
-        let commands = event_set(
-            &mut (0..project.events.len())
-                .filter(|e| is_command(e) && project.events[*e].request.is_none()),
-        )?;
+        let commands: Vec<usize> = (0..project.events.len())
+            .filter(|e| is_command(e) && project.events[*e].request.is_none())
+            .collect();
+        let commands = event_masks.span(&commands)?;
         let requested: Vec<usize> = (0..project.events.len())
             .filter(|e| is_command(e) && project.events[*e].request.is_some())
             .collect();
@@ -332,7 +321,7 @@ impl ConfigPools {
             supervisors,
             input_masks: masks.pool,
             event_lists,
-            event_masks,
+            event_masks: event_masks.pool,
             commands,
             requested,
             actions,
