@@ -170,9 +170,9 @@ fn run(cli: Cli) -> Result<(), String> {
             for w in &sim.project().warnings {
                 note!("warning: {}:{}: {}", project.display(), w.line, w.message);
             }
-            match vcd_path {
-                // The waveform needs the whole run; without it the replay
-                // streams: constant memory however long the inputs file.
+            // The waveform needs the whole run; without it the replay
+            // streams: constant memory however long the inputs file.
+            let totals = match vcd_path {
                 Some(path) => {
                     let rows = inputs::parse(&read(&inputs_path)?, &inputs_path, sim.project())
                         .map_err(|e| e.to_string())?;
@@ -182,23 +182,16 @@ fn run(cli: Cli) -> Result<(), String> {
                     vcd::write(&mut buf, sim.project(), &rows, &trace_rows)
                         .map_err(|e| e.to_string())?;
                     write(&path, &buf)?;
-                    let faults = trace_rows.iter().filter(|r| r.fault.is_some()).count();
-                    let events = trace_rows.iter().map(|r| r.events.len()).sum::<usize>();
-                    note!(
-                        "replayed {} scans: {events} events executed, {faults} scans in fault mode",
-                        trace_rows.len()
-                    );
+                    replay::Totals::of(&trace_rows)
                 }
-                None => {
-                    let totals = replay::stream(&mut sim, &inputs_path, &out)?;
-                    note!(
-                        "replayed {} scans: {} events executed, {} scans in fault mode",
-                        totals.scans,
-                        totals.events,
-                        totals.faults
-                    );
-                }
-            }
+                None => replay::stream(&mut sim, &inputs_path, &out)?,
+            };
+            note!(
+                "replayed {} scans: {} events executed, {} scans in fault mode",
+                totals.scans,
+                totals.events,
+                totals.faults
+            );
             Ok(())
         }
         Command::Boiler {

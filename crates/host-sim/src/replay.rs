@@ -27,6 +27,22 @@ pub struct Totals {
     pub faults: u64,
 }
 
+impl Totals {
+    /// Counts one scan.
+    pub fn add(&mut self, row: &TraceRow) {
+        self.scans += 1;
+        self.events += row.events.len() as u64;
+        self.faults += u64::from(row.fault.is_some());
+    }
+
+    /// The totals of `rows`.
+    pub fn of(rows: &[TraceRow]) -> Totals {
+        let mut totals = Totals::default();
+        rows.iter().for_each(|row| totals.add(row));
+        totals
+    }
+}
+
 /// Replays the inputs file at `inputs` through `sim` one row at a time and
 /// writes the trace to `out` as each scan produces it: memory stays
 /// constant however long the file. The trace goes to a temporary file
@@ -47,9 +63,7 @@ pub fn stream(sim: &mut Sim, inputs: &Path, out: &Path) -> Result<Totals, String
             let scanned = sim
                 .scan_with(row.time_ms, &row.values)
                 .map_err(|e| e.to_string())?;
-            totals.scans += 1;
-            totals.events += scanned.events.len() as u64;
-            totals.faults += u64::from(scanned.fault.is_some());
+            totals.add(scanned);
             writeln!(w, "{}", trace::csv_line(scanned)).map_err(|e| io(&partial, e))?;
         }
         w.flush().map_err(|e| io(&partial, e))?;
