@@ -2,7 +2,7 @@
 
 /// `true` when `i` is in `set`.
 #[inline]
-pub(crate) fn contains(set: &[u32], i: usize) -> bool {
+pub fn contains(set: &[u32], i: usize) -> bool {
     set.get(i / 32).is_some_and(|w| (w >> (i % 32)) & 1 == 1)
 }
 

@@ -6,6 +6,7 @@
 //! one AND/OR per word, only debounced inputs have a counter, and the set
 //! of inputs that changed is `F[k] ^ F[k-1]`.
 
+use crate::bits;
 use crate::memory::Ram;
 use crate::program::Config;
 
@@ -141,18 +142,13 @@ pub(crate) fn falling(mask: &[u32], ram: &Ram<'_>) -> bool {
 /// `true` when input `i` rose between F\[k-1\] and F\[k\].
 #[inline]
 pub(crate) fn input_rose(i: usize, ram: &Ram<'_>) -> bool {
-    let (k, bit) = (i / 32, 1u32 << (i % 32));
-    let now = ram.filtered.get(k).copied().unwrap_or(0);
-    let before = ram.previous.get(k).copied().unwrap_or(0);
-    now & !before & bit != 0
+    bits::contains(ram.filtered, i) && !bits::contains(ram.previous, i)
 }
 
 /// `true` when input `i` is 1 in F\[k\].
 #[inline]
 pub(crate) fn input_on(i: usize, ram: &Ram<'_>) -> bool {
-    ram.filtered
-        .get(i / 32)
-        .is_some_and(|w| (w >> (i % 32)) & 1 == 1)
+    bits::contains(ram.filtered, i)
 }
 
 #[cfg(test)]

@@ -100,13 +100,9 @@ fn read_bits_at(words: &[u32], bit: usize, width: u8) -> u32 {
     }
 }
 
-/// Bit `index` of a bit array.
-#[inline]
-pub fn bit(words: &[u32], index: usize) -> bool {
-    words
-        .get(index / 32)
-        .is_some_and(|w| (w >> (index % 32)) & 1 == 1)
-}
+/// Bit `index` of a bit array (false past its end): the executor's bit
+/// sets and the tables' defined-bits are one layout.
+pub use crate::bits::contains as bit;
 
 /// Number of set bits in `from..to`.
 #[inline]
