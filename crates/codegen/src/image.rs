@@ -7,9 +7,9 @@
 //! [`Program`] with the very decoder the target uses, or through
 //! [`LogicImage`], which evaluates the minimised CMSSM covers.
 
-use crate::backend::logic::{Encoding, LogicSupervisor, Minimisation};
+use crate::backend::logic::{Encoding, LogicError, LogicSupervisor, Minimisation, Settings};
 use crate::backend::table::EncodedTable;
-use crate::error::{Error, Result};
+use crate::error::{Error, Location, Result};
 use crate::ops::Progress;
 use crate::project::{Action, Drive, Project, Trigger, Unexpected};
 use executor::image::{self as ex_image, config_crc, table_image_crc};
@@ -531,14 +531,24 @@ impl LogicImage {
             .iter()
             .map(|s| {
                 let local: Vec<_> = s.local_events.iter().map(|&(_, id)| id).collect();
+                let settings = Settings {
+                    minimisation: Minimisation::PerFunction,
+                    max_effort: s.max_logic_effort,
+                };
                 LogicSupervisor::synthesize_reporting(
                     &s.automaton,
                     &local,
                     Encoding::binary(s.automaton.num_states()),
-                    Minimisation::PerFunction,
+                    &settings,
                     progress,
                 )
-                .map_err(|e| Error::Incompatible(format!("supervisor `{}`: {e}", s.name)))
+                .map_err(|e| match e {
+                    LogicError::Unavailable => Error::Incompatible(e.to_string()),
+                    e => Error::model(
+                        Location::new(&project.path, s.line, 0),
+                        format!("supervisor `{}`: {e}", s.name),
+                    ),
+                })
             })
             .collect::<Result<Vec<_>>>()?;
         let crc = config_crc(&pools.config());

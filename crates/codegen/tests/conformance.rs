@@ -988,6 +988,7 @@ fn build_supervisor(
         local_events: alphabet.iter().copied().zip(ids).collect(),
         source: SupervisorSource::File(PathBuf::from(format!("s{j}.toml"))),
         line: 0,
+        max_logic_effort: codegen::backend::logic::DEFAULT_MAX_EFFORT,
     }
 }
 
@@ -1714,6 +1715,7 @@ fn supervisor_named(
         local_events: alphabet.iter().copied().zip(ids).collect(),
         source: SupervisorSource::File(PathBuf::from(format!("{name}.toml"))),
         line: 0,
+        max_logic_effort: codegen::backend::logic::DEFAULT_MAX_EFFORT,
     }
 }
 

@@ -179,6 +179,62 @@ fn a_synthesis_beyond_its_max_states_is_refused_at_its_line() {
 }
 
 #[test]
+fn a_supervisor_beyond_its_logic_effort_is_refused_at_its_line_before_minimising() {
+    use codegen::backend::logic::{self, Encoding, Minimisation, DEFAULT_MAX_EFFORT};
+    use codegen::image::{LogicImage, TableImage};
+    let base = std::fs::read_to_string(fixture("factory.plc.toml")).unwrap();
+    let project = load_ok(&base);
+    let s = &project.supervisors[0];
+    assert_eq!(s.max_logic_effort, DEFAULT_MAX_EFFORT);
+    let local: Vec<_> = s.local_events.iter().map(|&(_, id)| id).collect();
+    let encoding = Encoding::binary(s.automaton.num_states());
+    let effort = logic::effort(&s.automaton, &local, &encoding, Minimisation::PerFunction).unwrap();
+    assert!(
+        effort > 1,
+        "the 12-state supervisor has work to do: {effort}"
+    );
+
+    let limited = |limit: u64| {
+        let text = base.replace(
+            "name = \"factory\"",
+            &format!("name = \"factory\"\nmax_logic_effort = {limit}"),
+        );
+        assert_ne!(text, base);
+        load_ok(&text)
+    };
+    let phases = std::cell::RefCell::new(Vec::<String>::new());
+    struct Phases<'a>(&'a std::cell::RefCell<Vec<String>>);
+    impl ops::Progress for Phases<'_> {
+        fn report(&self, phase: &str, _done: usize) {
+            self.0.borrow_mut().push(phase.to_owned());
+        }
+    }
+    let err = LogicImage::with_progress(&limited(effort - 1), &Phases(&phases))
+        .unwrap_err()
+        .to_string();
+    assert_eq!(phases.borrow().len(), 0, "nothing minimised: {phases:?}");
+    let line = base.lines().position(|l| l == "[[supervisor]]").unwrap() + 1;
+    assert!(err.contains(&format!("t.plc.toml:{line}:")), "{err}");
+    assert!(
+        err.contains(&format!("effort of {effort}"))
+            && err.contains(&format!("limit of {}", effort - 1)),
+        "{err}"
+    );
+    assert!(
+        err.contains("max_logic_effort") && err.contains("table backend"),
+        "{err}"
+    );
+    // The limit concerns the logic backend only, and is inclusive.
+    TableImage::new(&limited(1)).unwrap();
+    LogicImage::new(&limited(effort)).unwrap();
+    let zero = base.replace(
+        "name = \"factory\"",
+        "name = \"factory\"\nmax_logic_effort = 0",
+    );
+    assert!(load_err(&zero).contains("max_logic_effort must be a positive number"));
+}
+
+#[test]
 fn minimize_runs_minstate_on_the_synthesised_supervisor() {
     let text = std::fs::read_to_string(fixture("factory.plc.toml"))
         .unwrap()

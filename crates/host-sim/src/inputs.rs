@@ -224,19 +224,31 @@ fn line_of_error(e: &csv::Error) -> usize {
     e.position().map_or(1, |p| p.line() as usize)
 }
 
-/// The inputs file text for `rows` of `project`.
-pub fn to_csv(project: &Project, rows: &[InputRow]) -> String {
+/// The header line of an inputs file for `project` (no line break).
+pub fn csv_header(project: &Project) -> String {
     let mut out = String::from("scan,time_ms");
     for i in &project.inputs {
         out.push(',');
         out.push_str(&crate::trace::field(&i.name));
     }
+    out
+}
+
+/// Row `scan` of an inputs file (no line break).
+pub fn csv_line(scan: u64, row: &InputRow) -> String {
+    let mut out = format!("{scan},{}", row.time_ms);
+    for &v in &row.values {
+        out.push_str(if v { ",1" } else { ",0" });
+    }
+    out
+}
+
+/// The inputs file text for `rows` of `project`.
+pub fn to_csv(project: &Project, rows: &[InputRow]) -> String {
+    let mut out = csv_header(project);
     out.push('\n');
     for (k, r) in rows.iter().enumerate() {
-        out.push_str(&format!("{k},{}", r.time_ms));
-        for &v in &r.values {
-            out.push_str(if v { ",1" } else { ",0" });
-        }
+        out.push_str(&csv_line(k as u64, r));
         out.push('\n');
     }
     out

@@ -6,7 +6,8 @@
 //!   [`lockstep`]: both backends side by side, compared every scan.
 //! - [`inputs`] reads and writes `inputs.csv`; [`trace`]: trace rows and
 //!   `trace.csv`; [`vcd`]: waveforms (GTKWave, Surfer).
-//! - [`replay`]: an input file through a project (`host-sim replay`).
+//! - [`replay`]: an input file through a project (`host-sim replay`);
+//!   [`partial`]: output files that appear only once complete.
 //! - [`scenario`]: postcard scenarios for the QEMU harness (`host-sim
 //!   record`), from an input file or [`random_inputs`]; [`rng`]: the seeded
 //!   generator behind everything random.
@@ -19,6 +20,7 @@
 
 pub mod inputs;
 pub mod lockstep;
+pub mod partial;
 pub mod plant;
 pub mod random_inputs;
 pub mod replay;

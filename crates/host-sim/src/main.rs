@@ -2,7 +2,7 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use codegen::emit::Backend;
-use host_sim::{inputs, random_inputs, replay, scenario, trace, vcd, Sim};
+use host_sim::{inputs, random_inputs, replay, scenario, Sim};
 use std::fmt;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -149,10 +149,6 @@ enum Command {
     },
 }
 
-fn read(path: &Path) -> Result<String, String> {
-    std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))
-}
-
 fn write(path: &Path, text: &[u8]) -> Result<(), String> {
     std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
 }
@@ -170,22 +166,9 @@ fn run(cli: Cli) -> Result<(), String> {
             for w in &sim.project().warnings {
                 note!("warning: {}:{}: {}", project.display(), w.line, w.message);
             }
-            // The waveform needs the whole run; without it the replay
-            // streams: constant memory however long the inputs file.
-            let totals = match vcd_path {
-                Some(path) => {
-                    let rows = inputs::parse(&read(&inputs_path)?, &inputs_path, sim.project())
-                        .map_err(|e| e.to_string())?;
-                    let trace_rows = replay::replay(&mut sim, &rows).map_err(|e| e.to_string())?;
-                    write(&out, trace::to_csv(sim.project(), &trace_rows).as_bytes())?;
-                    let mut buf = Vec::new();
-                    vcd::write(&mut buf, sim.project(), &rows, &trace_rows)
-                        .map_err(|e| e.to_string())?;
-                    write(&path, &buf)?;
-                    replay::Totals::of(&trace_rows)
-                }
-                None => replay::stream(&mut sim, &inputs_path, &out)?,
-            };
+            // Rows are read, and the trace and waveform written, scan by
+            // scan: constant memory however long the inputs file.
+            let totals = replay::stream(&mut sim, &inputs_path, &out, vcd_path.as_deref())?;
             note!(
                 "replayed {} scans: {} events executed, {} scans in fault mode",
                 totals.scans,
@@ -222,33 +205,40 @@ fn run(cli: Cli) -> Result<(), String> {
             out,
             csv,
         } => {
+            // Rows are generated or read as they are recorded, and every
+            // file is written as it goes: constant memory however many scans.
             let mut sim = Sim::load(&project, Backend::Table).map_err(|e| e.to_string())?;
-            let rows = match &inputs_path {
+            let totals = match &inputs_path {
                 Some(path) => {
-                    inputs::parse(&read(path)?, path, sim.project()).map_err(|e| e.to_string())?
+                    let open = || {
+                        let file = std::fs::File::open(path)
+                            .map_err(|e| format!("{}: {e}", path.display()))?;
+                        inputs::InputRows::new(file, path, sim.project()).map_err(|e| e.to_string())
+                    };
+                    // A first pass counts (and checks) the rows: the
+                    // scenario's header gives their number.
+                    let mut scans = 0u64;
+                    for row in open()? {
+                        row.map_err(|e| e.to_string())?;
+                        scans += 1;
+                    }
+                    let rows = open()?;
+                    scenario::record_files(&mut sim, scans, rows, &out, csv)?
                 }
-                None => random_inputs::guided_inputs(sim.project(), random, seed, noise_one_in)
-                    .map_err(|e| e.to_string())?,
+                None => {
+                    let project = sim.project().clone();
+                    let rows = random_inputs::GuidedInputs::new(&project, seed, noise_one_in)
+                        .map_err(|e| e.to_string())?
+                        .take(random);
+                    scenario::record_files(&mut sim, random as u64, rows, &out, csv)?
+                }
             };
-            let bytes = scenario::record(&mut sim, &rows).map_err(|e| e.to_string())?;
-            write(&out, &bytes)?;
-            if csv {
-                write(
-                    &out.with_extension("inputs.csv"),
-                    inputs::to_csv(sim.project(), &rows).as_bytes(),
-                )?;
-                write(
-                    &out.with_extension("trace.csv"),
-                    trace::to_csv(sim.project(), sim.trace()).as_bytes(),
-                )?;
-            }
-            let t = sim.trace();
             note!(
                 "recorded {} scans ({} bytes): {} events executed, {} scans in fault mode",
-                t.len(),
-                bytes.len(),
-                t.iter().map(|r| r.events.len()).sum::<usize>(),
-                t.iter().filter(|r| r.fault.is_some()).count()
+                totals.scans,
+                std::fs::metadata(&out).map_or(0, |m| m.len()),
+                totals.events,
+                totals.faults
             );
             Ok(())
         }

@@ -4,36 +4,55 @@
 use crate::inputs::InputRow;
 use crate::rng::Rng;
 use crate::sim::{Sim, SimError};
+use codegen::project::{Project, Trigger};
 
-/// `scans` rows of inputs that mostly make things happen: each scan, with
-/// probability 1/4, one uncontrollable event bound to an input edge that
-/// every supervisor having it can take is provoked (its inputs moved, its
-/// `when`/`unless` conditions met); request inputs flip now and then; with
-/// probability 1/`noise_one_in` a random input toggles (which may raise
-/// an unexpected event); after a fault, reset is pressed a few scans
-/// later. Inputs are held between changes, so debouncing lets edges
-/// through. The generator runs its own simulation (table backend) to know
-/// the current states.
-pub fn guided_inputs(
-    project: &codegen::project::Project,
-    scans: usize,
-    seed: u64,
+/// Rows of inputs that mostly make things happen, one per scan, without
+/// end: each scan, with probability 1/4, one uncontrollable event bound to
+/// an input edge that every supervisor having it can take is provoked (its
+/// inputs moved, its `when`/`unless` conditions met); request inputs flip
+/// now and then; with probability 1/`noise_one_in` a random input toggles
+/// (which may raise an unexpected event); after a fault, reset is pressed
+/// a few scans later. Inputs are held between changes, so debouncing lets
+/// edges through. The generator runs its own simulation (table backend,
+/// keeping only its last trace row) to know the current states, so it
+/// holds constant memory however many rows it gives.
+pub struct GuidedInputs<'p> {
+    project: &'p Project,
+    sim: Sim,
+    rng: Rng,
+    values: Vec<bool>,
+    period: u64,
+    requests: Vec<usize>,
     noise_one_in: u64,
-) -> Result<Vec<InputRow>, SimError> {
-    use codegen::project::Trigger;
-    let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table)?;
-    let mut rng = Rng::new(seed);
-    let mut values = vec![false; project.inputs.len()];
-    let period = u64::from(project.scan_period_ms.max(1));
-    let mut rows = Vec::with_capacity(scans);
-    let requests: Vec<usize> = project.events.iter().filter_map(|e| e.request).collect();
-    for k in 0..scans {
-        let faulted = sim.controller().fault().is_some();
+    scan: u64,
+}
+
+impl<'p> GuidedInputs<'p> {
+    /// The generator for `project`, seeded with `seed`.
+    pub fn new(project: &'p Project, seed: u64, noise_one_in: u64) -> Result<Self, SimError> {
+        let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table)?;
+        sim.retain_trace(false);
+        Ok(GuidedInputs {
+            project,
+            sim,
+            rng: Rng::new(seed),
+            values: vec![false; project.inputs.len()],
+            period: u64::from(project.scan_period_ms.max(1)),
+            requests: project.events.iter().filter_map(|e| e.request).collect(),
+            noise_one_in,
+            scan: 0,
+        })
+    }
+
+    /// The next row (and the generator's own scan of it).
+    pub fn next_row(&mut self) -> Result<InputRow, SimError> {
+        let (project, rng, values) = (self.project, &mut self.rng, &mut self.values);
+        let faulted = self.sim.controller().fault().is_some();
         if let Some(r) = project.reset {
             values[r] = faulted && !values[r] && rng.one_in(8);
         }
         if !faulted && rng.one_in(4) {
-            let states = sim.controller().states();
+            let states = self.sim.controller().states();
             let feasible: Vec<usize> = (0..project.events.len())
                 .filter(|&e| {
                     let ev = &project.events[e];
@@ -64,22 +83,42 @@ pub fn guided_inputs(
                 ev.unless.iter().for_each(|&i| values[i] = false);
             }
         }
-        if !requests.is_empty() && rng.one_in(10) {
-            let r = requests[(rng.next_u64() % requests.len() as u64) as usize];
+        if !self.requests.is_empty() && rng.one_in(10) {
+            let r = self.requests[(rng.next_u64() % self.requests.len() as u64) as usize];
             values[r] = !values[r];
         }
-        if !values.is_empty() && rng.one_in(noise_one_in) {
+        if !values.is_empty() && rng.one_in(self.noise_one_in) {
             let i = (rng.next_u64() % values.len() as u64) as usize;
             values[i] = !values[i];
         }
         let row = InputRow {
-            time_ms: k as u64 * period,
+            time_ms: self.scan * self.period,
             values: values.clone(),
         };
-        sim.scan_with(row.time_ms, &row.values)?;
-        rows.push(row);
+        self.scan += 1;
+        self.sim.scan_with(row.time_ms, &row.values)?;
+        Ok(row)
     }
-    Ok(rows)
+}
+
+impl Iterator for GuidedInputs<'_> {
+    type Item = Result<InputRow, SimError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        Some(self.next_row())
+    }
+}
+
+/// The first `scans` rows of [`GuidedInputs`].
+pub fn guided_inputs(
+    project: &Project,
+    scans: usize,
+    seed: u64,
+    noise_one_in: u64,
+) -> Result<Vec<InputRow>, SimError> {
+    GuidedInputs::new(project, seed, noise_one_in)?
+        .take(scans)
+        .collect()
 }
 
 #[cfg(test)]

@@ -1,9 +1,10 @@
 //! Replay: every row of an inputs file through a project, one scan each.
 
 use crate::inputs::{InputRow, InputRows};
+use crate::partial::Partial;
 use crate::sim::{Sim, SimError};
 use crate::trace::{self, TraceRow};
-use std::io::{BufWriter, Write};
+use crate::vcd::Waveform;
 use std::path::Path;
 
 /// Runs `rows` through `sim` (one scan per row at the row's time) and
@@ -44,41 +45,49 @@ impl Totals {
 }
 
 /// Replays the inputs file at `inputs` through `sim` one row at a time and
-/// writes the trace to `out` as each scan produces it: memory stays
-/// constant however long the file. The trace goes to a temporary file
-/// next to `out`, renamed when the whole file has replayed, so that bad
-/// input leaves no trace behind. `sim` keeps only its last trace row.
-pub fn stream(sim: &mut Sim, inputs: &Path, out: &Path) -> Result<Totals, String> {
-    let io = |path: &Path, e: std::io::Error| format!("{}: {e}", path.display());
-    let file = std::fs::File::open(inputs).map_err(|e| io(inputs, e))?;
-    let rows = InputRows::new(file, inputs, sim.project()).map_err(|e| e.to_string())?;
-    let partial = out.with_extension("partial");
-    let result = (|| {
-        let mut w = BufWriter::new(std::fs::File::create(&partial).map_err(|e| io(&partial, e))?);
-        writeln!(w, "{}", trace::header(sim.project())).map_err(|e| io(&partial, e))?;
-        sim.retain_trace(false);
-        let mut totals = Totals::default();
-        for row in rows {
-            let row = row.map_err(|e| e.to_string())?;
-            let scanned = sim
-                .scan_with(row.time_ms, &row.values)
-                .map_err(|e| e.to_string())?;
-            totals.add(scanned);
-            writeln!(w, "{}", trace::csv_line(scanned)).map_err(|e| io(&partial, e))?;
-        }
-        w.flush().map_err(|e| io(&partial, e))?;
-        Ok(totals)
-    })();
-    match result {
-        Ok(totals) => {
-            std::fs::rename(&partial, out).map_err(|e| io(out, e))?;
-            Ok(totals)
-        }
-        Err(e) => {
-            let _ = std::fs::remove_file(&partial);
-            Err(e)
+/// writes the trace to `out` (and the waveform to `vcd`, if given) as each
+/// scan produces it: memory stays constant however long the file. The
+/// files appear only once the whole file has replayed ([`Partial`]), so
+/// that bad input leaves nothing behind. `sim` keeps only its last trace
+/// row.
+pub fn stream(
+    sim: &mut Sim,
+    inputs: &Path,
+    out: &Path,
+    vcd: Option<&Path>,
+) -> Result<Totals, String> {
+    let file = std::fs::File::open(inputs).map_err(|e| format!("{}: {e}", inputs.display()))?;
+    let project = sim.project().clone();
+    let rows = InputRows::new(file, inputs, &project).map_err(|e| e.to_string())?;
+    let mut trace_file = Partial::create(out)?;
+    trace_file.line(&trace::header(&project))?;
+    let mut vcd_file = vcd.map(Partial::create).transpose()?;
+    let vcd_error = |e: std::io::Error| format!("{}: {e}", vcd.unwrap_or(out).display());
+    let mut waveform = match &mut vcd_file {
+        Some(file) => Some(Waveform::new(file, &project).map_err(vcd_error)?),
+        None => None,
+    };
+    sim.retain_trace(false);
+    let mut totals = Totals::default();
+    for row in rows {
+        let row = row.map_err(|e| e.to_string())?;
+        let scanned = sim
+            .scan_with(row.time_ms, &row.values)
+            .map_err(|e| e.to_string())?;
+        totals.add(scanned);
+        trace_file.line(&trace::csv_line(scanned))?;
+        if let Some(w) = &mut waveform {
+            w.scan(Some(&row), scanned).map_err(vcd_error)?;
         }
     }
+    if let Some(w) = waveform {
+        w.finish().map_err(vcd_error)?;
+    }
+    trace_file.commit()?;
+    if let Some(file) = vcd_file {
+        file.commit()?;
+    }
+    Ok(totals)
 }
 
 #[cfg(test)]
@@ -93,7 +102,7 @@ mod tests {
     }
 
     #[test]
-    fn a_streamed_replay_writes_the_trace_an_in_memory_one_gives_and_keeps_one_row() {
+    fn a_streamed_replay_writes_the_trace_and_waveform_an_in_memory_one_gives_and_keeps_one_row() {
         let project = repo("models/press.plc.toml");
         let inputs = repo("models/press/cycle.inputs.csv");
         let mut sim = Sim::load(&project, Backend::Table).unwrap();
@@ -105,10 +114,22 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("t.csv");
         let mut sim = Sim::load(&project, Backend::Table).unwrap();
-        let totals = stream(&mut sim, &inputs, &out).unwrap();
+        let mut waveform = Vec::new();
+        crate::vcd::write(&mut waveform, sim.project(), &rows, &traced).unwrap();
+        let vcd = dir.path().join("t.vcd");
+        let totals = stream(&mut sim, &inputs, &out, Some(&vcd)).unwrap();
         assert_eq!(std::fs::read_to_string(&out).unwrap(), expected);
+        assert_eq!(std::fs::read(&vcd).unwrap(), waveform);
         assert_eq!(totals.scans, rows.len() as u64);
         assert_eq!(sim.trace().len(), 1, "only the last row is kept");
-        assert!(!out.with_extension("partial").exists());
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(
+            names.len(),
+            2,
+            "t.csv and t.vcd, no partial file: {names:?}"
+        );
     }
 }

@@ -3,9 +3,14 @@
 //! "Recorded scenario").
 
 use crate::inputs::InputRow;
+use crate::partial::Partial;
+use crate::replay::Totals;
 use crate::sim::{Sim, SimError};
+use crate::trace::TraceRow;
 use executor::replay::{RecordedScan, ScenarioHeader};
 use executor::Program;
+use std::io::Write;
+use std::path::Path;
 
 /// A problem recording a scenario.
 #[derive(Debug, thiserror::Error)]
@@ -24,21 +29,62 @@ pub enum RecordError {
     /// Serialisation failed.
     #[error("postcard: {0}")]
     Encode(#[from] postcard::Error),
+    /// The inputs could not be read.
+    #[error(transparent)]
+    Inputs(#[from] crate::inputs::InputsError),
+    /// Writing failed.
+    #[error("writing the scenario: {0}")]
+    Io(#[from] std::io::Error),
+    /// More scans than a scenario header counts.
+    #[error("{0} scans: a scenario holds at most 2^32 - 1")]
+    TooLong(u64),
+    /// The rows ran out before the announced number of scans, or went on.
+    #[error("{got} rows for the {expected} scans announced")]
+    Count {
+        /// Scans announced in the header.
+        expected: u64,
+        /// Rows given.
+        got: u64,
+    },
 }
 
 /// Runs `rows` through `sim` and returns the scenario bytes: a
 /// [`ScenarioHeader`] then one [`RecordedScan`] per row.
 pub fn record(sim: &mut Sim, rows: &[InputRow]) -> Result<Vec<u8>, RecordError> {
+    let mut out = Vec::new();
+    let rows = rows.iter().map(|r| Ok::<_, RecordError>(r.clone()));
+    write(sim, rows.len() as u64, rows, &mut out, |_, _| Ok(()))?;
+    Ok(out)
+}
+
+/// Runs the `scans` rows `rows` through `sim` and writes the scenario to
+/// `out` as each scan produces it (a [`ScenarioHeader`], then one
+/// [`RecordedScan`] per row), telling `each` every row and its trace row:
+/// memory stays constant however many rows (call
+/// [`Sim::retain_trace`]`(false)` first). Fails if `rows` gives fewer or
+/// more than `scans` rows.
+pub fn write<E>(
+    sim: &mut Sim,
+    scans: u64,
+    rows: impl IntoIterator<Item = Result<InputRow, E>>,
+    out: &mut impl Write,
+    mut each: impl FnMut(&InputRow, &TraceRow) -> Result<(), RecordError>,
+) -> Result<Totals, RecordError>
+where
+    RecordError: From<E>,
+{
     let config = sim.controller().program().config();
     let header = ScenarioHeader {
         config_crc: executor::image::config_crc(&config),
         inputs: config.inputs.len() as u16,
         outputs: config.outputs.len() as u16,
-        scans: rows.len() as u32,
+        scans: u32::try_from(scans).map_err(|_| RecordError::TooLong(scans))?,
     };
     let inputs = config.inputs.len();
-    let mut out = postcard::to_stdvec(&header)?;
-    for (k, row) in rows.iter().enumerate() {
+    out.write_all(&postcard::to_stdvec(&header)?)?;
+    let mut totals = Totals::default();
+    for (k, row) in rows.into_iter().enumerate() {
+        let row = row?;
         if row.values.len() != inputs {
             return Err(SimError::InputCount {
                 expected: inputs,
@@ -46,12 +92,66 @@ pub fn record(sim: &mut Sim, rows: &[InputRow]) -> Result<Vec<u8>, RecordError> 
             }
             .into());
         }
-        sim.scan_with(row.time_ms, &row.values)?;
+        let traced = sim.scan_with(row.time_ms, &row.values)?.clone();
+        totals.add(&traced);
         let record = sim.controller().record();
         let scan = RecordedScan::new(&row.values, &record).map_err(|_| RecordError::Capacity(k))?;
-        out.extend(postcard::to_stdvec(&scan)?);
+        out.write_all(&postcard::to_stdvec(&scan)?)?;
+        each(&row, &traced)?;
     }
-    Ok(out)
+    if totals.scans != scans {
+        return Err(RecordError::Count {
+            expected: scans,
+            got: totals.scans,
+        });
+    }
+    Ok(totals)
+}
+
+/// `host-sim record`: runs the `scans` rows `rows` through `sim` and
+/// writes the scenario to `out`, with `csv` also the inputs and the trace
+/// as CSV next to it (`.inputs.csv`, `.trace.csv`), each row as it is
+/// produced: memory stays constant however many rows. The files appear
+/// only once complete ([`Partial`]).
+pub fn record_files<E>(
+    sim: &mut Sim,
+    scans: u64,
+    rows: impl IntoIterator<Item = Result<InputRow, E>>,
+    out: &Path,
+    csv: bool,
+) -> Result<Totals, String>
+where
+    RecordError: From<E>,
+{
+    sim.retain_trace(false);
+    let mut scenario = Partial::create(out)?;
+    let mut tables = if csv {
+        let mut inputs = Partial::create(&out.with_extension("inputs.csv"))?;
+        inputs.line(&crate::inputs::csv_header(sim.project()))?;
+        let mut trace = Partial::create(&out.with_extension("trace.csv"))?;
+        trace.line(&crate::trace::header(sim.project()))?;
+        Some((inputs, trace))
+    } else {
+        None
+    };
+    let mut scan = 0;
+    let totals = write(sim, scans, rows, scenario.writer(), |row, traced| {
+        if let Some((inputs, trace)) = &mut tables {
+            inputs
+                .line(&crate::inputs::csv_line(scan, row))
+                .and_then(|()| trace.line(&crate::trace::csv_line(traced)))
+                .map_err(|e| RecordError::Io(std::io::Error::other(e)))?;
+        }
+        scan += 1;
+        Ok(())
+    })
+    .map_err(|e| e.to_string())?;
+    scenario.commit()?;
+    if let Some((inputs, trace)) = tables {
+        inputs.commit()?;
+        trace.commit()?;
+    }
+    Ok(totals)
 }
 
 #[cfg(test)]
@@ -83,5 +183,44 @@ mod tests {
         }
         assert!(rest.is_empty());
         assert!(events > 100, "guided inputs drive events ({events})");
+    }
+
+    #[test]
+    fn recorded_files_hold_what_an_in_memory_recording_gives_and_the_sim_keeps_one_row() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../models/press.plc.toml");
+        let mut sim = Sim::load(&path, Backend::Table).unwrap();
+        let rows = guided_inputs(sim.project(), 400, 3, 40).unwrap();
+        let bytes = record(&mut sim, &rows).unwrap();
+        let inputs_csv = crate::inputs::to_csv(sim.project(), &rows);
+        let trace_csv = crate::trace::to_csv(sim.project(), sim.trace());
+
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("s.scenario");
+        let mut sim = Sim::load(&path, Backend::Table).unwrap();
+        let project = sim.project().clone();
+        let generated = crate::random_inputs::GuidedInputs::new(&project, 3, 40)
+            .unwrap()
+            .take(400);
+        let totals = record_files(&mut sim, 400, generated, &out, true).unwrap();
+        assert_eq!(std::fs::read(&out).unwrap(), bytes);
+        let read = |ext: &str| std::fs::read_to_string(out.with_extension(ext)).unwrap();
+        assert_eq!(read("inputs.csv"), inputs_csv);
+        assert_eq!(read("trace.csv"), trace_csv);
+        assert_eq!(totals.scans, 400);
+        assert_eq!(sim.trace().len(), 1, "only the last row is kept");
+
+        // Fewer rows than announced: an error, and no file left behind.
+        let short = dir.path().join("short.scenario");
+        let rows = rows
+            .iter()
+            .take(10)
+            .map(|r| Ok::<_, RecordError>(r.clone()));
+        let err = record_files(&mut sim, 11, rows, &short, true).unwrap_err();
+        assert!(err.contains("10 rows for the 11 scans"), "{err}");
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            3,
+            "s.scenario and its two CSV files"
+        );
     }
 }

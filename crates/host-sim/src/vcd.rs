@@ -33,22 +33,49 @@ pub fn write(
     inputs: &[InputRow],
     rows: &[TraceRow],
 ) -> io::Result<()> {
-    let scans: Vec<Scan<'_>> = rows
-        .iter()
-        .enumerate()
-        .map(|(k, row)| Scan {
+    let mut w = Waveform::new(out, project)?;
+    for (k, row) in rows.iter().enumerate() {
+        w.scan(inputs.get(k), row)?;
+    }
+    w.finish()
+}
+
+/// The VCD of a run written scan by scan, as the run goes: memory stays
+/// constant however long the run ([`write`] for a run held in memory).
+pub struct Waveform<'p, W: Write> {
+    writer: ScanWriter<'p, W>,
+}
+
+impl<'p, W: Write> Waveform<'p, W> {
+    /// Writes the declarations of `project`'s variables to `out`.
+    pub fn new(out: W, project: &'p Project) -> io::Result<Self> {
+        Ok(Waveform {
+            writer: ScanWriter::new(out, project, &[])?,
+        })
+    }
+
+    /// Writes the changes of one scan: its trace row and the raw inputs it
+    /// read (`None`: unknown, written `x`).
+    pub fn scan(&mut self, inputs: Option<&InputRow>, row: &TraceRow) -> io::Result<()> {
+        let n = self.writer.project.inputs.len();
+        let scan = Scan {
             time_ms: row.time_ms,
-            inputs: match inputs.get(k) {
+            inputs: match inputs {
                 Some(input) => input.values.iter().map(|&v| Value::from(v)).collect(),
-                None => vec![Value::X; project.inputs.len()],
+                None => vec![Value::X; n],
             },
             outputs: row.outputs.iter().map(|&v| Value::from(v)).collect(),
             states: &row.states,
             events: &row.events,
             fault: row.fault.is_some(),
-        })
-        .collect();
-    write_scans(out, project, &scans, &[])
+        };
+        self.writer.scan(&scan, std::iter::empty())
+    }
+
+    /// Ends the waveform at the last scan and flushes.
+    pub fn finish(self) -> io::Result<()> {
+        self.writer.finish()
+    }
 }
 
 /// One scan as a waveform shows it.
@@ -209,93 +236,143 @@ pub(crate) fn write_scans(
             ),
         ));
     }
-    let mut d = Declarations {
-        w: vcd::Writer::new(out),
-        count: 0,
-    };
-    d.w.timescale(1, TimescaleUnit::MS)?;
-    d.w.add_module(&identifier(&project.name))?;
-    let inputs = d.scope("inputs", &project.inputs, |d, i| {
-        d.var(VarType::Wire, 1, &i.name)
-    })?;
-    let outputs = d.scope("outputs", &project.outputs, |d, o| {
-        d.var(VarType::Wire, 1, &o.name)
-    })?;
-    let names = d.scope("states", &project.supervisors, |d, s| {
-        d.var(VarType::String, 1, &s.name)
-    })?;
-    let numbers = d.scope("state_numbers", &project.supervisors, |d, s| {
-        let highest = s.automaton.num_states().saturating_sub(1).max(1) as u64;
-        d.var(VarType::Wire, highest.ilog2() + 1, &s.name)
-    })?;
-    let events = d.scope("events", &project.events, |d, e| {
-        d.var(VarType::Wire, 1, &e.name)
-    })?;
-    let quantities = if plant.is_empty() {
-        Vec::new()
-    } else {
-        d.scope("plant", plant, |d, q| match q.samples {
-            Samples::Real(_) => d.var(VarType::Real, 64, q.name),
-            Samples::Bit(_) => d.var(VarType::Wire, 1, q.name),
-            Samples::Text(_) => d.var(VarType::String, 1, q.name),
-        })?
-    };
-    let fault = d.var(VarType::Wire, 1, "fault")?;
-    d.w.upscope()?;
-    d.w.enddefinitions()?;
-
-    let mut c = Changes {
-        w: d.w,
-        now: 0,
-        stamped: None,
-        last: vec![None; d.count],
-    };
-    let mut pulsing: Vec<Var> = Vec::new();
+    let mut w = ScanWriter::new(out, project, plant)?;
     for (k, scan) in scans.iter().enumerate() {
+        w.scan(
+            scan,
+            plant.iter().map(|q| match &q.samples {
+                Samples::Real(v) => Written::Real(v[k]),
+                Samples::Bit(v) => Written::Scalar(Value::from(v[k])),
+                Samples::Text(v) => Written::Text(escape(v[k])),
+            }),
+        )?;
+    }
+    w.finish()
+}
+
+/// The declared variables and the value changes written so far.
+struct ScanWriter<'p, W: Write> {
+    project: &'p Project,
+    c: Changes<W>,
+    inputs: Vec<Var>,
+    outputs: Vec<Var>,
+    names: Vec<Var>,
+    numbers: Vec<Var>,
+    events: Vec<Var>,
+    quantities: Vec<Var>,
+    fault: Var,
+    /// Events executed in the previous scan, to fall back to 0.
+    pulsing: Vec<Var>,
+    /// Time of the last scan written.
+    last: Option<u64>,
+}
+
+impl<'p, W: Write> ScanWriter<'p, W> {
+    /// Writes the header: `project`'s variables and, in a `plant` scope,
+    /// one per quantity of `plant` (whose samples are not read).
+    fn new(out: W, project: &'p Project, plant: &[Quantity]) -> io::Result<Self> {
+        let mut d = Declarations {
+            w: vcd::Writer::new(out),
+            count: 0,
+        };
+        d.w.timescale(1, TimescaleUnit::MS)?;
+        d.w.add_module(&identifier(&project.name))?;
+        let inputs = d.scope("inputs", &project.inputs, |d, i| {
+            d.var(VarType::Wire, 1, &i.name)
+        })?;
+        let outputs = d.scope("outputs", &project.outputs, |d, o| {
+            d.var(VarType::Wire, 1, &o.name)
+        })?;
+        let names = d.scope("states", &project.supervisors, |d, s| {
+            d.var(VarType::String, 1, &s.name)
+        })?;
+        let numbers = d.scope("state_numbers", &project.supervisors, |d, s| {
+            let highest = s.automaton.num_states().saturating_sub(1).max(1) as u64;
+            d.var(VarType::Wire, highest.ilog2() + 1, &s.name)
+        })?;
+        let events = d.scope("events", &project.events, |d, e| {
+            d.var(VarType::Wire, 1, &e.name)
+        })?;
+        let quantities = if plant.is_empty() {
+            Vec::new()
+        } else {
+            d.scope("plant", plant, |d, q| match q.samples {
+                Samples::Real(_) => d.var(VarType::Real, 64, q.name),
+                Samples::Bit(_) => d.var(VarType::Wire, 1, q.name),
+                Samples::Text(_) => d.var(VarType::String, 1, q.name),
+            })?
+        };
+        let fault = d.var(VarType::Wire, 1, "fault")?;
+        d.w.upscope()?;
+        d.w.enddefinitions()?;
+        Ok(ScanWriter {
+            project,
+            c: Changes {
+                w: d.w,
+                now: 0,
+                stamped: None,
+                last: vec![None; d.count],
+            },
+            inputs,
+            outputs,
+            names,
+            numbers,
+            events,
+            quantities,
+            fault,
+            pulsing: Vec::new(),
+            last: None,
+        })
+    }
+
+    /// Writes the changes of `scan`, with the plant quantities' values
+    /// `plant` in declaration order.
+    fn scan(&mut self, scan: &Scan<'_>, plant: impl Iterator<Item = Written>) -> io::Result<()> {
+        let (project, c) = (self.project, &mut self.c);
         c.now = scan.time_ms;
-        for e in pulsing.drain(..) {
+        for e in self.pulsing.drain(..) {
             c.pulse(e, &Written::Scalar(Value::V0))?;
         }
-        if k == 0 {
-            for (event, &var) in project.events.iter().zip(&events) {
+        if self.last.is_none() {
+            for (event, &var) in project.events.iter().zip(&self.events) {
                 if !scan.events.contains(&event.name) {
                     c.pulse(var, &Written::Scalar(Value::V0))?;
                 }
             }
         }
-        for (&var, &v) in inputs.iter().zip(&scan.inputs) {
+        for (&var, &v) in self.inputs.iter().zip(&scan.inputs) {
             c.set(var, Written::Scalar(v))?;
         }
-        for (&var, &v) in outputs.iter().zip(&scan.outputs) {
+        for (&var, &v) in self.outputs.iter().zip(&scan.outputs) {
             c.set(var, Written::Scalar(v))?;
         }
         for (j, (sup, (_, state))) in project.supervisors.iter().zip(scan.states).enumerate() {
-            c.set(names[j], Written::Text(escape(state)))?;
+            c.set(self.names[j], Written::Text(escape(state)))?;
             let number = sup.automaton.state_by_name(state).map(|s| u64::from(s.0));
-            c.set(numbers[j], Written::Vector(number))?;
+            c.set(self.numbers[j], Written::Vector(number))?;
         }
         for name in scan.events {
             if let Some(e) = project.event(name) {
-                c.pulse(events[e], &Written::Scalar(Value::V1))?;
-                pulsing.push(events[e]);
+                c.pulse(self.events[e], &Written::Scalar(Value::V1))?;
+                self.pulsing.push(self.events[e]);
             }
         }
-        for (&var, q) in quantities.iter().zip(plant) {
-            let value = match &q.samples {
-                Samples::Real(v) => Written::Real(v[k]),
-                Samples::Bit(v) => Written::Scalar(Value::from(v[k])),
-                Samples::Text(v) => Written::Text(escape(v[k])),
-            };
+        for (&var, value) in self.quantities.iter().zip(plant) {
             c.set(var, value)?;
         }
-        c.set(fault, Written::Scalar(Value::from(scan.fault)))?;
+        c.set(self.fault, Written::Scalar(Value::from(scan.fault)))?;
+        self.last = Some(scan.time_ms);
+        Ok(())
     }
-    // The waveform lasts until the last scan, changes or not.
-    if let Some(last) = scans.last() {
-        c.now = last.time_ms;
-        c.stamp()?;
+
+    /// The waveform lasts until the last scan, changes or not.
+    fn finish(mut self) -> io::Result<()> {
+        if let Some(last) = self.last {
+            self.c.now = last;
+            self.c.stamp()?;
+        }
+        self.c.w.flush()
     }
-    c.w.flush()
 }
 
 fn identifier(name: &str) -> String {

@@ -50,6 +50,22 @@
 //! points or [`MAX_INPUTS`] inputs (`l + m`) synthesis refuses
 //! ([`LogicError::TooLarge`]) and the table backend is the right choice.
 //!
+//! # Effort bound
+//!
+//! Espresso's run time is not bounded by the size of its input alone: its
+//! expansion step compares every ON-set term with every OFF-set row, and
+//! the later steps grow with the cover. Before any minimisation starts,
+//! synthesis therefore counts the **effort**, the pairs of ON- and
+//! OFF-set rows summed over the Espresso runs it is about to make
+//! ([`effort`]), and refuses a supervisor above a limit
+//! ([`DEFAULT_MAX_EFFORT`], raised per supervisor by the project key
+//! `max_logic_effort`). The count depends on the automaton alone, never on
+//! a clock, so the same project is accepted or refused on every machine.
+//! Measured on random supervisors (2 to 100 events, 100 to 3,000 states,
+//! a 2-core x86-64 CI machine), one unit cost 1 to 150 ns of Espresso time,
+//! about 35 ns for supervisors of few events and many states, where the
+//! cost per unit is highest; the default admits about 10 to 40 s.
+//!
 //! # Safety net
 //!
 //! The minimised covers are never trusted blindly: [`LogicSupervisor::synthesize`]
@@ -91,6 +107,29 @@ pub const MAX_ROWS: usize = 200_000;
 /// accepts.
 pub const MAX_INPUTS: usize = 128;
 
+/// Default limit of the minimisation [`effort`] (pairs of ON- and OFF-set
+/// rows over all Espresso runs) of one supervisor; see the module docs.
+pub const DEFAULT_MAX_EFFORT: u64 = 250_000_000;
+
+/// How [`LogicSupervisor::synthesize_reporting`] minimises and how much
+/// work it may take on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Settings {
+    /// Per function or per family.
+    pub minimisation: Minimisation,
+    /// The largest [`effort`] accepted.
+    pub max_effort: u64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            minimisation: Minimisation::default(),
+            max_effort: DEFAULT_MAX_EFFORT,
+        }
+    }
+}
+
 /// How the functions of one family (`ω` or `φ`) are minimised.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -121,6 +160,22 @@ pub enum LogicError {
     /// The PLA would be too large to minimise in reasonable time.
     #[error("too large for the logic backend: {0}")]
     TooLarge(String),
+    /// Minimisation would take more than the effort limit (see the module
+    /// docs); checked before it starts.
+    #[error(
+        "minimising its logic would take an effort of {effort} \
+         (pairs of ON- and OFF-set rows Espresso compares), above the limit of {limit}; \
+         use the table backend, or raise `max_logic_effort` for this supervisor in the project \
+         (about 35 ns per unit on a 2-core x86-64 CI machine, up to 150 ns)"
+    )]
+    Effort {
+        /// The supervisor (the automaton's name).
+        supervisor: String,
+        /// Its effort.
+        effort: u64,
+        /// The limit it exceeds.
+        limit: u64,
+    },
     /// Espresso reported an error.
     #[error("Espresso failed: {0}")]
     Minimiser(String),
@@ -411,14 +466,38 @@ fn add_row(
 }
 
 impl Pla {
+    /// The [`effort`] of minimising the PLA: ON- times OFF-set rows of
+    /// each Espresso run [`Pla::minimise`] makes.
+    fn effort(&self, how: Minimisation) -> u64 {
+        let rows = |set: &[(Vec<u8>, Vec<u8>)], j: usize| {
+            set.iter().filter(|(_, asserted)| asserted[j] == 1).count() as u64
+        };
+        match how {
+            Minimisation::Shared => (self.on.len() as u64).saturating_mul(self.off.len() as u64),
+            Minimisation::PerFunction => (0..self.outputs)
+                .map(|j| rows(&self.on, j).saturating_mul(rows(&self.off, j)))
+                .fold(0, u64::saturating_add),
+        }
+    }
+
     /// Minimises the PLA and returns one cover per output: all outputs in
     /// one Espresso run ([`Minimisation::Shared`]) or one run per output.
-    fn minimise(&self, how: Minimisation) -> Result<Vec<Cover>, LogicError> {
+    /// `started(j)` is told before the run of output `j` (of the first
+    /// output, for the single shared run).
+    fn minimise(
+        &self,
+        how: Minimisation,
+        started: &dyn Fn(usize),
+    ) -> Result<Vec<Cover>, LogicError> {
         match how {
-            Minimisation::Shared => self.minimise_outputs(&(0..self.outputs).collect::<Vec<_>>()),
+            Minimisation::Shared => {
+                started(0);
+                self.minimise_outputs(&(0..self.outputs).collect::<Vec<_>>())
+            }
             Minimisation::PerFunction => {
                 let mut covers = Vec::with_capacity(self.outputs);
                 for j in 0..self.outputs {
+                    started(j);
                     covers.extend(self.minimise_outputs(&[j])?);
                 }
                 Ok(covers)
@@ -504,6 +583,136 @@ impl Pla {
     }
 }
 
+/// The [`effort`] of minimising the logic of `a` over `local` with
+/// `encoding`: what [`LogicSupervisor::synthesize_reporting`] compares with
+/// its limit, computed without minimising anything.
+pub fn effort(
+    a: &Automaton,
+    local: &[EventId],
+    encoding: &Encoding,
+    how: Minimisation,
+) -> Result<u64, LogicError> {
+    let (next, defined) = plas(a, local, encoding)?;
+    Ok(next.effort(how).saturating_add(defined.effort(how)))
+}
+
+/// The two PLAs to minimise, `ω` (next state) and `φ` (defined), after
+/// the size checks.
+fn plas(a: &Automaton, local: &[EventId], encoding: &Encoding) -> Result<(Pla, Pla), LogicError> {
+    let n = a.num_states();
+    if n == 0 {
+        return Err(LogicError::Empty(a.name().to_owned()));
+    }
+    if encoding.len() != n {
+        return Err(LogicError::Encoding(format!(
+            "{} codes for {n} states",
+            encoding.len()
+        )));
+    }
+    let l = usize::from(encoding.bits());
+    let m = local.len();
+    let rows = n.saturating_mul(m + 1);
+    if rows > MAX_ROWS || l + m > MAX_INPUTS {
+        return Err(LogicError::TooLarge(format!(
+            "supervisor `{}`: {n} states × {} inputs = {rows} care points \
+             (limit {MAX_ROWS}), {l} code bits + {m} events = {} PLA inputs (limit {MAX_INPUTS}); \
+             use the table backend",
+            a.name(),
+            m + 1,
+            l + m,
+        )));
+    }
+    let unused = encoding.unused_cubes();
+    let unused_rows = |extra: usize| -> Vec<Vec<u8>> {
+        unused
+            .iter()
+            .map(|&(mask, value)| {
+                cube_row(mask, value, l)
+                    .chain(std::iter::repeat_n(LIT_FREE, extra))
+                    .collect()
+            })
+            .collect()
+    };
+
+    // Ω: inputs = code bits, then one wire per local event (see the
+    // module docs for the shape of the ON- and OFF-set rows). With v =
+    // bit b of λ(x), S = the events whose target has bit b ≠ v (an
+    // undefined event keeps λ(x), so it is never in S):
+    // - v = 1: ON "λ(x), no wire of S"; OFF "λ(x), only wire i", i ∈ S;
+    // - v = 0: ON "λ(x), wire i", i ∈ S; OFF "λ(x), no wire" and
+    //   "λ(x), only wire i", i ∉ S.
+    let mut next = Pla {
+        inputs: l + m,
+        outputs: l,
+        l,
+        free: unused_rows(m),
+        ..Pla::default()
+    };
+    let (mut on_index, mut off_index) = Default::default();
+    for x in a.states() {
+        let cx = encoding.code(x);
+        let targets: Vec<u32> = local
+            .iter()
+            .map(|&e| a.successor(x, e).map_or(cx, |t| encoding.code(t)))
+            .collect();
+        for b in 0..l {
+            let v = cx >> b & 1 == 1;
+            let flips = |t: u32| (t >> b & 1 == 1) != v;
+            // ON-set: compact terms (exact on one-hot and empty inputs).
+            if v {
+                let inputs = code_row(cx, l)
+                    .chain(
+                        targets
+                            .iter()
+                            .map(|&t| if flips(t) { LIT_0 } else { LIT_FREE }),
+                    )
+                    .collect();
+                add_row(&mut next.on, &mut on_index, l, inputs, b);
+            } else {
+                for (i, _) in targets.iter().enumerate().filter(|(_, &t)| flips(t)) {
+                    let inputs = code_row(cx, l)
+                        .chain((0..m).map(|j| if j == i { LIT_1 } else { LIT_FREE }))
+                        .collect();
+                    add_row(&mut next.on, &mut on_index, l, inputs, b);
+                }
+            }
+            // OFF-set: exactly the care points where ω_b is 0.
+            let one_hot = |input: Option<usize>| -> Vec<u8> {
+                code_row(cx, l)
+                    .chain((0..m).map(|j| if Some(j) == input { LIT_1 } else { LIT_0 }))
+                    .collect()
+            };
+            if !v {
+                add_row(&mut next.off, &mut off_index, l, one_hot(None), b);
+            }
+            for (i, &t) in targets.iter().enumerate() {
+                if t >> b & 1 == 0 {
+                    add_row(&mut next.off, &mut off_index, l, one_hot(Some(i)), b);
+                }
+            }
+        }
+    }
+    // Φ: inputs = code bits only; one row per state.
+    let mut defined = Pla {
+        inputs: l,
+        outputs: m,
+        l,
+        free: unused_rows(0),
+        ..Pla::default()
+    };
+    for x in a.states() {
+        let row: Vec<bool> = local.iter().map(|&e| a.successor(x, e).is_some()).collect();
+        let code: Vec<u8> = code_row(encoding.code(x), l).collect();
+        for (rows, value) in [(&mut defined.on, true), (&mut defined.off, false)] {
+            if row.contains(&value) {
+                let outputs = row.iter().map(|&d| u8::from(d == value)).collect();
+                rows.push((code.clone(), outputs));
+            }
+        }
+    }
+    Ok((next, defined))
+}
+
 /// The PLA input literals of a code: one per bit, `l` bits.
 fn code_row(code: u32, l: usize) -> impl Iterator<Item = u8> {
     (0..l).map(move |b| if code >> b & 1 == 1 { LIT_1 } else { LIT_0 })
@@ -539,144 +748,61 @@ impl LogicSupervisor {
         encoding: Encoding,
         how: Minimisation,
     ) -> Result<LogicSupervisor, LogicError> {
-        Self::synthesize_reporting(a, local, encoding, how, &())
+        let settings = Settings {
+            minimisation: how,
+            max_effort: u64::MAX,
+        };
+        Self::synthesize_reporting(a, local, encoding, &settings, &())
     }
 
-    /// [`LogicSupervisor::synthesize_with`] that tells `progress` which
-    /// phase it is in (minimising `ω`, minimising `φ`, verifying): on large
-    /// supervisors each can take minutes.
+    /// [`LogicSupervisor::synthesize_with`] with an effort limit
+    /// ([`Settings`]), telling `progress` which phase and which function it
+    /// is working on: on large supervisors minimisation takes a while.
+    /// Refuses ([`LogicError::Effort`]) before minimising anything when
+    /// the [`effort`] exceeds `settings.max_effort`.
     pub fn synthesize_reporting(
         a: &Automaton,
         local: &[EventId],
         encoding: Encoding,
-        how: Minimisation,
+        settings: &Settings,
         progress: &dyn Progress,
     ) -> Result<LogicSupervisor, LogicError> {
         if !AVAILABLE {
             return Err(LogicError::Unavailable);
         }
+        let how = settings.minimisation;
+        let (next, defined) = plas(a, local, &encoding)?;
+        let effort = next.effort(how).saturating_add(defined.effort(how));
+        if effort > settings.max_effort {
+            return Err(LogicError::Effort {
+                supervisor: a.name().to_owned(),
+                effort,
+                limit: settings.max_effort,
+            });
+        }
         let n = a.num_states();
-        if n == 0 {
-            return Err(LogicError::Empty(a.name().to_owned()));
-        }
-        if encoding.len() != n {
-            return Err(LogicError::Encoding(format!(
-                "{} codes for {n} states",
-                encoding.len()
-            )));
-        }
-        let l = usize::from(encoding.bits());
-        let m = local.len();
-        let rows = n.saturating_mul(m + 1);
-        if rows > MAX_ROWS || l + m > MAX_INPUTS {
-            return Err(LogicError::TooLarge(format!(
-                "supervisor `{}`: {n} states × {} inputs = {rows} care points \
-                 (limit {MAX_ROWS}), {l} code bits + {m} events = {} PLA inputs (limit {MAX_INPUTS}); \
-                 use the table backend",
-                a.name(),
-                m + 1,
-                l + m,
-            )));
-        }
-        let unused = encoding.unused_cubes();
-        let unused_rows = |extra: usize| -> Vec<Vec<u8>> {
-            unused
-                .iter()
-                .map(|&(mask, value)| {
-                    cube_row(mask, value, l)
-                        .chain(std::iter::repeat_n(LIT_FREE, extra))
-                        .collect()
-                })
-                .collect()
-        };
-
-        // Ω: inputs = code bits, then one wire per local event (see the
-        // module docs for the shape of the ON- and OFF-set rows). With v =
-        // bit b of λ(x), S = the events whose target has bit b ≠ v (an
-        // undefined event keeps λ(x), so it is never in S):
-        // - v = 1: ON "λ(x), no wire of S"; OFF "λ(x), only wire i", i ∈ S;
-        // - v = 0: ON "λ(x), wire i", i ∈ S; OFF "λ(x), no wire" and
-        //   "λ(x), only wire i", i ∉ S.
-        let mut next = Pla {
-            inputs: l + m,
-            outputs: l,
-            l,
-            free: unused_rows(m),
-            ..Pla::default()
-        };
-        let (mut on_index, mut off_index) = Default::default();
-        for x in a.states() {
-            let cx = encoding.code(x);
-            let targets: Vec<u32> = local
-                .iter()
-                .map(|&e| a.successor(x, e).map_or(cx, |t| encoding.code(t)))
-                .collect();
-            for b in 0..l {
-                let v = cx >> b & 1 == 1;
-                let flips = |t: u32| (t >> b & 1 == 1) != v;
-                // ON-set: compact terms (exact on one-hot and empty inputs).
-                if v {
-                    let inputs = code_row(cx, l)
-                        .chain(
-                            targets
-                                .iter()
-                                .map(|&t| if flips(t) { LIT_0 } else { LIT_FREE }),
-                        )
-                        .collect();
-                    add_row(&mut next.on, &mut on_index, l, inputs, b);
-                } else {
-                    for (i, _) in targets.iter().enumerate().filter(|(_, &t)| flips(t)) {
-                        let inputs = code_row(cx, l)
-                            .chain((0..m).map(|j| if j == i { LIT_1 } else { LIT_FREE }))
-                            .collect();
-                        add_row(&mut next.on, &mut on_index, l, inputs, b);
-                    }
-                }
-                // OFF-set: exactly the care points where ω_b is 0.
-                let one_hot = |input: Option<usize>| -> Vec<u8> {
-                    code_row(cx, l)
-                        .chain((0..m).map(|j| if Some(j) == input { LIT_1 } else { LIT_0 }))
-                        .collect()
-                };
-                if !v {
-                    add_row(&mut next.off, &mut off_index, l, one_hot(None), b);
-                }
-                for (i, &t) in targets.iter().enumerate() {
-                    if t >> b & 1 == 0 {
-                        add_row(&mut next.off, &mut off_index, l, one_hot(Some(i)), b);
-                    }
-                }
-            }
-        }
+        let (l, m) = (next.l, local.len());
         let phase = |what: &str| {
             progress.report(
-                &format!("supervisor `{}` ({n} states): {what}", a.name()),
+                &format!(
+                    "supervisor `{}` ({n} states, effort {effort}): {what}",
+                    a.name()
+                ),
                 0,
             );
         };
-        phase(&format!("minimising ω, the next-state logic ({l} bits)"));
-        let next = next.minimise(how)?;
-
-        // Φ: inputs = code bits only; one row per state.
-        let mut defined = Pla {
-            inputs: l,
-            outputs: m,
-            l,
-            free: unused_rows(0),
-            ..Pla::default()
-        };
-        for x in a.states() {
-            let row: Vec<bool> = local.iter().map(|&e| a.successor(x, e).is_some()).collect();
-            let code: Vec<u8> = code_row(encoding.code(x), l).collect();
-            for (rows, value) in [(&mut defined.on, true), (&mut defined.off, false)] {
-                if row.contains(&value) {
-                    let outputs = row.iter().map(|&d| u8::from(d == value)).collect();
-                    rows.push((code.clone(), outputs));
-                }
-            }
-        }
-        phase(&format!("minimising φ, the enabling logic ({m} events)"));
-        let defined = defined.minimise(how)?;
+        let next = next.minimise(how, &|b| {
+            phase(&format!(
+                "minimising ω, the next-state logic (bit {} of {l})",
+                b + 1
+            ))
+        })?;
+        let defined = defined.minimise(how, &|i| {
+            phase(&format!(
+                "minimising φ, the enabling logic (event {} of {m})",
+                i + 1
+            ))
+        })?;
 
         let supervisor = LogicSupervisor {
             name: a.name().to_owned(),

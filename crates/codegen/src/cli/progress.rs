@@ -58,7 +58,7 @@ impl Drop for Spinner {
 
 #[cfg(test)]
 mod tests {
-    use codegen::backend::logic::{Encoding, LogicSupervisor, Minimisation};
+    use codegen::backend::logic::{self, Encoding, LogicSupervisor, Minimisation, Settings};
     use codegen::formats::{read_str, Format};
     use codegen::ops::Progress;
     use std::cell::RefCell;
@@ -75,7 +75,7 @@ mod tests {
     }
 
     #[test]
-    fn the_logic_backend_reports_which_supervisor_and_phase_it_is_working_on() {
+    fn the_logic_backend_reports_which_supervisor_phase_and_function_it_is_working_on() {
         let text = "name = \"press\"\ninitial = \"idle\"\ncontrollable = [\"down\"]\n\
                     uncontrollable = [\"bottom\", \"top\"]\ntransitions = [[\"idle\", \"down\", \"pressing\"], \
                     [\"pressing\", \"bottom\", \"rising\"], [\"rising\", \"top\", \"idle\"]]\n";
@@ -89,16 +89,22 @@ mod tests {
             &a,
             &local,
             Encoding::binary(3),
-            Minimisation::PerFunction,
+            &Settings::default(),
             &recorder,
         )
         .unwrap();
+        let effort =
+            logic::effort(&a, &local, &Encoding::binary(3), Minimisation::PerFunction).unwrap();
+        let phase = |what: &str| format!("supervisor `press` (3 states, effort {effort}): {what}");
         assert_eq!(
             recorder.0.into_inner(),
             [
-                "supervisor `press` (3 states): minimising ω, the next-state logic (2 bits)",
-                "supervisor `press` (3 states): minimising φ, the enabling logic (3 events)",
-                "supervisor `press` (3 states): verifying the logic against the automaton",
+                phase("minimising ω, the next-state logic (bit 1 of 2)"),
+                phase("minimising ω, the next-state logic (bit 2 of 2)"),
+                phase("minimising φ, the enabling logic (event 1 of 3)"),
+                phase("minimising φ, the enabling logic (event 2 of 3)"),
+                phase("minimising φ, the enabling logic (event 3 of 3)"),
+                phase("verifying the logic against the automaton"),
             ]
         );
     }

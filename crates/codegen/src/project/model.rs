@@ -169,6 +169,9 @@ pub struct Supervisor {
     pub source: SupervisorSource,
     /// Line of the declaration.
     pub line: u32,
+    /// The most minimisation effort the logic backend may spend on it
+    /// ([`crate::backend::logic::effort`]).
+    pub max_logic_effort: u64,
 }
 
 /// A warning of validation (the project is still usable).

@@ -219,6 +219,10 @@ pub(crate) struct RawSupervisor {
     pub component: Option<Name>,
     #[serde(default)]
     pub synthesize: Option<Spanned<RawSynthesize>>,
+    /// The logic backend's effort limit for this supervisor (default
+    /// [`crate::backend::logic::DEFAULT_MAX_EFFORT`]).
+    #[serde(default)]
+    pub max_logic_effort: Option<Spanned<u64>>,
 }
 
 /// `synthesize = { plants, specs, minimize, max_states }`.

@@ -14,6 +14,7 @@ use super::super::parse::RawSupervisor;
 use super::super::sources::LoadedSupervisor;
 use super::{Declared, Validator};
 use crate::automaton::EventId;
+use crate::backend::logic;
 use crate::error::Result;
 use toml::Spanned;
 
@@ -121,12 +122,20 @@ impl Validator<'_> {
             }
         }
 
+        let max_logic_effort = match &sup.get_ref().max_logic_effort {
+            None => logic::DEFAULT_MAX_EFFORT,
+            Some(n) if *n.get_ref() > 0 => *n.get_ref(),
+            Some(n) => {
+                return Err(self.error(&n.span(), "max_logic_effort must be a positive number"))
+            }
+        };
         Ok(Supervisor {
             name,
             automaton,
             local_events,
             source,
             line: self.line(&header),
+            max_logic_effort,
         })
     }
 }

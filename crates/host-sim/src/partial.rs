@@ -1,0 +1,99 @@
+//! Output files that appear only once complete: written under a
+//! temporary name next to the final one and renamed at the end, so that a
+//! run stopped by bad input leaves no half-written trace or scenario.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// A buffered file written as `<path>.partial` until [`Partial::commit`];
+/// dropped uncommitted, it is removed.
+pub struct Partial {
+    path: PathBuf,
+    partial: PathBuf,
+    writer: Option<BufWriter<File>>,
+}
+
+impl Partial {
+    /// Creates `<path>.partial` (the whole name kept, so that two outputs
+    /// that differ by extension never share it).
+    pub fn create(path: &Path) -> Result<Partial, String> {
+        let mut partial = path.as_os_str().to_owned();
+        partial.push(".partial");
+        let partial = PathBuf::from(partial);
+        let file = File::create(&partial).map_err(|e| io(&partial, e))?;
+        Ok(Partial {
+            path: path.to_owned(),
+            partial,
+            writer: Some(BufWriter::new(file)),
+        })
+    }
+
+    /// The writer.
+    pub fn writer(&mut self) -> &mut BufWriter<File> {
+        self.writer
+            .as_mut()
+            .expect("a Partial writes until committed")
+    }
+
+    /// Writes `line` and a line break.
+    pub fn line(&mut self, line: &str) -> Result<(), String> {
+        writeln!(self.writer(), "{line}").map_err(|e| io(&self.partial, e))
+    }
+
+    /// Flushes the file and gives it its final name.
+    pub fn commit(mut self) -> Result<(), String> {
+        let mut writer = self.writer.take().expect("committed once");
+        writer.flush().map_err(|e| io(&self.partial, e))?;
+        drop(writer);
+        std::fs::rename(&self.partial, &self.path).map_err(|e| io(&self.path, e))
+    }
+}
+
+impl Write for Partial {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.writer().write(buf)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.writer().flush()
+    }
+}
+
+impl Drop for Partial {
+    fn drop(&mut self) {
+        if self.writer.take().is_some() {
+            let _ = std::fs::remove_file(&self.partial);
+        }
+    }
+}
+
+fn io(path: &Path, e: std::io::Error) -> String {
+    format!("{}: {e}", path.display())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_committed_file_appears_under_its_name_and_a_dropped_one_nowhere() {
+        let dir = tempfile::tempdir().unwrap();
+        let kept = dir.path().join("kept.csv");
+        let mut p = Partial::create(&kept).unwrap();
+        p.line("a,b").unwrap();
+        assert!(!kept.exists() && dir.path().join("kept.csv.partial").exists());
+        p.commit().unwrap();
+        assert_eq!(std::fs::read_to_string(&kept).unwrap(), "a,b\n");
+
+        let lost = dir.path().join("lost.csv");
+        let mut p = Partial::create(&lost).unwrap();
+        p.line("x").unwrap();
+        drop(p);
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            1,
+            "only kept.csv"
+        );
+    }
+}
