@@ -5,16 +5,22 @@
 //!
 //! Output names are `<model>_<backend>.rs` (`press_table.rs`,
 //! `press_logic.rs`, `press_match.rs`, …). A project that fails to load or generate fails
-//! the build with its `file:line` message.
+//! the build with its `file:line` message. `build_names.rs` adds seeded
+//! random projects whose names are drawn to break generated code.
 
 use codegen::build::Build;
 use codegen::emit::Backend;
+
+#[path = "build_names.rs"]
+mod names;
 
 /// The seed projects (`models/<name>.plc.toml`), listed rather than globbed
 /// so that a project added later does not silently join these tests.
 const MODELS: [&str; 5] = ["motivating", "press", "press7", "conveyor", "crane"];
 
 fn main() {
+    // Random names through every backend: compiled by `generated.rs`.
+    names::generate(std::path::Path::new(&std::env::var_os("OUT_DIR").unwrap()));
     // Names chosen to break generated code: compiled by `generated.rs`.
     for backend in Backend::ALL {
         Build::new("fixtures/hostile/hostile.plc.toml")

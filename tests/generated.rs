@@ -64,6 +64,53 @@ generated!(
     hostile_match,
 );
 
+// The random name cases (`build_names.rs`): `generated!` over their
+// modules and `name_cases()` listing them.
+include!(concat!(env!("OUT_DIR"), "/names_cases.rs"));
+
+/// One random name case on one backend: what the generated module
+/// exports and the names the project declared.
+struct NameCase {
+    case: usize,
+    backend: &'static str,
+    program: &'static dyn Program,
+    /// `NAMES` of inputs, outputs, timers, events and supervisors, then the
+    /// first supervisor's `states`.
+    names: [&'static [&'static str]; 6],
+    /// The same, as the project and model file wrote them.
+    expected: [&'static [&'static str]; 6],
+}
+
+/// The names property (`tests/build_names.rs`): seeded random projects
+/// whose names are keywords, reserved-looking, suffix twins, non-ASCII,
+/// bidirectional overrides, control characters, quotes and comment
+/// markers compiled above under `#[deny(warnings)]` on every backend; each
+/// name comes through as written and each program runs its model
+/// (command from idle to busy, sensor back).
+#[test]
+fn random_names_compile_warning_free_on_every_backend_and_keep_their_text() {
+    let cases = name_cases();
+    assert!(!cases.is_empty());
+    assert_eq!(
+        cases.len() % Backend::ALL.len(),
+        0,
+        "every case on every backend"
+    );
+    for c in &cases {
+        let at = format!("case {} on {}", c.case, c.backend);
+        assert_eq!(c.names, c.expected, "{at}");
+        for j in 0..c.expected[4].len() as Index {
+            assert_eq!(c.program.next_state(j, 0, 0), Some(1), "{at}: command");
+            assert_eq!(c.program.next_state(j, 1, 1), Some(0), "{at}: sensor");
+            assert_eq!(
+                c.program.next_state(j, 0, 1),
+                None,
+                "{at}: no sensor when idle"
+            );
+        }
+    }
+}
+
 /// Supervisors named `fn`, `fn_`, `Self` and `type`, bidirectional
 /// overrides and non-ASCII letters in names (`tests/fixtures/hostile/`):
 /// every backend compiled above under `#[deny(warnings)]`, and the names

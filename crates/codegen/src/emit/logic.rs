@@ -79,15 +79,26 @@ pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
     let l = usize::from(logic.bits());
     let m = logic.events();
     // Identifiers of the event wires, unique and clear of the fixed locals;
-    // the event constants are the same in upper case (wires are lower
-    // case, so the constants are unique too and clear of every function).
+    // the event constants are the same in upper case. A wire holds a
+    // lower-case letter (one of digits and `_` alone, `_1` from `1`, gets an
+    // `e`: `e_1`), so the constants are unique too, differ from every wire
+    // (a local of that name would shadow the constant) and from every
+    // function.
     let mut taken: HashSet<String> = ["q", "e"].iter().map(|s| (*s).to_owned()).collect();
     for b in 0..l {
         taken.insert(format!("q{b}"));
         taken.insert(format!("w{b}"));
     }
     let wires: Vec<String> = (0..m)
-        .map(|i| unique(snake_ident(&names.event(i)), &mut taken))
+        .map(|i| {
+            let wire = snake_ident(&names.event(i));
+            let wire = if wire.bytes().any(|b| b.is_ascii_lowercase()) {
+                wire
+            } else {
+                format!("e{wire}")
+            };
+            unique(wire, &mut taken)
+        })
         .collect();
     let constants: Vec<String> = wires.iter().map(|w| w.to_ascii_uppercase()).collect();
 
@@ -521,6 +532,37 @@ mod tests {
         for (arm, event) in arms.iter().zip(events) {
             assert!(arm.starts_with(&event.to_ascii_uppercase()), "{arm}");
         }
+    }
+
+    /// Found by the names property (`tests/build_names.rs`): an event named
+    /// `1` gave the wire `_1` and the constant `_1`, the same identifier,
+    /// so `let _1 = e == _1;` did not compile.
+    #[test]
+    fn wires_of_events_without_letters_differ_from_their_constants() {
+        let a = auto(
+            "digits",
+            &[("1", true), ("e_1", false), ("007", false)],
+            &[("0", "1", "1"), ("1", "e_1", "0"), ("1", "007", "0")],
+            &[],
+        );
+        let events = ["1", "e_1", "007"];
+        let logic =
+            LogicSupervisor::synthesize(&a, &ids(&a, &events), Encoding::binary(2)).unwrap();
+        let names = Names {
+            supervisor: "digits",
+            origin: "",
+            events: &events,
+            states: &["idle", "busy"],
+        };
+        let code = supervisor_module(&logic, &names);
+        for line in [
+            "let e_1 = e == E_1;",
+            "let e_1_2 = e == E_1_2;",
+            "let e_007 = e == E_007;",
+        ] {
+            assert!(code.contains(line), "{line}\n{code}");
+        }
+        assert!(!code.contains("let _"), "{code}");
     }
 
     #[test]
