@@ -377,6 +377,7 @@ impl Loader<'_> {
                     files.push((file, span.clone()));
                 }
             }
+            self.check_listable(&full, &files, &span, p)?;
             if !any {
                 return Err(self.error(
                     &span,
@@ -392,6 +393,55 @@ impl Loader<'_> {
             }
         }
         Ok(files)
+    }
+
+    /// Refuses the pattern `p` (expanded to `full`) when a directory it
+    /// searched holds a name that is not UTF-8: the glob crate skips such
+    /// names without a word, so a plant could silently drop out of a
+    /// synthesis. The directories checked are the one before the first
+    /// wildcard and the directory of every file matched so far.
+    fn check_listable(
+        &self,
+        full: &str,
+        files: &[(PathBuf, Range<usize>)],
+        span: &Range<usize>,
+        p: &str,
+    ) -> Result<()> {
+        let literal: PathBuf = Path::new(full)
+            .components()
+            .take_while(|c| !c.as_os_str().to_string_lossy().contains(['*', '?', '[']))
+            .collect();
+        let literal = if literal.as_os_str().is_empty() {
+            PathBuf::from(".")
+        } else {
+            literal
+        };
+        let mut dirs = vec![literal];
+        for (file, _) in files {
+            if let Some(parent) = file.parent() {
+                if !dirs.iter().any(|d| d == parent) {
+                    dirs.push(parent.to_owned());
+                }
+            }
+        }
+        for dir in dirs {
+            let Ok(entries) = std::fs::read_dir(&dir) else {
+                continue;
+            };
+            for entry in entries.flatten() {
+                if entry.file_name().to_str().is_none() {
+                    return Err(self.error(
+                        span,
+                        format!(
+                            "`{p}` cannot tell whether it matches {:?}: the name is not valid UTF-8; \
+                             rename the file",
+                            entry.path()
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The components of `patterns`' files whose kind is in `kinds`, and
@@ -463,6 +513,21 @@ mod tests {
             "[plc]\nname = \"p\"\n[[supervisor]]\nsynthesize = { plants = [\"plant/*.toml\"] }\n";
         let err = from_str(text, &project).unwrap_err().to_string();
         (dir, err)
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_file_name_that_is_not_utf8_where_a_pattern_looks_is_refused_not_skipped() {
+        use std::os::unix::ffi::OsStrExt;
+        let (dir, err) = globbed_project(std::ffi::OsStr::from_bytes(b"\xffplant.toml"));
+        let dir = dir.path().display();
+        assert_eq!(
+            err,
+            format!(
+                "{dir}/p.plc.toml:4:26: `plant/*.toml` cannot tell whether it matches \
+                 \"{dir}/plant/\\xFFplant.toml\": the name is not valid UTF-8; rename the file"
+            )
+        );
     }
 
     #[test]
