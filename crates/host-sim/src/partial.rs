@@ -16,11 +16,18 @@ pub struct Partial {
 
 impl Partial {
     /// Creates `<path>.partial` (the whole name kept, so that two outputs
-    /// that differ by extension never share it).
+    /// that differ by extension never share it). A `path` that exists and
+    /// is not a regular file (`/dev/null`, `/dev/stdout`, a FIFO) is
+    /// written directly: renaming over it would replace the device.
     pub fn create(path: &Path) -> Result<Partial, String> {
-        let mut partial = path.as_os_str().to_owned();
-        partial.push(".partial");
-        let partial = PathBuf::from(partial);
+        let special = std::fs::metadata(path).is_ok_and(|m| !m.is_file());
+        let partial = if special {
+            path.to_owned()
+        } else {
+            let mut partial = path.as_os_str().to_owned();
+            partial.push(".partial");
+            PathBuf::from(partial)
+        };
         let file = File::create(&partial).map_err(|e| io(&partial, e))?;
         Ok(Partial {
             path: path.to_owned(),
@@ -46,6 +53,9 @@ impl Partial {
         let mut writer = self.writer.take().expect("committed once");
         writer.flush().map_err(|e| io(&self.partial, e))?;
         drop(writer);
+        if self.partial == self.path {
+            return Ok(());
+        }
         std::fs::rename(&self.partial, &self.path).map_err(|e| io(&self.path, e))
     }
 }
@@ -62,7 +72,7 @@ impl Write for Partial {
 
 impl Drop for Partial {
     fn drop(&mut self) {
-        if self.writer.take().is_some() {
+        if self.writer.take().is_some() && self.partial != self.path {
             let _ = std::fs::remove_file(&self.partial);
         }
     }
@@ -95,5 +105,18 @@ mod tests {
             1,
             "only kept.csv"
         );
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_device_is_written_in_place_never_renamed_over_or_removed() {
+        let null = Path::new("/dev/null");
+        let mut p = Partial::create(null).unwrap();
+        p.line("discarded").unwrap();
+        p.commit().unwrap();
+        drop(Partial::create(null).unwrap());
+        let meta = std::fs::metadata(null).unwrap();
+        assert!(!meta.is_file(), "/dev/null is still the device");
+        assert!(!Path::new("/dev/null.partial").exists());
     }
 }
