@@ -141,6 +141,17 @@ impl MaskPool {
 impl ConfigPools {
     /// Lays out `project`.
     pub fn from_project(project: &Project) -> Result<ConfigPools> {
+        // A pool beyond 16-bit indices has no one line to blame: name the
+        // project file.
+        Self::lay_out(project).map_err(|e| match e {
+            Error::Incompatible(message) => {
+                Error::Incompatible(format!("{}: {message}", project.path.display()))
+            }
+            e => e,
+        })
+    }
+
+    fn lay_out(project: &Project) -> Result<ConfigPools> {
         let mut masks = MaskPool::new("input", project.inputs.len());
         let mut actions = Vec::new();
         let mut memberships = Vec::new();

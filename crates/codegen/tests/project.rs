@@ -235,6 +235,20 @@ fn a_supervisor_beyond_its_logic_effort_is_refused_at_its_line_before_minimising
 }
 
 #[test]
+fn more_names_of_a_kind_than_16_bit_indices_hold_are_refused_at_the_first_too_many() {
+    let mut text = String::from("[plc]\nname = \"wide\"\n[inputs]\n");
+    for i in 0..=u16::MAX as usize {
+        text.push_str(&format!("i{i} = {{}}\n"));
+    }
+    let err = load_err(&text);
+    // Header lines 1-3, input k on line 4 + k: the 65,536th (k = 65535).
+    assert!(
+        err.contains("t.plc.toml:65539:1: more than 65535 inputs"),
+        "{err}"
+    );
+}
+
+#[test]
 fn minimize_runs_minstate_on_the_synthesised_supervisor() {
     let text = std::fs::read_to_string(fixture("factory.plc.toml"))
         .unwrap()

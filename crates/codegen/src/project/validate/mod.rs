@@ -58,6 +58,7 @@ pub(crate) fn validate(raw: RawProject, sources: Sources, file: &ProjectFile) ->
         file,
         warnings: Vec::new(),
         namespace: HashMap::new(),
+        claimed: HashMap::new(),
     };
     v.project(raw, sources)
 }
@@ -98,6 +99,8 @@ struct Validator<'a> {
     warnings: Vec<Warning>,
     /// Every identifier claimed so far (see [`names`]).
     namespace: HashMap<String, names::Claim>,
+    /// Names claimed so far, by kind.
+    claimed: HashMap<&'static str, usize>,
 }
 
 impl Validator<'_> {

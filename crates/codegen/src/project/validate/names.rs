@@ -26,6 +26,10 @@ use std::ops::Range;
 /// (`input::COUNT`, `input::NAMES`, …).
 pub(crate) const RESERVED: &[&str] = &["COUNT", "NAMES"];
 
+/// The most names of one kind (inputs, events, …): the executor's
+/// indices are 16 bits.
+pub(crate) const MAX_PER_KIND: usize = u16::MAX as usize;
+
 /// A name declared in the shared namespace.
 pub(super) struct Claim {
     kind: &'static str,
@@ -77,6 +81,16 @@ impl Validator<'_> {
                 )
             };
             return Err(self.error(span, message));
+        }
+        let claimed = self.claimed.entry(kind).or_default();
+        *claimed += 1;
+        if *claimed > MAX_PER_KIND {
+            return Err(self.error(
+                span,
+                format!(
+                    "more than {MAX_PER_KIND} {kind}s: the executor numbers each kind with 16 bits"
+                ),
+            ));
         }
         let line = self.line(span);
         self.namespace.insert(
