@@ -197,7 +197,13 @@ pub fn write_string(format: Format, components: &[Component]) -> Result<String> 
 
 /// Writes `components` to `path` in the format its extension names.
 pub fn write_file(path: &Path, components: &[Component]) -> Result<()> {
-    let text = write_string(Format::from_path(path)?, components)?;
+    // A name the format cannot carry is an error about this file.
+    let text = write_string(Format::from_path(path)?, components).map_err(|e| match e {
+        Error::Incompatible(message) => {
+            Error::Incompatible(format!("{}: {message}", path.display()))
+        }
+        e => e,
+    })?;
     std::fs::write(path, text).map_err(|e| Error::io(path, e))
 }
 

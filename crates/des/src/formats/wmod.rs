@@ -723,10 +723,21 @@ mod tests {
             kind: Kind::Plant,
             automaton: b.build().unwrap(),
         };
-        let err = super::super::write_string(super::super::Format::Wmod, &[c])
+        let err = super::super::write_string(super::super::Format::Wmod, std::slice::from_ref(&c))
             .unwrap_err()
             .to_string();
         assert!(err.contains("U+0001"), "{err}");
+        // Written to a file, the error names it, and no file is left.
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("out.wmod");
+        let err = super::super::write_file(&path, &[c])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with(&format!("{}: event", path.display())),
+            "{err}"
+        );
+        assert!(!path.exists());
         // Tabs and line breaks are escaped, not refused.
         let mut b = AutomatonBuilder::new("m\tn");
         b.add_event("go\nnow", true).unwrap();
