@@ -237,6 +237,11 @@ fn an_image_with_a_matching_crc_but_a_broken_structure_is_corrupt_from_start_up(
             at(Part::Supervisor(0), out_of_range(6, 6)),
         ),
         (
+            "a scan period of 0 (found by the fuzz_image target: the board's pacer panicked)",
+            rewritten(|p| p.pools.scan_period_ms = 0),
+            at(Part::ScanPeriod, Flaw::Period),
+        ),
+        (
             "the reset input out of range",
             rewritten(|p| p.pools.reset = Some(INPUTS as Index)),
             at(Part::Reset, out_of_range(INPUTS as u32, INPUTS as u32)),
