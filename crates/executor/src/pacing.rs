@@ -43,14 +43,18 @@ pub struct Pacer {
 
 impl Pacer {
     /// The schedule of a program: every `scan_period_ms` from `first_ms`,
-    /// overruns beyond `overrun_limit` periods.
-    ///
-    /// # Panics
-    ///
-    /// When `scan_period_ms` is not in `1..2^31` (project validation
-    /// guarantees it).
+    /// overruns beyond `overrun_limit` periods. Project validation keeps
+    /// the period in `1..2^31`; a corrupt image's period outside it (which
+    /// the controller's start-up check refuses: fault mode) is brought to
+    /// the nearest end of that range, so that scans go on writing the safe
+    /// image instead of the board halting here.
     pub const fn for_config(config: &Config<'_>, first_ms: u32) -> Pacer {
-        Pacer::new(first_ms, config.scan_period_ms, config.overrun_limit)
+        let period_ms = match config.scan_period_ms {
+            0 => 1,
+            p if p >= 1 << 31 => (1 << 31) - 1,
+            p => p,
+        };
+        Pacer::new(first_ms, period_ms, config.overrun_limit)
     }
 
     /// A schedule whose first deadline is `first_ms`, then every
@@ -166,11 +170,12 @@ mod tests {
         assert_eq!(start(&mut p, 11), Some((1, 0, true)));
     }
 
-    #[test]
-    fn the_limit_and_period_come_from_the_program() {
-        let config = Config {
+    /// A program without signals, scanned every `scan_period_ms` with an
+    /// overrun limit of 3 periods.
+    fn paced(scan_period_ms: u32) -> Config<'static> {
+        Config {
             name: "paced",
-            scan_period_ms: 20,
+            scan_period_ms,
             max_commands_per_scan: 0,
             unexpected: crate::program::UnexpectedPolicy::Fault,
             reset: None,
@@ -193,7 +198,12 @@ mod tests {
             actions: &[],
             memberships: &[],
             state_map: &[],
-        };
+        }
+    }
+
+    #[test]
+    fn the_limit_and_period_come_from_the_program() {
+        let config = paced(20);
         let mut p = Pacer::for_config(&config, 7);
         assert_eq!((p.period_ms(), p.overrun_limit_ms()), (20, 60));
         assert_eq!(start(&mut p, 7), Some((0, 0, false)));
@@ -201,6 +211,17 @@ mod tests {
         assert_eq!(start(&mut p, 87), Some((60, 3, false)));
         assert_eq!(p.deadline(), 107);
         assert_eq!(start(&mut p, 168), Some((61, 3, true)));
+    }
+
+    /// Found by the `fuzz_image` target: a corrupt image's period of 0 (or
+    /// 2^31 or more) made the board panic here before its first scan.
+    #[test]
+    fn a_period_out_of_range_is_brought_into_range_not_a_panic() {
+        assert_eq!(Pacer::for_config(&paced(0), 0).period_ms(), 1);
+        let longest = (1 << 31) - 1;
+        assert_eq!(Pacer::for_config(&paced(1 << 31), 0).period_ms(), longest);
+        assert_eq!(Pacer::for_config(&paced(u32::MAX), 0).period_ms(), longest);
+        assert_eq!(Pacer::for_config(&paced(longest), 0).period_ms(), longest);
     }
 
     #[test]

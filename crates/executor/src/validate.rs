@@ -24,6 +24,8 @@ use crate::table::{bit, read_bits, Rows, SupervisorTable};
 pub enum Part {
     /// The number of inputs, outputs, timers, events or supervisors.
     Counts,
+    /// `Config::scan_period_ms`.
+    ScanPeriod,
     /// `Config::reset`.
     Reset,
     /// `Config::debounced[k]`.
@@ -79,6 +81,8 @@ pub enum Flaw {
     },
     /// A timer preset of 0 or of 2^31 ms or more.
     Preset,
+    /// A scan period of 0 or of 2^31 ms or more.
+    Period,
     /// An event's memberships and the alphabets disagree: a membership
     /// names a local event that is another event, or an alphabet lists an
     /// event without exactly one membership for it.
@@ -119,6 +123,7 @@ impl fmt::Display for Part {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             Part::Counts => f.write_str("the numbers of signals, events and supervisors"),
+            Part::ScanPeriod => f.write_str("the scan period"),
             Part::Reset => f.write_str("the reset input"),
             Part::Debounced(k) => write!(f, "debounced input {k}"),
             Part::DebounceMask => f.write_str("the debounce mask"),
@@ -149,6 +154,7 @@ impl fmt::Display for Flaw {
                 write!(f, "index {index} out of range (there are {count})")
             }
             Flaw::Preset => f.write_str("a preset outside 1 ms .. 2^31 ms"),
+            Flaw::Period => f.write_str("a period outside 1 ms .. 2^31 ms"),
             Flaw::Membership => f.write_str("memberships and alphabet disagree"),
             Flaw::Outside => f.write_str("`outside` is not the events outside the alphabet"),
             Flaw::Commands => f.write_str("the command sets disagree with the events"),
@@ -207,6 +213,9 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
         .any(|&n| n > limit)
     {
         return fail(Part::Counts, Flaw::TooMany);
+    }
+    if c.scan_period_ms == 0 || c.scan_period_ms >= 1 << 31 {
+        return fail(Part::ScanPeriod, Flaw::Period);
     }
     if let Some(r) = c.reset {
         in_range(Part::Reset, r.into(), inputs)?;
