@@ -41,7 +41,7 @@ pub fn write(
 }
 
 /// The VCD of a run written scan by scan, as the run goes: memory stays
-/// constant however long the run ([`write`] for a run held in memory).
+/// constant however long the run ([`write()`] for a run held in memory).
 pub struct Waveform<'p, W: Write> {
     writer: ScanWriter<'p, W>,
 }
