@@ -241,22 +241,9 @@ impl Case {
     }
 }
 
-/// A one-line TOML basic string (keys cannot be multi-line strings, which
-/// the `toml` crate's writer picks for text with line breaks).
+/// A one-line TOML basic string (keys cannot be multi-line strings).
 fn q(text: &str) -> String {
-    let mut out = String::from("\"");
-    for c in text.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            c if c.is_control() && c != '\t' => {
-                let _ = write!(out, "\\u{:04X}", c as u32);
-            }
-            c => out.push(c),
-        }
-    }
-    out.push('"');
-    out
+    codegen::formats::toml::basic_string(text)
 }
 
 /// Writes `text` to `path` unless it already holds it: a rewritten file

@@ -7,6 +7,8 @@
 //! - [`ops`]: synchronous composition, supcon, minstate, control data,
 //!   controllability / nonblocking / nonconflict checks with witnesses,
 //!   language equivalence, and the synthesis pipeline that chains them.
+//! - [`petri`]: place/transition Petri nets (native TOML and PNML), their
+//!   incidence matrix and reachability graph as an automaton.
 //! - [`dot`]: Graphviz output.
 //! - [`error`]: errors located by file, line and column.
 //!
@@ -39,6 +41,7 @@ pub mod dot;
 pub mod error;
 pub mod formats;
 pub mod ops;
+pub mod petri;
 #[cfg(any(test, feature = "testing"))]
 pub mod testing;
 

@@ -12,6 +12,7 @@ mod gen;
 mod info;
 mod key;
 mod output;
+mod petri;
 mod progress;
 mod synth;
 mod wiring;
@@ -80,6 +81,10 @@ enum Command {
     },
     /// Graphviz drawing of an automaton: DOT text on stdout or in files.
     Dot(dot::DotArgs),
+    /// Place/transition Petri nets (`.pnml`, `.toml`): properties,
+    /// reachability graph, conversion.
+    #[command(subcommand)]
+    Petri(petri::PetriCommand),
 }
 
 /// How a command ended when it did not fail outright.
@@ -104,6 +109,7 @@ pub fn main() -> ExitCode {
         Command::Gen(args) => gen::run(&args, json, &mut out),
         Command::Dot(args) => dot::run(&args, json, &mut out),
         Command::Wiring { project } => wiring::run(&project, json, &mut out),
+        Command::Petri(command) => petri::run(&command, json, &mut out),
     };
     let code = match &result {
         Ok(Outcome::Holds) => ExitCode::SUCCESS,

@@ -128,6 +128,13 @@ pub fn read_str(text: &str, format: Format, origin: &Path) -> Result<Vec<Compone
 /// Reads every automaton in the file at `path` (format by extension).
 pub fn read_file(path: &Path) -> Result<Vec<Component>> {
     let format = Format::from_path(path)?;
+    let text = read_model_text(path)?;
+    read_str(&text, format, path)
+}
+
+/// The text of the model file at `path`: a regular file of at most
+/// [`MAX_MODEL_BYTES`], UTF-8 or else read as ISO-8859-1.
+pub(crate) fn read_model_text(path: &Path) -> Result<String> {
     // A device or a FIFO could be read forever; a file larger than any
     // model is a mistake rather than a model.
     let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
@@ -148,11 +155,10 @@ pub fn read_file(path: &Path) -> Result<Vec<Component>> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     // libFAUDES writes ISO-8859-1; accept it by mapping bytes to chars
     // when the file is not UTF-8 (names stay intact for ASCII input).
-    let text = match String::from_utf8(bytes) {
+    Ok(match String::from_utf8(bytes) {
         Ok(t) => t,
         Err(e) => e.into_bytes().iter().map(|&b| b as char).collect(),
-    };
-    read_str(&text, format, path)
+    })
 }
 
 /// The largest model file [`read_file`] reads (256 MiB: the largest
@@ -210,7 +216,7 @@ pub fn write_file(path: &Path, components: &[Component]) -> Result<()> {
 /// Parses XML (DTDs allowed, as Supremica and libFAUDES write them, but no
 /// entity declarations), with a syntax error at the offending line and
 /// column of `origin`.
-fn parse_xml<'t>(text: &'t str, origin: &Path) -> Result<roxmltree::Document<'t>> {
+pub(crate) fn parse_xml<'t>(text: &'t str, origin: &Path) -> Result<roxmltree::Document<'t>> {
     // Entities are the one way a small XML file expands into gigabytes
     // (flat repetition as well as nesting); no model format needs them.
     if let Some(at) = text.find("<!ENTITY") {

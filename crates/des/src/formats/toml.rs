@@ -292,6 +292,14 @@ fn put_list<'a>(
     }
 }
 
+/// `s` as a TOML basic string on one line (usable as a key), every
+/// character that needs it escaped.
+pub fn basic_string(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    put_string(&mut out, s);
+    out
+}
+
 /// A TOML basic string with every character that needs it escaped.
 fn put_string(out: &mut String, s: &str) {
     out.push('"');
