@@ -1012,3 +1012,95 @@ fn petri_reach_writes_the_graph_and_convert_keeps_the_net() {
         run.stderr
     );
 }
+
+#[test]
+fn petri_synth_gives_the_mixers_the_papers_control_place() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("controlled.pnml");
+    let (code, report) = run_json([
+        "petri",
+        "synth",
+        "models/petri/mixers.pnml",
+        "--constraints",
+        "models/petri/mixers.constraints.toml",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0);
+    // SEEDS.md D: D_c = [−1 1 0 0 −1 1 0 0], m_c0 = 1.
+    let c1 = &report["control_places"][0];
+    assert_eq!(c1["id"], "c1");
+    assert_eq!(
+        c1["incidence"],
+        serde_json::json!({ "t1": -1, "t2": 1, "t5": -1, "t6": 1 })
+    );
+    assert_eq!(c1["initial"], 1);
+    assert_eq!(report["safe"], true);
+    assert_eq!(report["dead_markings"], serde_json::json!([]));
+    // The controlled net: the plant plus c1, safe.
+    let (code, info) = run_json(["petri", "info", out.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert_eq!(info["places"].as_array().unwrap().len(), 10);
+    assert_eq!(info["reachable_markings"], 15);
+}
+
+#[test]
+fn petri_synth_reports_a_dead_closed_loop_with_the_firing_sequence_and_exit_1() {
+    let dir = tempfile::tempdir().unwrap();
+    // m3 ≤ 0: neither mixer may ever take the supply.
+    let constraints = write(
+        dir.path(),
+        "none.toml",
+        "[[constraint]]\nname = \"no supply\"\nweights = { m3 = 1 }\nbound = 0\n",
+    );
+    let out = dir.path().join("dead.toml");
+    let run = run_codegen([
+        "petri",
+        "synth",
+        "models/petri/mixers.toml",
+        "--constraints",
+        &constraints,
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(run.code, 1, "{}", run.stderr);
+    assert!(
+        run.stdout
+            .contains("closed loop: 1 reachable markings, safe, can deadlock"),
+        "{}",
+        run.stdout
+    );
+    assert!(
+        run.stdout.contains("dead in ma1+mb1 after no firing"),
+        "{}",
+        run.stdout
+    );
+    // An inadmissible constraint: exit 2 at its line.
+    let wild = write(
+        dir.path(),
+        "wild.toml",
+        &std::fs::read_to_string(model("models/petri/mixers.toml"))
+            .unwrap()
+            .replace(
+                "{ id = \"t5\", controllable = true",
+                "{ id = \"t5\", controllable = false",
+            ),
+    );
+    let run = run_codegen([
+        "petri",
+        "synth",
+        &wild,
+        "--constraints",
+        "models/petri/mixers.constraints.toml",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(run.code, 2);
+    assert!(
+        run.stderr.contains(
+            "mixers.constraints.toml:4:1: constraint `one mixer on the supply` is not admissible"
+        ) && run.stderr.contains("`t5`"),
+        "{}",
+        run.stderr
+    );
+}

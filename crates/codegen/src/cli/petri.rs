@@ -5,10 +5,15 @@
 //!   markings); exit 1 when the net is not safe or has a dead marking.
 //! - `petri reach NET -o AUTOMATON`: the reachability graph written in any
 //!   automaton format, to feed supcon.
+//! - `petri synth NET --constraints FILE -o OUT`: place-invariant
+//!   synthesis, one control place per constraint, and the closed loop's
+//!   properties; exit 1 when the closed loop can deadlock.
 //! - `petri convert NET OUT`: between PNML and the native TOML.
 
 use super::output::{outln, Out};
 use super::Outcome;
+use codegen::des::petri::constraints::Constraint;
+use codegen::des::petri::synth::Supervised;
 use codegen::des::petri::{self, reach, PetriNet};
 use codegen::{formats, Error};
 use std::path::PathBuf;
@@ -34,6 +39,23 @@ pub enum PetriCommand {
         #[arg(short, long)]
         output: PathBuf,
         /// Explore at most this many markings.
+        #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES)]
+        max_states: usize,
+    },
+    /// Place-invariant synthesis: one control place per constraint
+    /// `L·m ≤ b` (D_c = −L·D_p, m_c0 = b − L·m_p0), the controlled net
+    /// written (`.pnml` or `.toml`), and its closed loop checked (exit 1
+    /// when it can deadlock).
+    Synth {
+        /// The plant net (`.pnml` or `.toml`).
+        net: PathBuf,
+        /// The constraints (`[[constraint]]` tables, TOML).
+        #[arg(long)]
+        constraints: PathBuf,
+        /// The controlled net to write; its extension picks the format.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Explore at most this many markings of the closed loop.
         #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES)]
         max_states: usize,
     },
@@ -106,6 +128,19 @@ pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome,
                 );
             }
             Ok(Outcome::Holds)
+        }
+        PetriCommand::Synth {
+            net,
+            constraints,
+            output,
+            max_states,
+        } => {
+            let plant = petri::read_file(net)?;
+            let cs = petri::constraints::read_file(constraints, &plant)?;
+            let s = petri::synth::synthesize(&plant, &cs)?;
+            let r = reach::reachability(&s.net, *max_states)?;
+            petri::write_file(output, &s.net)?;
+            synth_report(&plant, &cs, &s, &r, output, json, out)
         }
         PetriCommand::Convert { input, output } => {
             let net = petri::read_file(input)?;
@@ -212,5 +247,139 @@ fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<
             info.dead_markings.join(", ")
         );
     }
+    Ok(outcome)
+}
+
+#[derive(Debug, serde::Serialize)]
+struct ControlInfo {
+    constraint: String,
+    id: String,
+    /// `D_c` by transition id, zero entries left out.
+    incidence: serde_json::Map<String, serde_json::Value>,
+    initial: u32,
+}
+
+#[derive(Debug, serde::Serialize)]
+struct DeadInfo {
+    marking: String,
+    firing_sequence: Vec<String>,
+}
+
+fn synth_report(
+    plant: &PetriNet,
+    constraints: &[Constraint],
+    s: &Supervised,
+    r: &reach::Reachability,
+    output: &std::path::Path,
+    json: bool,
+    out: &mut Out,
+) -> Result<Outcome, Error> {
+    let ids: Vec<&str> = plant.transitions().iter().map(|t| t.id.as_str()).collect();
+    let dead: Vec<DeadInfo> = r
+        .dead
+        .iter()
+        .map(|&k| DeadInfo {
+            marking: s.net.marking_name(&r.markings[k]),
+            firing_sequence: r
+                .firing_sequence(k)
+                .into_iter()
+                .map(|t| ids[t].to_owned())
+                .collect(),
+        })
+        .collect();
+    let outcome = if dead.is_empty() {
+        Outcome::Holds
+    } else {
+        Outcome::Fails
+    };
+    if json {
+        let control: Vec<ControlInfo> = s
+            .control
+            .iter()
+            .map(|c| ControlInfo {
+                constraint: c.constraint.clone(),
+                id: c.id.clone(),
+                incidence: ids
+                    .iter()
+                    .zip(&c.incidence)
+                    .filter(|&(_, &w)| w != 0)
+                    .map(|(t, &w)| ((*t).to_owned(), serde_json::json!(w)))
+                    .collect(),
+                initial: c.initial,
+            })
+            .collect();
+        out.json(&serde_json::json!({
+            "output": output.display().to_string(),
+            "control_places": control,
+            "reachable_markings": r.markings.len(),
+            "safe": r.is_safe(),
+            "dead_markings": dead,
+        }));
+        return Ok(outcome);
+    }
+    outln!(
+        out,
+        "{}: {} control place(s), columns {}",
+        plant.name(),
+        s.control.len(),
+        ids.join(" ")
+    );
+    for (c, constraint) in s.control.iter().zip(constraints) {
+        let l: Vec<String> = constraint
+            .weights
+            .iter()
+            .map(|&(p, w)| match w {
+                1 => plant.places()[p].id.clone(),
+                w => format!("{w}·{}", plant.places()[p].id),
+            })
+            .collect();
+        outln!(
+            out,
+            "  {} \"{}\": {} ≤ {}",
+            c.id,
+            c.constraint,
+            l.join(" + "),
+            constraint.bound
+        );
+        let row: Vec<String> = c.incidence.iter().map(|d| format!("{d:>3}")).collect();
+        outln!(out, "    D_c  = [{} ]", row.join(""));
+        outln!(out, "    m_c0 = {}", c.initial);
+    }
+    let over: Vec<String> = s
+        .net
+        .places()
+        .iter()
+        .zip(&r.bounds)
+        .filter(|&(_, &b)| b > 1)
+        .map(|(p, b)| format!("{} holds up to {b}", p.id))
+        .collect();
+    outln!(
+        out,
+        "  closed loop: {} reachable markings, {}, {}",
+        r.markings.len(),
+        if over.is_empty() {
+            "safe".to_owned()
+        } else {
+            format!("not safe ({})", over.join(", "))
+        },
+        if dead.is_empty() {
+            "deadlock-free"
+        } else {
+            "can deadlock"
+        }
+    );
+    for d in &dead {
+        outln!(
+            out,
+            "    dead in {} after {}",
+            d.marking,
+            if d.firing_sequence.is_empty() {
+                "no firing".to_owned()
+            } else {
+                d.firing_sequence.join(" ")
+            }
+        );
+    }
+    outln!(out, "wrote {}", output.display());
     Ok(outcome)
 }

@@ -70,15 +70,21 @@ struct File {
     transitions: Vec<Spanned<Vec<Name>>>,
 }
 
-/// Parses a native TOML automaton; `origin` names the file in errors.
-pub fn read(text: &str, origin: &Path) -> Result<Component> {
-    let file: File = ::toml::from_str(text).map_err(|e| {
+/// Deserialises TOML `text` (the file `origin`), a syntax or shape error
+/// located at its line and column.
+pub(crate) fn parse<T: serde::de::DeserializeOwned>(text: &str, origin: &Path) -> Result<T> {
+    ::toml::from_str(text).map_err(|e| {
         let location = match e.span() {
             Some(span) => Location::at_offset(origin, text, span.start),
             None => Location::file(origin),
         };
         Error::syntax(location, e.message().trim_end().to_owned())
-    })?;
+    })
+}
+
+/// Parses a native TOML automaton; `origin` names the file in errors.
+pub fn read(text: &str, origin: &Path) -> Result<Component> {
+    let file: File = parse(text, origin)?;
     let at = |span: Range<usize>| Location::at_offset(origin, text, span.start);
 
     let mut b = AutomatonBuilder::new(file.name.get_ref().clone());

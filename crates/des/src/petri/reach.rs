@@ -34,9 +34,25 @@ pub struct Reachability {
     pub bounds: Vec<u32>,
     /// The reachable markings in which no transition is enabled.
     pub dead: Vec<usize>,
+    /// For each marking: the marking it was first reached from and the
+    /// transition that led there (`None` for the initial one).
+    parent: Vec<Option<(usize, usize)>>,
 }
 
 impl Reachability {
+    /// A shortest firing sequence (transition indices) from the initial
+    /// marking to marking `k`.
+    pub fn firing_sequence(&self, k: usize) -> Vec<usize> {
+        let mut sequence = Vec::new();
+        let mut at = k;
+        while let Some((from, t)) = self.parent[at] {
+            sequence.push(t);
+            at = from;
+        }
+        sequence.reverse();
+        sequence
+    }
+
     /// Whether no place ever holds more than one token.
     pub fn is_safe(&self) -> bool {
         self.bounds.iter().all(|&b| b <= 1)
@@ -122,6 +138,7 @@ pub fn reachability(net: &PetriNet, max_states: usize) -> Result<Reachability> {
         markings,
         bounds,
         dead,
+        parent,
     })
 }
 
@@ -240,6 +257,23 @@ transitions = [
             "net `leak` is unbounded: place `waste` grows without bound (the firing sequence \
              go done can repeat its cycle forever); it has no finite reachability graph"
         );
+    }
+
+    #[test]
+    fn a_dead_marking_comes_with_a_shortest_firing_sequence_into_it() {
+        let n = net(r#"name = "one shot"
+places = [{ id = "a", tokens = 1 }, { id = "b" }, { id = "c" }]
+transitions = [
+  { id = "go", controllable = true, input = { a = 1 }, output = { b = 1 } },
+  { id = "stop", controllable = false, input = { b = 1 }, output = { c = 1 } },
+]
+"#);
+        let r = reachability(&n, 10).unwrap();
+        assert_eq!(r.dead.len(), 1);
+        let dead = r.dead[0];
+        assert_eq!(n.marking_name(&r.markings[dead]), "c");
+        assert_eq!(r.firing_sequence(dead), [0, 1]);
+        assert_eq!(r.firing_sequence(0), Vec::<usize>::new());
     }
 
     #[test]

@@ -71,12 +71,7 @@ fn yes() -> bool {
 /// Parses a native TOML net; `origin` names the file in errors.
 pub fn read(text: &str, origin: &Path) -> Result<PetriNet> {
     let at = |offset: usize| Location::at_offset(origin, text, offset);
-    let file: File = ::toml::from_str(text).map_err(|e| {
-        let location = e
-            .span()
-            .map_or_else(|| Location::file(origin), |s| at(s.start));
-        Error::syntax(location, e.message().trim_end().to_owned())
-    })?;
+    let file: File = crate::formats::toml::parse(text, origin)?;
     let mut b = NetBuilder::new(file.name.into_inner());
     for p in &file.places {
         let place = p.get_ref();
@@ -152,20 +147,33 @@ pub fn write(net: &PetriNet) -> String {
         if let Some(name) = &t.name {
             let _ = write!(out, ", name = {}", quoted(name));
         }
-        for (key, arcs) in [("input", &t.input), ("output", &t.output)] {
+        for (side, arcs) in [("input", &t.input), ("output", &t.output)] {
             if arcs.is_empty() {
                 continue;
             }
             let list: Vec<String> = arcs
                 .iter()
-                .map(|&(p, w)| format!("{} = {w}", quoted(&net.places()[p].id)))
+                .map(|&(p, w)| format!("{} = {w}", key(&net.places()[p].id)))
                 .collect();
-            let _ = write!(out, ", {key} = {{ {} }}", list.join(", "));
+            let _ = write!(out, ", {side} = {{ {} }}", list.join(", "));
         }
         out.push_str(" },\n");
     }
     out.push_str("]\n");
     out
+}
+
+/// A TOML key: bare when TOML allows it, quoted otherwise.
+fn key(id: &str) -> String {
+    let bare = !id.is_empty()
+        && id
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+    if bare {
+        id.to_owned()
+    } else {
+        quoted(id)
+    }
 }
 
 #[cfg(test)]
