@@ -1037,6 +1037,8 @@ fn petri_synth_gives_the_mixers_the_papers_control_place() {
     assert_eq!(c1["initial"], 1);
     assert_eq!(report["safe"], true);
     assert_eq!(report["dead_markings"], serde_json::json!([]));
+    assert_eq!(report["supcon"]["same_language"], true);
+    assert_eq!(report["supcon"]["states"], 15);
     // The controlled net: the plant plus c1, safe.
     let (code, info) = run_json(["petri", "info", out.to_str().unwrap()]);
     assert_eq!(code, 0);

@@ -4,9 +4,11 @@
 //! permissive as the constraint: its reachable plant markings are those
 //! the plant reaches along firing sequences that never leave `L·m ≤ b`
 //! (admissibility means no uncontrollable transition ever raises `L·m`,
-//! so none needs to be blocked). Refusals are checked against the
-//! definition too.
+//! so none needs to be blocked), which is also supcon's language on the
+//! reachability graph with the constraint as specification. Refusals are
+//! checked against the definition too.
 
+use des::petri::compare;
 use des::petri::constraints::{self, Constraint};
 use des::petri::synth::synthesize;
 use des::petri::{reach, read_str, Marking, NetFormat, PetriNet};
@@ -171,6 +173,10 @@ proptest! {
                     reached.insert(plant.to_vec());
                 }
                 prop_assert_eq!(reached, within(&net, c), "not exactly the constraint:\n{}{}", random.text(), text);
+                // And it is supcon's language on the reachability graph.
+                let cmp = compare::against_supcon(&net, &cs, &s, 100_000).unwrap();
+                prop_assert!(cmp.difference.is_none(), "differs from supcon: {:?}\n{}{}", cmp.difference, random.text(), text);
+                prop_assert_eq!(cmp.controlled_states, cmp.supcon_states);
             }
         }
     }

@@ -12,6 +12,7 @@
 
 use super::output::{outln, Out};
 use super::Outcome;
+use codegen::des::petri::compare::Comparison;
 use codegen::des::petri::constraints::Constraint;
 use codegen::des::petri::synth::Supervised;
 use codegen::des::petri::{self, reach, PetriNet};
@@ -139,8 +140,9 @@ pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome,
             let cs = petri::constraints::read_file(constraints, &plant)?;
             let s = petri::synth::synthesize(&plant, &cs)?;
             let r = reach::reachability(&s.net, *max_states)?;
+            let cmp = petri::compare::against_supcon(&plant, &cs, &s, *max_states)?;
             petri::write_file(output, &s.net)?;
-            synth_report(&plant, &cs, &s, &r, output, json, out)
+            synth_report(&plant, &cs, &s, &r, &cmp, output, json, out)
         }
         PetriCommand::Convert { input, output } => {
             let net = petri::read_file(input)?;
@@ -265,11 +267,13 @@ struct DeadInfo {
     firing_sequence: Vec<String>,
 }
 
+#[allow(clippy::too_many_arguments)]
 fn synth_report(
     plant: &PetriNet,
     constraints: &[Constraint],
     s: &Supervised,
     r: &reach::Reachability,
+    cmp: &Comparison,
     output: &std::path::Path,
     json: bool,
     out: &mut Out,
@@ -314,6 +318,11 @@ fn synth_report(
             "reachable_markings": r.markings.len(),
             "safe": r.is_safe(),
             "dead_markings": dead,
+            "supcon": {
+                "states": cmp.supcon_states,
+                "same_language": cmp.difference.is_none(),
+                "difference": cmp.difference,
+            },
         }));
         return Ok(outcome);
     }
@@ -379,6 +388,24 @@ fn synth_report(
                 d.firing_sequence.join(" ")
             }
         );
+    }
+    match &cmp.difference {
+        None => outln!(
+            out,
+            "  supcon on the reachability graph: the same language ({} states)",
+            cmp.supcon_states
+        ),
+        Some(d) => outln!(
+            out,
+            "  supcon on the reachability graph ({} states) differs: `{}` is allowed only by {}",
+            cmp.supcon_states,
+            d.string.join(" "),
+            if d.in_first {
+                "the control places"
+            } else {
+                "supcon (the control places are more restrictive)"
+            }
+        ),
     }
     outln!(out, "wrote {}", output.display());
     Ok(outcome)

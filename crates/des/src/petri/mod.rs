@@ -10,12 +10,14 @@
 //!   ISO/IEC 15909-2, as Petri-net editors write it. [`read_file`] and
 //!   [`write_file`] pick the format by extension (`.toml`, `.pnml`).
 //! - [`constraints`] and [`synth`]: linear marking constraints `L·m ≤ b`
-//!   and place-invariant synthesis, one control place per constraint.
+//!   and place-invariant synthesis, one control place per constraint;
+//!   [`compare`]: the result against supcon on the reachability graphs.
 //! - [`reach`]: the reachability graph of a bounded net as an automaton
 //!   (one event per transition, its controllability kept), with a state
 //!   limit, and a located refusal for an unbounded net (the place that
 //!   grows and a firing sequence that makes it grow).
 
+pub mod compare;
 pub mod constraints;
 pub mod pnml;
 pub mod reach;

@@ -59,9 +59,38 @@ impl Reachability {
     }
 }
 
+/// Which states of the graph are marked.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Marked {
+    /// The initial marking only (a batch returns to where it started).
+    #[default]
+    Initial,
+    /// Every marking (no nonblocking requirement: for comparing closed
+    /// languages).
+    All,
+}
+
 /// Explores the markings of `net` reachable from its initial marking, at
-/// most `max_states` of them.
+/// most `max_states` of them; the initial marking is the marked state.
 pub fn reachability(net: &PetriNet, max_states: usize) -> Result<Reachability> {
+    reachability_with(net, max_states, Marked::Initial, &|_| true)
+}
+
+/// [`reachability`] with a choice of marked states, and only through
+/// markings `keep` accepts (a transition into another one is left out):
+/// with a constraint as `keep`, the legal part of the graph.
+pub fn reachability_with(
+    net: &PetriNet,
+    max_states: usize,
+    marked: Marked,
+    keep: &dyn Fn(&[u32]) -> bool,
+) -> Result<Reachability> {
+    if !keep(net.initial()) {
+        return Err(Error::Incompatible(format!(
+            "the initial marking of `{}` is not among the markings kept",
+            net.name()
+        )));
+    }
     let mut markings: Vec<Marking> = vec![net.initial().clone()];
     // For each marking: the marking it was first reached from, and how.
     let mut parent: Vec<Option<(usize, usize)>> = vec![None];
@@ -81,6 +110,9 @@ pub fn reachability(net: &PetriNet, max_states: usize) -> Result<Reachability> {
             let Some(after) = net.fire(&m, t) else {
                 return Err(unbounded(net, &markings, &parent, next, t, None));
             };
+            if !keep(&after) {
+                continue;
+            }
             let target = match index.get(&after) {
                 Some(&k) => k,
                 None => {
@@ -120,7 +152,10 @@ pub fn reachability(net: &PetriNet, max_states: usize) -> Result<Reachability> {
         .collect();
     b.set_initial(states[0])
         .map_err(|e| Error::Incompatible(e.to_string()))?;
-    b.mark(states[0]);
+    match marked {
+        Marked::Initial => b.mark(states[0]),
+        Marked::All => states.iter().for_each(|&s| b.mark(s)),
+    }
     for (source, t, target) in edges {
         b.add_transition(states[source], events[t], states[target], 0);
     }
