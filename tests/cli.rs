@@ -952,6 +952,16 @@ fn petri_info_shows_the_mixers_incidence_and_that_both_can_take_the_supply() {
     assert_eq!(info["bounds"][2], 2);
     assert_eq!(info["safe"], false);
     assert_eq!(info["dead_markings"], serde_json::json!([]));
+    let first = &info["place_invariants"][0];
+    assert_eq!(first["value"], 1);
+    let ids: Vec<&str> = first["weights"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t["id"].as_str().unwrap())
+        .collect();
+    assert_eq!(ids, ["ma1", "ma2", "ma4", "ma5"]);
+    assert_eq!(info["transition_invariants"].as_array().unwrap().len(), 2);
     let text = run_codegen(["petri", "info", "models/petri/mixers.pnml"]);
     assert_eq!(text.code, 1);
     assert!(

@@ -181,3 +181,44 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    /// Every minimal P-semiflow found is one (`yᵀ·D = 0`, `y ≥ 0`), keeps
+    /// `y·m` over every reachable marking, and no other's support lies
+    /// within its own; likewise every T-semiflow solves `D·x = 0`.
+    #[test]
+    fn semiflows_are_invariants_and_minimal(random in random_net()) {
+        use des::petri::invariants::{place_invariants, transition_invariants};
+        let net = random.net();
+        let d = net.incidence();
+        let ps = place_invariants(&net).unwrap();
+        let r = reach::reachability(&net, 100_000).unwrap();
+        for y in &ps {
+            for (t, _) in net.transitions().iter().enumerate() {
+                let sum: i64 = y.iter().map(|&(p, w)| w as i64 * d[p][t]).sum();
+                prop_assert_eq!(sum, 0, "{:?} on t{}\n{}", y, t, random.text());
+            }
+            let value = |m: &[u32]| -> u64 { y.iter().map(|&(p, w)| w * u64::from(m[p])).sum() };
+            for m in &r.markings {
+                prop_assert_eq!(value(m), value(net.initial()));
+            }
+        }
+        for (i, a) in ps.iter().enumerate() {
+            for (k, b) in ps.iter().enumerate() {
+                let within = b.iter().all(|&(p, _)| a.iter().any(|&(q, _)| q == p));
+                prop_assert!(i == k || !within, "{:?} within {:?}", b, a);
+            }
+        }
+        // A conservative net keeps its token count: the all-ones vector is
+        // an invariant, so some semiflow exists.
+        prop_assert!(!ps.is_empty());
+        for x in transition_invariants(&net).unwrap() {
+            for row in &d {
+                let sum: i64 = x.iter().map(|&(t, w)| w as i64 * row[t]).sum();
+                prop_assert_eq!(sum, 0);
+            }
+        }
+    }
+}

@@ -1,8 +1,9 @@
 //! `codegen petri`: place/transition nets (`.pnml`, `.toml`).
 //!
-//! - `petri info NET`: places, transitions, the incidence matrix, and
-//!   what the reachability graph says (states, bounds, safeness, dead
-//!   markings); exit 1 when the net is not safe or has a dead marking.
+//! - `petri info NET`: places, transitions, the incidence matrix, what
+//!   the reachability graph says (states, bounds, safeness, dead
+//!   markings) and the minimal place and transition invariants; exit 1
+//!   when the net is not safe or has a dead marking.
 //! - `petri reach NET -o AUTOMATON`: the reachability graph written in any
 //!   automaton format, to feed supcon.
 //! - `petri synth NET --constraints FILE -o OUT`: place-invariant
@@ -14,6 +15,7 @@ use super::output::{outln, Out};
 use super::Outcome;
 use codegen::des::petri::compare::Comparison;
 use codegen::des::petri::constraints::Constraint;
+use codegen::des::petri::invariants::{self, Semiflow};
 use codegen::des::petri::synth::Supervised;
 use codegen::des::petri::{self, reach, PetriNet};
 use codegen::{formats, Error};
@@ -82,6 +84,25 @@ struct Info {
     bounds: Vec<u32>,
     safe: bool,
     dead_markings: Vec<String>,
+    /// Minimal P-semiflows with `y·m0`.
+    place_invariants: Vec<PlaceInvariant>,
+    /// Minimal T-semiflows (firing counts).
+    transition_invariants: Vec<Vec<Term>>,
+}
+
+/// One weighted place or transition of an invariant.
+#[derive(Debug, serde::Serialize)]
+struct Term {
+    id: String,
+    weight: u64,
+}
+
+#[derive(Debug, serde::Serialize)]
+struct PlaceInvariant {
+    /// In place order.
+    weights: Vec<Term>,
+    /// `y·m` in every reachable marking.
+    value: u64,
 }
 
 #[derive(Debug, serde::Serialize)]
@@ -159,6 +180,30 @@ pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome,
 
 fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<Outcome, Error> {
     let r = reach::reachability(net, max_states)?;
+    let weights = |s: &Semiflow, id: &dyn Fn(usize) -> String| -> Vec<Term> {
+        s.iter()
+            .map(|&(i, w)| Term {
+                id: id(i),
+                weight: w,
+            })
+            .collect()
+    };
+    let place_id = |p: usize| net.places()[p].id.clone();
+    let transition_id = |t: usize| net.transitions()[t].id.clone();
+    let place_invariants = invariants::place_invariants(net)?
+        .iter()
+        .map(|y| PlaceInvariant {
+            weights: weights(y, &place_id),
+            value: y
+                .iter()
+                .map(|&(p, w)| w * u64::from(net.initial()[p]))
+                .sum(),
+        })
+        .collect();
+    let transition_invariants = invariants::transition_invariants(net)?
+        .iter()
+        .map(|x| weights(x, &transition_id))
+        .collect();
     let info = Info {
         name: net.name().to_owned(),
         places: net.places().iter().map(|p| p.id.clone()).collect(),
@@ -181,6 +226,8 @@ fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<
             .iter()
             .map(|&k| net.marking_name(&r.markings[k]))
             .collect(),
+        place_invariants,
+        transition_invariants,
     };
     let outcome = if info.safe && info.dead_markings.is_empty() {
         Outcome::Holds
@@ -239,6 +286,30 @@ fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<
         );
     } else {
         outln!(out, "  safe:               no ({})", over.join(", "));
+    }
+    let sum = |terms: &[Term]| {
+        terms
+            .iter()
+            .map(|t| match t.weight {
+                1 => t.id.clone(),
+                w => format!("{w}·{}", t.id),
+            })
+            .collect::<Vec<_>>()
+            .join(" + ")
+    };
+    outln!(out, "  place invariants:");
+    for y in &info.place_invariants {
+        outln!(out, "    {} = {}", sum(&y.weights), y.value);
+    }
+    if info.place_invariants.is_empty() {
+        outln!(out, "    none");
+    }
+    outln!(out, "  transition invariants:");
+    for x in &info.transition_invariants {
+        outln!(out, "    {}", sum(x));
+    }
+    if info.transition_invariants.is_empty() {
+        outln!(out, "    none");
     }
     if info.dead_markings.is_empty() {
         outln!(out, "  deadlock-free:      yes");

@@ -9,6 +9,7 @@
 //! - [`toml`]: the native form; [`pnml`]: PNML, the P/T-net type of
 //!   ISO/IEC 15909-2, as Petri-net editors write it. [`read_file`] and
 //!   [`write_file`] pick the format by extension (`.toml`, `.pnml`).
+//! - [`invariants`]: minimal place and transition semiflows (Farkas).
 //! - [`constraints`] and [`synth`]: linear marking constraints `L·m ≤ b`
 //!   and place-invariant synthesis, one control place per constraint;
 //!   [`compare`]: the result against supcon on the reachability graphs.
@@ -19,6 +20,7 @@
 
 pub mod compare;
 pub mod constraints;
+pub mod invariants;
 pub mod pnml;
 pub mod reach;
 pub mod synth;
