@@ -962,6 +962,7 @@ fn petri_info_shows_the_mixers_incidence_and_that_both_can_take_the_supply() {
         .collect();
     assert_eq!(ids, ["ma1", "ma2", "ma4", "ma5"]);
     assert_eq!(info["transition_invariants"].as_array().unwrap().len(), 2);
+    assert_eq!(info["not_live"], serde_json::json!([]));
     let text = run_codegen(["petri", "info", "models/petri/mixers.pnml"]);
     assert_eq!(text.code, 1);
     assert!(

@@ -84,6 +84,8 @@ struct Info {
     bounds: Vec<u32>,
     safe: bool,
     dead_markings: Vec<String>,
+    /// Transitions that can become dead for good (empty: the net is live).
+    not_live: Vec<String>,
     /// Minimal P-semiflows with `y·m0`.
     place_invariants: Vec<PlaceInvariant>,
     /// Minimal T-semiflows (firing counts).
@@ -226,6 +228,13 @@ fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<
             .iter()
             .map(|&k| net.marking_name(&r.markings[k]))
             .collect(),
+        not_live: r
+            .live(net.transitions().len())
+            .iter()
+            .zip(net.transitions())
+            .filter(|&(&live, _)| !live)
+            .map(|(_, t)| t.id.clone())
+            .collect(),
         place_invariants,
         transition_invariants,
     };
@@ -297,6 +306,18 @@ fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<
             .collect::<Vec<_>>()
             .join(" + ")
     };
+    if info.not_live.is_empty() {
+        outln!(
+            out,
+            "  live:               yes (every transition can always fire again)"
+        );
+    } else {
+        outln!(
+            out,
+            "  live:               no ({} can become dead)",
+            info.not_live.join(", ")
+        );
+    }
     outln!(out, "  place invariants:");
     for y in &info.place_invariants {
         outln!(out, "    {} = {}", sum(&y.weights), y.value);

@@ -37,9 +37,45 @@ pub struct Reachability {
     /// For each marking: the marking it was first reached from and the
     /// transition that led there (`None` for the initial one).
     parent: Vec<Option<(usize, usize)>>,
+    /// Every firing: (marking, transition, marking).
+    edges: Vec<(usize, usize, usize)>,
 }
 
 impl Reachability {
+    /// For each transition, whether it is live: from every reachable
+    /// marking some firing sequence leads to a marking that enables it
+    /// (computed backwards from the markings where it fires).
+    pub fn live(&self, transitions: usize) -> Vec<bool> {
+        let n = self.markings.len();
+        let mut into: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for &(from, _, to) in &self.edges {
+            into[to].push(from);
+        }
+        (0..transitions)
+            .map(|t| {
+                let mut reaches = vec![false; n];
+                let mut stack: Vec<usize> = self
+                    .edges
+                    .iter()
+                    .filter(|&&(_, u, _)| u == t)
+                    .map(|&(from, _, _)| from)
+                    .collect();
+                for &m in &stack {
+                    reaches[m] = true;
+                }
+                while let Some(m) = stack.pop() {
+                    for &p in &into[m] {
+                        if !reaches[p] {
+                            reaches[p] = true;
+                            stack.push(p);
+                        }
+                    }
+                }
+                reaches.iter().all(|&r| r)
+            })
+            .collect()
+    }
+
     /// A shortest firing sequence (transition indices) from the initial
     /// marking to marking `k`.
     pub fn firing_sequence(&self, k: usize) -> Vec<usize> {
@@ -156,7 +192,7 @@ pub fn reachability_with(
         Marked::Initial => b.mark(states[0]),
         Marked::All => states.iter().for_each(|&s| b.mark(s)),
     }
-    for (source, t, target) in edges {
+    for &(source, t, target) in &edges {
         b.add_transition(states[source], events[t], states[target], 0);
     }
     let automaton = b
@@ -174,6 +210,7 @@ pub fn reachability_with(
         bounds,
         dead,
         parent,
+        edges,
     })
 }
 
@@ -266,6 +303,7 @@ transitions = [
         // Each mixer cycles through 4 stages independently: 4 × 4 states.
         assert_eq!(r.automaton.num_states(), 16);
         assert!(r.dead.is_empty(), "no dead marking");
+        assert_eq!(r.live(8), [true; 8], "each mixer can always cycle");
         assert_eq!(r.bounds[2], 2, "m3 holds two tokens when both fill");
         assert!(!r.is_safe());
         let both = n.marking_name(&[0, 1, 2, 0, 0, 0, 1, 0, 0]);
@@ -309,6 +347,28 @@ transitions = [
         assert_eq!(n.marking_name(&r.markings[dead]), "c");
         assert_eq!(r.firing_sequence(dead), [0, 1]);
         assert_eq!(r.firing_sequence(0), Vec::<usize>::new());
+        assert_eq!(
+            r.live(2),
+            [false, false],
+            "a one-shot net has no live transition"
+        );
+    }
+
+    #[test]
+    fn a_transition_is_live_when_every_marking_can_still_lead_to_it() {
+        // a ⇄ b until t3 moves the token to c for good, where t4 loops.
+        let n = net(r#"name = "choice"
+places = [{ id = "a", tokens = 1 }, { id = "b" }, { id = "c" }]
+transitions = [
+  { id = "t1", controllable = true, input = { a = 1 }, output = { b = 1 } },
+  { id = "t2", controllable = true, input = { b = 1 }, output = { a = 1 } },
+  { id = "t3", controllable = true, input = { a = 1 }, output = { c = 1 } },
+  { id = "t4", controllable = true, input = { c = 1 }, output = { c = 1 } },
+]
+"#);
+        let r = reachability(&n, 10).unwrap();
+        assert!(r.dead.is_empty(), "t4 always fires in c");
+        assert_eq!(r.live(4), [false, false, false, true]);
     }
 
     #[test]
