@@ -1116,4 +1116,20 @@ fn petri_synth_reports_a_dead_closed_loop_with_the_firing_sequence_and_exit_1() 
         "{}",
         run.stderr
     );
+    // With --transform it is enforced through m3 + mb1 ≤ 1, which is
+    // exactly supcon's behaviour here.
+    let (code, report) = run_json([
+        "petri",
+        "synth",
+        &wild,
+        "--constraints",
+        "models/petri/mixers.constraints.toml",
+        "-o",
+        out.to_str().unwrap(),
+        "--transform",
+    ]);
+    assert_eq!(code, 0);
+    assert_eq!(report["control_places"][0]["enforced_as"], "m3 + mb1 ≤ 1");
+    assert_eq!(report["supcon"]["same_language"], true);
+    assert_eq!(report["dead_markings"], serde_json::json!([]));
 }

@@ -222,3 +222,35 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 1000, ..ProptestConfig::default() })]
+
+    /// An inadmissible constraint made admissible is enforced safely: the
+    /// controlled net never breaks the original constraint, and it allows
+    /// nothing supcon (the supremal controllable behaviour within the
+    /// original constraint) forbids; it may allow less.
+    #[test]
+    fn an_admissible_form_is_safe_and_never_beyond_supcon(
+        random in random_net(),
+        seed in (0usize..7, 0usize..7, 1i64..3, 1i64..3, 0i64..2),
+    ) {
+        use des::petri::admissible::make_admissible;
+        let net = random.net();
+        let text = random_constraint(&net, seed);
+        let cs = constraints::read(&text, Path::new("c.toml"), &net).unwrap();
+        let Ok(admissible) = make_admissible(&net, &cs[0]) else {
+            return Ok(());
+        };
+        let s = synthesize(&net, std::slice::from_ref(&admissible)).unwrap();
+        let r = reach::reachability(&s.net, 100_000).unwrap();
+        let plant_places = net.places().len();
+        for m in &r.markings {
+            prop_assert!(cs[0].weighted(&m[..plant_places]) <= cs[0].bound);
+        }
+        let cmp = compare::against_supcon(&net, &cs, &s, 100_000).unwrap();
+        if let Some(d) = cmp.difference {
+            prop_assert!(!d.in_first, "beyond supcon: {:?}\n{}{}", d.string, random.text(), text);
+        }
+    }
+}

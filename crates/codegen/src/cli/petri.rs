@@ -13,6 +13,7 @@
 
 use super::output::{outln, Out};
 use super::Outcome;
+use codegen::des::petri::admissible::make_admissible;
 use codegen::des::petri::compare::Comparison;
 use codegen::des::petri::constraints::Constraint;
 use codegen::des::petri::invariants::{self, Semiflow};
@@ -61,6 +62,11 @@ pub enum PetriCommand {
         /// Explore at most this many markings of the closed loop.
         #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES)]
         max_states: usize,
+        /// Enforce an inadmissible constraint through an admissible one
+        /// that implies it (more places counted upstream of the
+        /// uncontrollable transitions) instead of refusing it.
+        #[arg(long)]
+        transform: bool,
     },
     /// Convert a net between PNML and the native TOML (by extension).
     Convert {
@@ -158,14 +164,25 @@ pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome,
             constraints,
             output,
             max_states,
+            transform,
         } => {
             let plant = petri::read_file(net)?;
             let cs = petri::constraints::read_file(constraints, &plant)?;
-            let s = petri::synth::synthesize(&plant, &cs)?;
+            let enforced = if *transform {
+                cs.iter()
+                    .map(|c| {
+                        make_admissible(&plant, c)
+                            .map_err(|why| Error::model(c.location.clone(), why))
+                    })
+                    .collect::<Result<Vec<_>, _>>()?
+            } else {
+                cs.clone()
+            };
+            let s = petri::synth::synthesize(&plant, &enforced)?;
             let r = reach::reachability(&s.net, *max_states)?;
             let cmp = petri::compare::against_supcon(&plant, &cs, &s, *max_states)?;
             petri::write_file(output, &s.net)?;
-            synth_report(&plant, &cs, &s, &r, &cmp, output, json, out)
+            synth_report(&plant, &cs, &enforced, &s, &r, &cmp, output, json, out)
         }
         PetriCommand::Convert { input, output } => {
             let net = petri::read_file(input)?;
@@ -351,6 +368,8 @@ struct ControlInfo {
     /// `D_c` by transition id, zero entries left out.
     incidence: serde_json::Map<String, serde_json::Value>,
     initial: u32,
+    /// The admissible constraint enforced instead (`--transform`), if any.
+    enforced_as: Option<String>,
 }
 
 #[derive(Debug, serde::Serialize)]
@@ -363,6 +382,7 @@ struct DeadInfo {
 fn synth_report(
     plant: &PetriNet,
     constraints: &[Constraint],
+    enforced: &[Constraint],
     s: &Supervised,
     r: &reach::Reachability,
     cmp: &Comparison,
@@ -388,11 +408,24 @@ fn synth_report(
     } else {
         Outcome::Fails
     };
+    let written = |c: &Constraint| {
+        let l: Vec<String> = c
+            .weights
+            .iter()
+            .map(|&(p, w)| match w {
+                1 => plant.places()[p].id.clone(),
+                w => format!("{w}·{}", plant.places()[p].id),
+            })
+            .collect();
+        format!("{} ≤ {}", l.join(" + "), c.bound)
+    };
     if json {
         let control: Vec<ControlInfo> = s
             .control
             .iter()
-            .map(|c| ControlInfo {
+            .zip(constraints.iter().zip(enforced))
+            .map(|(c, (original, constraint))| ControlInfo {
+                enforced_as: (constraint.weights != original.weights).then(|| written(constraint)),
                 constraint: c.constraint.clone(),
                 id: c.id.clone(),
                 incidence: ids
@@ -425,23 +458,21 @@ fn synth_report(
         s.control.len(),
         ids.join(" ")
     );
-    for (c, constraint) in s.control.iter().zip(constraints) {
-        let l: Vec<String> = constraint
-            .weights
-            .iter()
-            .map(|&(p, w)| match w {
-                1 => plant.places()[p].id.clone(),
-                w => format!("{w}·{}", plant.places()[p].id),
-            })
-            .collect();
+    for ((c, original), constraint) in s.control.iter().zip(constraints).zip(enforced) {
         outln!(
             out,
-            "  {} \"{}\": {} ≤ {}",
+            "  {} \"{}\": {}",
             c.id,
             c.constraint,
-            l.join(" + "),
-            constraint.bound
+            written(original)
         );
+        if constraint.weights != original.weights {
+            outln!(
+                out,
+                "    not admissible; enforced as {} (implies it)",
+                written(constraint)
+            );
+        }
         let row: Vec<String> = c.incidence.iter().map(|d| format!("{d:>3}")).collect();
         outln!(out, "    D_c  = [{} ]", row.join(""));
         outln!(out, "    m_c0 = {}", c.initial);

@@ -12,12 +12,15 @@
 //! - [`invariants`]: minimal place and transition semiflows (Farkas).
 //! - [`constraints`] and [`synth`]: linear marking constraints `L·m ≤ b`
 //!   and place-invariant synthesis, one control place per constraint;
-//!   [`compare`]: the result against supcon on the reachability graphs.
+//!   [`admissible`]: an inadmissible constraint made admissible (Moody–
+//!   Antsaklis, greedy); [`compare`]: the result against supcon on the
+//!   reachability graphs.
 //! - [`reach`]: the reachability graph of a bounded net as an automaton
 //!   (one event per transition, its controllability kept), with a state
 //!   limit, and a located refusal for an unbounded net (the place that
 //!   grows and a firing sequence that makes it grow).
 
+pub mod admissible;
 pub mod compare;
 pub mod constraints;
 pub mod invariants;

@@ -86,7 +86,8 @@ pub fn synthesize(plant: &PetriNet, constraints: &[Constraint]) -> Result<Superv
                 format!(
                     "constraint `{}` is not admissible: enforcing it would mean keeping the \
                      uncontrollable transition(s) {} from firing (L·D_uc ≤ 0 fails); \
-                     change the constraint so that they never increase L·m",
+                     change the constraint so that they never raise L·m (`codegen petri synth \
+                     --transform` finds such a form)",
                     c.name,
                     quoted_list(&blocks)
                 ),

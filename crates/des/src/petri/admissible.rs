@@ -1,0 +1,119 @@
+//! Making an inadmissible constraint admissible, in the manner of Moody
+//! and Antsaklis: `L'·m ≤ b` with `L' = L + R1`, `R1 ≥ 0` (here with
+//! their `R2 = 1`). Since `R1·m ≥ 0`, every marking that satisfies the new
+//! constraint satisfies the old one, so enforcing it is safe; it is
+//! admissible when no uncontrollable transition raises `L'·m`.
+//!
+//! The weights are found greedily: while an uncontrollable transition
+//! `t` raises `L'·m` by `e > 0`, the first place upstream of it (one that
+//! `t` consumes from, `D[p][t] < 0`) is counted too, with weight
+//! `⌈e / −D[p][t]⌉`, so that `t` no longer raises it: the supervisor must
+//! then act before the tokens reach `t`. The result may be more
+//! restrictive than necessary; `codegen petri synth` compares it with
+//! supcon and says so when it is. Refused, with the reason: an
+//! uncontrollable transition that raises `L'·m` from nowhere (no place
+//! upstream), an unobservable transition that changes `L'·m`, no
+//! admissible form within a bounded number of steps (a cycle of
+//! uncontrollable transitions feeding the constraint), or an initial
+//! marking that violates the admissible form (the constraint cannot be
+//! enforced from the start).
+
+use super::constraints::Constraint;
+use super::PetriNet;
+
+/// An admissible constraint that implies `c`, or why none was found.
+pub fn make_admissible(net: &PetriNet, c: &Constraint) -> Result<Constraint, String> {
+    let d = net.incidence();
+    let places = net.places().len();
+    let transitions = net.transitions();
+    let mut l = vec![0i64; places];
+    for &(p, w) in &c.weights {
+        l[p] += w;
+    }
+    let raised = |l: &[i64], t: usize| -> i64 { (0..places).map(|p| l[p] * d[p][t]).sum() };
+    let mut steps = 0;
+    while let Some(t) =
+        (0..transitions.len()).find(|&t| !transitions[t].controllable && raised(&l, t) > 0)
+    {
+        steps += 1;
+        if steps > 4 * places * transitions.len().max(1) {
+            return Err(format!(
+                "no admissible form of `{}` found: uncontrollable transitions keep feeding it",
+                c.name
+            ));
+        }
+        let excess = raised(&l, t);
+        let Some(p) = (0..places).find(|&p| d[p][t] < 0) else {
+            return Err(format!(
+                "the uncontrollable transition `{}` raises `{}` and consumes from no place: \
+                 nothing upstream can be counted instead",
+                transitions[t].id, c.name
+            ));
+        };
+        let per_token = -d[p][t];
+        l[p] += (excess + per_token - 1) / per_token;
+    }
+    if let Some(t) =
+        (0..transitions.len()).find(|&t| !transitions[t].observable && raised(&l, t) != 0)
+    {
+        return Err(format!(
+            "the unobservable transition `{}` changes `{}`: its control place would have to see it",
+            transitions[t].id, c.name
+        ));
+    }
+    let weights: Vec<(usize, i64)> = l
+        .iter()
+        .enumerate()
+        .filter(|&(_, &w)| w != 0)
+        .map(|(p, &w)| (p, w))
+        .collect();
+    let admissible = Constraint {
+        name: c.name.clone(),
+        weights,
+        bound: c.bound,
+        location: c.location.clone(),
+    };
+    if admissible.weighted(net.initial()) > admissible.bound {
+        return Err(format!(
+            "the admissible form of `{}` is violated by the initial marking: uncontrollable \
+             transitions can break the constraint before any control acts",
+            c.name
+        ));
+    }
+    Ok(admissible)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{constraints, toml};
+    use super::*;
+    use std::path::Path;
+
+    const MIXERS: &str = include_str!("../../../../models/petri/mixers.toml");
+    const SUPPLY: &str = include_str!("../../../../models/petri/mixers.constraints.toml");
+
+    #[test]
+    fn an_uncontrollable_start_makes_the_constraint_count_the_idle_mixer() {
+        // A starts filling on its own (t1 uncontrollable): m3 ≤ 1 cannot
+        // block t1, so it must count A's idle token: m3 + ma1 ≤ 1 (B may
+        // not fill while A is idle, and A may not return to idle while B
+        // fills).
+        let text = MIXERS.replace(
+            "{ id = \"t1\", controllable = true",
+            "{ id = \"t1\", controllable = false",
+        );
+        let net = toml::read(&text, Path::new("m.toml")).unwrap();
+        let cs = constraints::read(SUPPLY, Path::new("c.toml"), &net).unwrap();
+        let a = make_admissible(&net, &cs[0]).unwrap();
+        assert_eq!(a.weights, [(0, 1), (2, 1)], "ma1 + m3");
+        assert_eq!(a.bound, 1);
+        // Both starts uncontrollable: nothing can keep them apart.
+        let both = text.replace(
+            "{ id = \"t5\", controllable = true",
+            "{ id = \"t5\", controllable = false",
+        );
+        let net = toml::read(&both, Path::new("m.toml")).unwrap();
+        let err = make_admissible(&net, &cs[0]).unwrap_err();
+        assert!(err.contains("violated by the initial marking"), "{err}");
+    }
+}
