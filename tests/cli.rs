@@ -1133,3 +1133,49 @@ fn petri_synth_reports_a_dead_closed_loop_with_the_firing_sequence_and_exit_1() 
     assert_eq!(report["supcon"]["same_language"], true);
     assert_eq!(report["dead_markings"], serde_json::json!([]));
 }
+
+#[test]
+fn gen_logic_stats_show_each_supervisors_effort_against_its_limit() {
+    use codegen::backend::logic::{effort, Encoding, Minimisation, DEFAULT_MAX_EFFORT};
+    let (code, stats) = run_json([
+        "gen",
+        "models/crane.plc.toml",
+        "--backend",
+        "logic",
+        "--stats",
+    ]);
+    assert_eq!(code, 0, "{stats}");
+    let project = codegen::project::load(&model("models/crane.plc.toml")).unwrap();
+    let stats = stats.as_array().unwrap();
+    assert_eq!(stats.len(), project.supervisors.len());
+    for (s, sup) in stats.iter().zip(&project.supervisors) {
+        let local: Vec<_> = sup.local_events.iter().map(|&(_, id)| id).collect();
+        let expected = effort(
+            &sup.automaton,
+            &local,
+            &Encoding::binary(sup.automaton.num_states()),
+            Minimisation::PerFunction,
+        )
+        .unwrap();
+        assert_eq!(
+            s["logic_effort"],
+            serde_json::json!([expected, DEFAULT_MAX_EFFORT]),
+            "{}",
+            sup.name
+        );
+    }
+    let run = run_codegen([
+        "gen",
+        "models/crane.plc.toml",
+        "--backend",
+        "logic",
+        "--stats",
+    ]);
+    assert!(
+        run.stdout
+            .lines()
+            .any(|l| l.contains("effort") && l.contains("limit")),
+        "{}",
+        run.stdout
+    );
+}

@@ -187,24 +187,32 @@ fn print_stats(out: &mut Out, project: &Path, stats: &[SupervisorStats], backend
             outln!(out, "  (naive: one u16 per state × event pair)");
         }
         Backend::Logic | Backend::Match => {
+            // The logic backend adds its minimisation effort and limit.
+            let effort = |e: Option<(u64, u64)>, text: &dyn Fn(u64, u64) -> String| {
+                e.map(|(e, l)| text(e, l)).unwrap_or_default()
+            };
             outln!(
                 out,
-                "  {:<24} {:>7} {:>7} {:>7} {:>9}",
+                "  {:<24} {:>7} {:>7} {:>7} {:>9}{}",
                 "supervisor",
                 "states",
                 "events",
                 "cubes",
-                "literals"
+                "literals",
+                effort(stats.first().and_then(|s| s.logic_effort), &|_, _| {
+                    format!(" {:>12} {:>12}", "effort", "limit")
+                })
             );
             for s in stats {
                 outln!(
                     out,
-                    "  {:<24} {:>7} {:>7} {:>7} {:>9}",
+                    "  {:<24} {:>7} {:>7} {:>7} {:>9}{}",
                     s.name,
                     s.states,
                     s.events,
                     s.cubes,
-                    s.literals
+                    s.literals,
+                    effort(s.logic_effort, &|e, l| format!(" {e:>12} {l:>12}"))
                 );
             }
         }

@@ -47,6 +47,7 @@ impl Emitter<'_> {
                 table_bytes: 0,
                 naive_bytes: 2 * a.num_states() * sup.local_events.len(),
                 cubes: 0,
+                logic_effort: None,
                 literals: 0,
             });
         }

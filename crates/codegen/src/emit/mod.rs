@@ -83,6 +83,9 @@ pub struct SupervisorStats {
     pub cubes: usize,
     /// Literals of the minimised functions (logic backend).
     pub literals: usize,
+    /// The minimisation effort and the supervisor's limit of it (logic
+    /// backend; see `backend::logic`, "Effort bound").
+    pub logic_effort: Option<(u64, u64)>,
 }
 
 /// The generated source and its figures.
@@ -239,6 +242,7 @@ impl SupervisorStats {
             naive_bytes: table.naive_bytes(),
             cubes: 0,
             literals: 0,
+            logic_effort: None,
         }
     }
 }
