@@ -424,6 +424,8 @@ pub struct LogicSupervisor {
     next: Vec<Cover>,
     /// `φ_i`, indexed by local event `i`.
     defined: Vec<Cover>,
+    /// The [`effort`] counted before minimising.
+    effort: u64,
 }
 
 /// PLA input literal values, as Espresso's low-level API takes them.
@@ -810,6 +812,7 @@ impl LogicSupervisor {
             encoding,
             next,
             defined,
+            effort,
         };
         phase("verifying the logic against the automaton");
         supervisor.verify(a, local, &supervisor.encoding)?;
@@ -900,6 +903,12 @@ impl LogicSupervisor {
     /// The state encoding the equations were built for.
     pub fn encoding(&self) -> &Encoding {
         &self.encoding
+    }
+
+    /// The minimisation [`effort`] counted (and checked against the limit)
+    /// before minimising.
+    pub fn effort(&self) -> u64 {
+        self.effort
     }
 
     /// The code of the initial state (`Q_Res`), if the automaton has one.

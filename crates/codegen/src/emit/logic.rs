@@ -429,17 +429,7 @@ impl Emitter<'_> {
                 naive_bytes: 2 * sup.automaton.num_states() * events.len(),
                 cubes: sizes.cubes,
                 literals: sizes.literals,
-                logic_effort: crate::backend::logic::effort(
-                    &sup.automaton,
-                    &sup.local_events
-                        .iter()
-                        .map(|&(_, id)| id)
-                        .collect::<Vec<_>>(),
-                    l.encoding(),
-                    crate::backend::logic::Minimisation::PerFunction,
-                )
-                .ok()
-                .map(|e| (e, sup.max_logic_effort)),
+                logic_effort: Some((l.effort(), sup.max_logic_effort)),
             });
         }
         let _ = writeln!(self.out, "}}");
