@@ -226,8 +226,7 @@ fn run(cli: Cli) -> Result<(), String> {
                     scenario::record_files(&mut sim, scans, rows, &out, csv)?
                 }
                 None => {
-                    let project = sim.project().clone();
-                    let rows = random_inputs::GuidedInputs::new(&project, seed, noise_one_in)
+                    let rows = random_inputs::GuidedInputs::new(sim.project(), seed, noise_one_in)
                         .map_err(|e| e.to_string())?
                         .take(random);
                     scenario::record_files(&mut sim, random as u64, rows, &out, csv)?

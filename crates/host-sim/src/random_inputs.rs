@@ -16,8 +16,8 @@ use codegen::project::{Project, Trigger};
 /// edges through. The generator runs its own simulation (table backend,
 /// keeping only its last trace row) to know the current states, so it
 /// holds constant memory however many rows it gives.
-pub struct GuidedInputs<'p> {
-    project: &'p Project,
+pub struct GuidedInputs {
+    /// Its own simulation, which holds its copy of the project.
     sim: Sim,
     rng: Rng,
     values: Vec<bool>,
@@ -27,13 +27,12 @@ pub struct GuidedInputs<'p> {
     scan: u64,
 }
 
-impl<'p> GuidedInputs<'p> {
+impl GuidedInputs {
     /// The generator for `project`, seeded with `seed`.
-    pub fn new(project: &'p Project, seed: u64, noise_one_in: u64) -> Result<Self, SimError> {
+    pub fn new(project: &Project, seed: u64, noise_one_in: u64) -> Result<Self, SimError> {
         let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table)?;
         sim.retain_trace(false);
         Ok(GuidedInputs {
-            project,
             sim,
             rng: Rng::new(seed),
             values: vec![false; project.inputs.len()],
@@ -46,7 +45,7 @@ impl<'p> GuidedInputs<'p> {
 
     /// The next row (and the generator's own scan of it).
     pub fn next_row(&mut self) -> Result<InputRow, SimError> {
-        let (project, rng, values) = (self.project, &mut self.rng, &mut self.values);
+        let (project, rng, values) = (self.sim.project(), &mut self.rng, &mut self.values);
         let faulted = self.sim.controller().fault().is_some();
         if let Some(r) = project.reset {
             values[r] = faulted && !values[r] && rng.one_in(8);
@@ -101,7 +100,7 @@ impl<'p> GuidedInputs<'p> {
     }
 }
 
-impl Iterator for GuidedInputs<'_> {
+impl Iterator for GuidedInputs {
     type Item = Result<InputRow, SimError>;
 
     fn next(&mut self) -> Option<Self::Item> {

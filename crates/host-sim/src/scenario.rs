@@ -92,12 +92,13 @@ where
             }
             .into());
         }
-        let traced = sim.scan_with(row.time_ms, &row.values)?.clone();
-        totals.add(&traced);
+        sim.scan_with(row.time_ms, &row.values)?;
+        let traced = sim.last().expect("a scan leaves its trace row");
+        totals.add(traced);
         let record = sim.controller().record();
         let scan = RecordedScan::new(&row.values, &record).map_err(|_| RecordError::Capacity(k))?;
         out.write_all(&postcard::to_stdvec(&scan)?)?;
-        each(&row, &traced)?;
+        each(&row, traced)?;
     }
     if totals.scans != scans {
         return Err(RecordError::Count {
@@ -197,8 +198,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("s.scenario");
         let mut sim = Sim::load(&path, Backend::Table).unwrap();
-        let project = sim.project().clone();
-        let generated = crate::random_inputs::GuidedInputs::new(&project, 3, 40)
+        let generated = crate::random_inputs::GuidedInputs::new(sim.project(), 3, 40)
             .unwrap()
             .take(400);
         let totals = record_files(&mut sim, 400, generated, &out, true).unwrap();
