@@ -79,14 +79,7 @@ impl Reachability {
     /// A shortest firing sequence (transition indices) from the initial
     /// marking to marking `k`.
     pub fn firing_sequence(&self, k: usize) -> Vec<usize> {
-        let mut sequence = Vec::new();
-        let mut at = k;
-        while let Some((from, t)) = self.parent[at] {
-            sequence.push(t);
-            at = from;
-        }
-        sequence.reverse();
-        sequence
+        path_to(&self.parent, k)
     }
 
     /// Whether no place ever holds more than one token.
@@ -144,7 +137,7 @@ pub fn reachability_with(
             }
             enabled = true;
             let Some(after) = net.fire(&m, t) else {
-                return Err(unbounded(net, &markings, &parent, next, t, None));
+                return Err(unbounded(net, &parent, next, t, None));
             };
             if !keep(&after) {
                 continue;
@@ -153,7 +146,7 @@ pub fn reachability_with(
                 Some(&k) => k,
                 None => {
                     if let Some(place) = covered_ancestor(&markings, &parent, next, &after) {
-                        return Err(unbounded(net, &markings, &parent, next, t, Some(place)));
+                        return Err(unbounded(net, &parent, next, t, Some(place)));
                     }
                     if markings.len() == max_states {
                         return Err(Error::Incompatible(format!(
@@ -235,24 +228,33 @@ fn covered_ancestor(
     None
 }
 
+/// The transitions that first reached marking `k` from the initial one,
+/// following `parent` back.
+fn path_to(parent: &[Option<(usize, usize)>], k: usize) -> Vec<usize> {
+    let mut sequence = Vec::new();
+    let mut at = k;
+    while let Some((from, t)) = parent[at] {
+        sequence.push(t);
+        at = from;
+    }
+    sequence.reverse();
+    sequence
+}
+
 /// The refusal of an unbounded net: the place that grows (`None`: a
 /// count beyond `u32`) and the firing sequence from the initial marking.
 fn unbounded(
     net: &PetriNet,
-    markings: &[Marking],
     parent: &[Option<(usize, usize)>],
     at: usize,
     last: usize,
     place: Option<usize>,
 ) -> Error {
-    let mut sequence = vec![net.transitions()[last].id.as_str()];
-    let mut k = at;
-    while let Some((from, t)) = parent[k] {
-        sequence.push(net.transitions()[t].id.as_str());
-        k = from;
-    }
-    sequence.reverse();
-    let _ = markings;
+    let sequence: Vec<&str> = path_to(parent, at)
+        .into_iter()
+        .chain([last])
+        .map(|t| net.transitions()[t].id.as_str())
+        .collect();
     let what = match place {
         Some(p) => format!("place `{}` grows without bound", net.places()[p].id),
         None => "a place's tokens exceed 2^32 - 1".to_owned(),
