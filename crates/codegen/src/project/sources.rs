@@ -360,7 +360,7 @@ impl Loader<'_> {
             };
             let matches = glob::glob(&full)
                 .map_err(|e| self.error(&span, format!("invalid file pattern `{p}`: {}", e.msg)))?;
-            let mut any = false;
+            let mut matched = Vec::new();
             for m in matches {
                 let file = m.map_err(|e| {
                     self.error(
@@ -372,13 +372,13 @@ impl Loader<'_> {
                     continue;
                 }
                 self.check_printable(&file, &span, Some(p))?;
-                any = true;
                 if !files.iter().any(|(f, _)| *f == file) {
-                    files.push((file, span.clone()));
+                    files.push((file.clone(), span.clone()));
                 }
+                matched.push(file);
             }
-            self.check_listable(&full, &files, &span, p)?;
-            if !any {
+            self.check_listable(&full, &matched, &span, p)?;
+            if matched.is_empty() {
                 return Err(self.error(
                     &span,
                     format!(
@@ -399,11 +399,11 @@ impl Loader<'_> {
     /// searched holds a name that is not UTF-8: the glob crate skips such
     /// names without a word, so a plant could silently drop out of a
     /// synthesis. The directories checked are the one before the first
-    /// wildcard and the directory of every file matched so far.
+    /// wildcard and the directory of every file `matched` by the pattern.
     fn check_listable(
         &self,
         full: &str,
-        files: &[(PathBuf, Range<usize>)],
+        matched: &[PathBuf],
         span: &Range<usize>,
         p: &str,
     ) -> Result<()> {
@@ -417,7 +417,7 @@ impl Loader<'_> {
             literal
         };
         let mut dirs = vec![literal];
-        for (file, _) in files {
+        for file in matched {
             if let Some(parent) = file.parent() {
                 if !dirs.iter().any(|d| d == parent) {
                     dirs.push(parent.to_owned());
