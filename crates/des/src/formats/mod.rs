@@ -213,6 +213,31 @@ pub fn write_file(path: &Path, components: &[Component]) -> Result<()> {
     std::fs::write(path, text).map_err(|e| Error::io(path, e))
 }
 
+/// An XML file being read: its text and name, to locate errors at a node.
+pub(crate) struct XmlSource<'a> {
+    /// The whole text.
+    pub(crate) text: &'a str,
+    /// The file, as errors name it.
+    pub(crate) origin: &'a Path,
+}
+
+impl XmlSource<'_> {
+    /// Where `node` starts.
+    pub(crate) fn at(&self, node: roxmltree::Node<'_, '_>) -> Location {
+        Location::at_offset(self.origin, self.text, node.range().start)
+    }
+
+    /// A syntax error at `node`.
+    pub(crate) fn syntax(&self, node: roxmltree::Node<'_, '_>, msg: impl Into<String>) -> Error {
+        Error::syntax(self.at(node), msg)
+    }
+
+    /// A model error at `node`.
+    pub(crate) fn model(&self, node: roxmltree::Node<'_, '_>, msg: impl Into<String>) -> Error {
+        Error::model(self.at(node), msg)
+    }
+}
+
 /// Parses XML (DTDs allowed, as Supremica and libFAUDES write them, but no
 /// entity declarations), with a syntax error at the offending line and
 /// column of `origin`.

@@ -45,7 +45,7 @@
 //! [`super::write_string`] ([`unwritable_name`]); [`write()`] itself
 //! writes such a character as U+FFFD.
 
-use super::{Component, Kind};
+use super::{Component, Kind, XmlSource as Ctx};
 use crate::automaton::{Alphabet, AutomatonBuilder, BuildError, StateId};
 use crate::error::{line_column, Error, Location, Result};
 use rustc_hash::FxHashMap;
@@ -61,24 +61,7 @@ pub const ACCEPTING: &str = ":accepting";
 
 type Node<'a, 'i> = roxmltree::Node<'a, 'i>;
 
-struct Ctx<'a> {
-    text: &'a str,
-    origin: &'a Path,
-}
-
 impl Ctx<'_> {
-    fn at(&self, node: Node<'_, '_>) -> Location {
-        Location::at_offset(self.origin, self.text, node.range().start)
-    }
-
-    fn syntax(&self, node: Node<'_, '_>, msg: impl Into<String>) -> Error {
-        Error::syntax(self.at(node), msg)
-    }
-
-    fn model(&self, node: Node<'_, '_>, msg: impl Into<String>) -> Error {
-        Error::model(self.at(node), msg)
-    }
-
     fn unsupported(&self, node: Node<'_, '_>, what: &str) -> Error {
         let loc = self.at(node);
         Error::model(

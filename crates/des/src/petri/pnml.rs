@@ -23,7 +23,8 @@
 //! other tools' elements are ignored. Written: the same, on one page.
 
 use super::{NetBuilder, PetriNet};
-use crate::error::{Error, Location, Result};
+use crate::error::Result;
+use crate::formats::XmlSource as Ctx;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -32,23 +33,10 @@ pub const TOOL: &str = "codegen";
 
 type Node<'a, 'i> = roxmltree::Node<'a, 'i>;
 
-struct Ctx<'a> {
-    text: &'a str,
-    origin: &'a Path,
-}
-
 impl Ctx<'_> {
-    fn at(&self, node: Node<'_, '_>) -> Location {
-        Location::at_offset(self.origin, self.text, node.range().start)
-    }
-
-    fn error(&self, node: Node<'_, '_>, message: impl Into<String>) -> Error {
-        Error::model(self.at(node), message)
-    }
-
     fn id<'a>(&self, node: Node<'a, '_>) -> Result<&'a str> {
         node.attribute("id").ok_or_else(|| {
-            self.error(
+            self.model(
                 node,
                 format!("<{}> without an `id`", node.tag_name().name()),
             )
@@ -67,7 +55,7 @@ impl Ctx<'_> {
         match self.text_of(node, tag) {
             None => Ok(default),
             Some((at, text)) => text.parse().map_err(|_| {
-                self.error(
+                self.model(
                     at,
                     format!("<{tag}> must be a whole number from 0 to 2^32 - 1, not `{text}`"),
                 )
@@ -82,7 +70,7 @@ pub fn read(text: &str, origin: &Path) -> Result<PetriNet> {
     let cx = Ctx { text, origin };
     let root = doc.root_element();
     if !root.has_tag_name("pnml") {
-        return Err(cx.error(
+        return Err(cx.model(
             root,
             format!(
                 "expected a <pnml> document, found <{}>",
@@ -93,9 +81,9 @@ pub fn read(text: &str, origin: &Path) -> Result<PetriNet> {
     let nets: Vec<Node<'_, '_>> = root.children().filter(|c| c.has_tag_name("net")).collect();
     let net = match nets[..] {
         [net] => net,
-        [] => return Err(cx.error(root, "the document holds no <net>")),
+        [] => return Err(cx.model(root, "the document holds no <net>")),
         [_, second, ..] => {
-            return Err(cx.error(
+            return Err(cx.model(
                 second,
                 format!(
                     "the document holds {} nets; give each its own file",
@@ -106,7 +94,7 @@ pub fn read(text: &str, origin: &Path) -> Result<PetriNet> {
     };
     let kind = net.attribute("type").unwrap_or("");
     if !kind.ends_with("/ptnet") {
-        return Err(cx.error(
+        return Err(cx.model(
             net,
             format!("net type `{kind}`: only place/transition nets (…/grammar/ptnet) are read"),
         ));
@@ -134,7 +122,7 @@ pub fn read(text: &str, origin: &Path) -> Result<PetriNet> {
             }
             "arc" => arcs.push(node),
             "referencePlace" | "referenceTransition" => {
-                return Err(cx.error(node, "reference nodes are not read: merge the pages first"));
+                return Err(cx.model(node, "reference nodes are not read: merge the pages first"));
             }
             _ => {}
         }
@@ -142,7 +130,7 @@ pub fn read(text: &str, origin: &Path) -> Result<PetriNet> {
     for arc in arcs {
         let end = |key: &str| {
             arc.attribute(key)
-                .ok_or_else(|| cx.error(arc, format!("<arc> without a `{key}`")))
+                .ok_or_else(|| cx.model(arc, format!("<arc> without a `{key}`")))
         };
         let weight = cx.number(arc, "inscription", 1)?;
         b.add_arc(end("source")?, end("target")?, weight, cx.at(arc))?;
@@ -158,7 +146,7 @@ fn control(cx: &Ctx<'_>, t: Node<'_, '_>) -> Result<(bool, bool)> {
         .children()
         .find(|c| c.has_tag_name("toolspecific") && c.attribute("tool") == Some(TOOL))
     else {
-        return Err(cx.error(
+        return Err(cx.model(
             t,
             format!(
                 "transition `{id}` does not say whether it is controllable: add \
@@ -170,7 +158,7 @@ fn control(cx: &Ctx<'_>, t: Node<'_, '_>) -> Result<(bool, bool)> {
     let flag = |tag: &str, default: Option<bool>| -> Result<bool> {
         match ours.children().find(|c| c.has_tag_name(tag)) {
             None => default.ok_or_else(|| {
-                cx.error(
+                cx.model(
                     ours,
                     format!("transition `{id}`: <toolspecific tool=\"{TOOL}\"> needs <{tag}>"),
                 )
@@ -178,7 +166,7 @@ fn control(cx: &Ctx<'_>, t: Node<'_, '_>) -> Result<(bool, bool)> {
             Some(node) => match node.text().unwrap_or("").trim() {
                 "true" => Ok(true),
                 "false" => Ok(false),
-                other => Err(cx.error(
+                other => Err(cx.model(
                     node,
                     format!("<{tag}> must be true or false, not `{other}`"),
                 )),
