@@ -157,6 +157,7 @@ fn with_heating_and_resource_allocation_alone_the_cell_deadlocks() {
     let plant = cell();
     let (s, r) = closed_loop(&plant, "cell.resources.toml");
     assert_eq!(r.markings.len(), 295);
+    assert_eq!(r.automaton.num_transitions(), 686);
     assert!(r.is_safe(), "(7) and (8) alone keep every place safe");
     let dead: Vec<String> = r
         .dead
