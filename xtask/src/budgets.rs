@@ -28,6 +28,11 @@ pub struct ModelBudget {
     /// supervisors; a model whose CMSSM would not fit leaves it out.
     #[serde(default = "default_backends")]
     pub backends: Vec<String>,
+    /// Whether the `match` backend runs too, as the baseline the report
+    /// compares with (default: yes; a project with Petri nets has no
+    /// `match` program).
+    #[serde(default = "yes")]
+    pub baseline: bool,
     /// Median instructions per scan (QEMU harness, table backend).
     pub instr_median: Option<u64>,
     /// Largest instructions per scan (QEMU harness, table backend).
@@ -40,6 +45,10 @@ pub struct ModelBudget {
     pub board_flash: Option<u64>,
     /// Static RAM of the board firmware.
     pub board_ram: Option<u64>,
+}
+
+fn yes() -> bool {
+    true
 }
 
 fn default_backends() -> Vec<String> {
@@ -78,6 +87,7 @@ impl ModelBudget {
         ModelBudget {
             project: project.to_owned(),
             backends: default_backends(),
+            baseline: true,
             instr_median: None,
             instr_max: None,
             qemu_flash: None,

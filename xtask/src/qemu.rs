@@ -136,7 +136,7 @@ pub fn run_task(args: &[String]) -> Result {
             .iter()
             .map(String::as_str)
             .filter(|b| *b != "match")
-            .chain(["match"]);
+            .chain(model.baseline.then_some("match"));
         for backend in backends {
             let elf = build(
                 &model.project,

@@ -170,6 +170,26 @@ impl ConfigPools {
                 });
             }
         }
+        // Net groups: local events are the transitions touching the group.
+        let group_alphabets: Vec<Vec<usize>> = project
+            .nets
+            .iter()
+            .flat_map(|net| {
+                (0..net.groups()).map(move |g| {
+                    let ts = net.group_transitions(g);
+                    ts.iter().map(|&t| net.events[t]).collect()
+                })
+            })
+            .collect();
+        for (k, alphabet) in group_alphabets.iter().enumerate() {
+            let j = project.supervisors.len() + k;
+            for (local, &global) in alphabet.iter().enumerate() {
+                members_of[global].push(ex::Membership {
+                    supervisor: index(j, "supervisors")?,
+                    local: index(local, "events")?,
+                });
+            }
+        }
 
         let mut events = Vec::with_capacity(project.events.len());
         for (e, ev) in project.events.iter().enumerate() {
@@ -211,10 +231,33 @@ impl ConfigPools {
                     let mut list = Vec::new();
                     for (sup, states) in entries {
                         for s in states {
-                            list.push(ex::StateMapEntry {
-                                supervisor: index(*sup, "supervisors")?,
-                                state: s.0,
-                            });
+                            list.push(ex::StateMapEntry::in_state(
+                                index(*sup, "supervisors")?,
+                                s.0,
+                            ));
+                        }
+                    }
+                    (
+                        false,
+                        push_span(&mut state_map, &list, "state-map entries")?,
+                    )
+                }
+                Drive::Places(entries) => {
+                    // One entry per count a place can hold (at least 1,
+                    // so a place map is never empty).
+                    let mut list = Vec::new();
+                    for &(n, ref places) in entries {
+                        let net = &project.nets[n];
+                        for &p in places {
+                            let field = net.fields[p];
+                            let j = project.group_supervisor(n, field.group);
+                            for count in 1..=net.bounds[p].max(1) {
+                                list.push(ex::StateMapEntry::marked(
+                                    index(j, "supervisors")?,
+                                    field.mask(),
+                                    count,
+                                ));
+                            }
                         }
                     }
                     (
@@ -270,19 +313,36 @@ impl ConfigPools {
         // Event sets: what each supervisor never blocks, then the commands
         // the controller may choose without a request.
         let mut event_masks = MaskPool::new("event", project.events.len());
-        let mut supervisors = Vec::with_capacity(project.supervisors.len());
+        // (states, initial, alphabet) of every executor supervisor: the
+        // automata, then the net groups.
+        let mut specs: Vec<(u32, u32, Vec<usize>)> = Vec::new();
         for s in &project.supervisors {
             let initial = s.automaton.initial().ok_or_else(|| {
                 Error::Incompatible(format!("supervisor `{}` has no initial state", s.name))
             })?;
-            let alphabet: Vec<usize> = s.local_events.iter().map(|&(e, _)| e).collect();
+            let alphabet = s.local_events.iter().map(|&(e, _)| e).collect();
+            specs.push((s.automaton.num_states() as u32, initial.0, alphabet));
+        }
+        let mut alphabets = group_alphabets.into_iter();
+        for net in &project.nets {
+            for g in 0..net.groups() {
+                let alphabet = alphabets.next().unwrap_or_default();
+                specs.push((
+                    1 << net.group_bits[g],
+                    net.pack(g, net.net.initial()),
+                    alphabet,
+                ));
+            }
+        }
+        let mut supervisors = Vec::with_capacity(specs.len());
+        for (states, initial, alphabet) in specs {
             let outside: Vec<usize> = (0..project.events.len())
                 .filter(|e| !alphabet.contains(e))
                 .collect();
             let outside = event_masks.span(&outside)?;
             supervisors.push(ex::SupervisorSpec {
-                states: s.automaton.num_states() as u32,
-                initial: initial.0,
+                states,
+                initial,
                 alphabet: push_span(
                     &mut event_lists,
                     &to_indices(&alphabet, "events")?,
@@ -309,7 +369,7 @@ impl ConfigPools {
         index(project.outputs.len(), "outputs")?;
         index(project.timers.len(), "timers")?;
         index(project.events.len(), "events")?;
-        index(project.supervisors.len(), "supervisors")?;
+        index(project.executor_supervisors(), "supervisors")?;
         Ok(ConfigPools {
             name: project.name.clone(),
             scan_period_ms: project.scan_period_ms,
@@ -449,6 +509,23 @@ impl ScanSets {
     }
 }
 
+/// Refuses a project with Petri nets on a backend other than the table
+/// backend, at the first net's line: a net's groups run in the net
+/// layout of the executor's tables (its counters are not an automaton the
+/// logic and `match` backends could write as code).
+pub fn table_only(project: &Project, backend: &str) -> Result<()> {
+    match project.nets.first() {
+        None => Ok(()),
+        Some(net) => Err(Error::model(
+            Location::new(&project.path, net.line, 0),
+            format!(
+                "net `{}`: Petri nets run on the table backend only, not the {backend} backend (use `--backend table`)",
+                net.name
+            ),
+        )),
+    }
+}
+
 /// A project as bit-packed tables, runnable on the host.
 #[derive(Debug, Clone)]
 pub struct TableImage {
@@ -471,6 +548,12 @@ impl TableImage {
                 let local: Vec<_> = s.local_events.iter().map(|&(_, id)| id).collect();
                 EncodedTable::encode(&s.automaton, &local)
             })
+            .chain(
+                project
+                    .nets
+                    .iter()
+                    .flat_map(|net| (0..net.groups()).map(|g| EncodedTable::encode_net(net, g))),
+            )
             .collect();
         let views: Vec<SupervisorTable<'_>> = tables.iter().map(EncodedTable::view).collect();
         let crc = table_image_crc(&pools.config(), &views);
@@ -536,6 +619,7 @@ impl LogicImage {
     /// [`LogicImage::new`], telling `progress` which supervisor and phase
     /// it is working on.
     pub fn with_progress(project: &Project, progress: &dyn Progress) -> Result<LogicImage> {
+        table_only(project, "logic")?;
         let pools = ConfigPools::from_project(project)?;
         let supervisors = project
             .supervisors

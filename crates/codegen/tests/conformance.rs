@@ -115,8 +115,8 @@
 use codegen::automaton::{EventId, StateId};
 use codegen::image::{LogicImage, TableImage};
 use codegen::project::{
-    Action, Drive, Event, Input, Origin, Output, Project, Supervisor, SupervisorSource, Timer,
-    Trigger, Unexpected,
+    Action, Drive, Event, Input, Net, NetSource, Origin, Output, Project, Supervisor,
+    SupervisorSource, Timer, Trigger, Unexpected,
 };
 use codegen::AutomatonBuilder;
 use executor::memory::HeapMemory;
@@ -190,6 +190,8 @@ struct Reference<'p> {
     delta: Vec<HashMap<(u32, usize), u32>>,
     /// For each global event, the supervisors with it in their alphabet.
     members: Vec<Vec<usize>>,
+    /// The marking of every Petri net, place by place.
+    markings: Vec<Vec<u32>>,
     /// Initial state of every supervisor.
     initial: Vec<u32>,
     /// Number of the next scan.
@@ -234,7 +236,9 @@ impl<'p> Reference<'p> {
             project,
             delta,
             members,
-            initial: initial_states(project),
+            markings: Vec::new(),
+            // The automata's; the nets' markings are kept apart.
+            initial: initial_states(project)[..project.supervisors.len()].to_vec(),
             scan: 0,
             filtered: vec![false; project.inputs.len()],
             differing: vec![0; project.inputs.len()],
@@ -252,6 +256,12 @@ impl<'p> Reference<'p> {
     /// outputs to their initial levels, no fault (rule 2).
     fn reinitialise(&mut self) {
         self.states = self.initial.clone();
+        self.markings = self
+            .project
+            .nets
+            .iter()
+            .map(|n| n.net.initial().clone())
+            .collect();
         self.deadlines = vec![None; self.project.timers.len()];
         self.latched = self
             .project
@@ -285,6 +295,9 @@ impl<'p> Reference<'p> {
             }
         }
         record.states = self.states.clone();
+        for (net, marking) in self.project.nets.iter().zip(&self.markings) {
+            record.states.extend(pack_marking(net, marking));
+        }
         record.outputs = self.output_image();
         record.fault = self.fault;
         self.scan += 1;
@@ -369,12 +382,36 @@ impl<'p> Reference<'p> {
         self.members[e]
             .iter()
             .all(|&j| self.delta[j].contains_key(&(self.states[j], e)))
+            && self
+                .project
+                .nets
+                .iter()
+                .zip(&self.markings)
+                .all(|(net, m)| {
+                    transition_of(net, e).is_none_or(|t| {
+                        net.net.transitions()[t]
+                            .input
+                            .iter()
+                            .all(|&(p, w)| m[p] >= w)
+                    })
+                })
     }
 
     /// Executes a feasible event: members move, actions apply.
     fn execute(&mut self, e: usize, now: u32, record: &mut Record) {
         for &j in &self.members[e] {
             self.states[j] = self.delta[j][&(self.states[j], e)];
+        }
+        for (net, m) in self.project.nets.iter().zip(&mut self.markings) {
+            if let Some(t) = transition_of(net, e) {
+                let tr = &net.net.transitions()[t];
+                for &(p, w) in &tr.input {
+                    m[p] -= w;
+                }
+                for &(p, w) in &tr.output {
+                    m[p] += w;
+                }
+            }
         }
         for action in &self.project.events[e].actions {
             match *action {
@@ -443,6 +480,9 @@ impl<'p> Reference<'p> {
                 (None, Drive::States(map)) => map
                     .iter()
                     .any(|(j, listed)| listed.contains(&StateId(self.states[*j]))),
+                (None, Drive::Places(map)) => map
+                    .iter()
+                    .any(|(n, places)| places.iter().any(|&p| self.markings[*n][p] > 0)),
             })
             .collect()
     }
@@ -456,10 +496,37 @@ fn reached(deadline: u32, now: u32) -> bool {
 
 /// The initial state vector of `project`.
 fn initial_states(project: &Project) -> Vec<u32> {
-    project
+    let mut states: Vec<u32> = project
         .supervisors
         .iter()
         .map(|s| s.automaton.initial().expect("initial state").0)
+        .collect();
+    for net in &project.nets {
+        states.extend(pack_marking(net, net.net.initial()));
+    }
+    states
+}
+
+/// The transition of `net` that is event `e`, if any.
+fn transition_of(net: &Net, e: usize) -> Option<usize> {
+    net.events.iter().position(|&g| g == e)
+}
+
+/// `marking` as the states of `net`'s groups: each place's count at its
+/// counter's shift (docs/formats.md, "[[net]]").
+fn pack_marking(net: &Net, marking: &[u32]) -> Vec<u32> {
+    let mut groups = vec![0u32; net.groups()];
+    for (p, field) in net.fields.iter().enumerate() {
+        groups[field.group] |= marking[p] << field.shift;
+    }
+    groups
+}
+
+/// The marking of `net` from its groups' states.
+fn unpack_marking(net: &Net, groups: &[u32]) -> Vec<u32> {
+    net.fields
+        .iter()
+        .map(|f| (groups[f.group] >> f.shift) & ((1 << f.width) - 1))
         .collect()
 }
 
@@ -568,6 +635,22 @@ fn replay(project: &Project, before: &[u32], executed: &[usize]) -> Result<Vec<u
             })?;
             x[j] = next.0;
         }
+        let mut first = project.supervisors.len();
+        for net in &project.nets {
+            let groups = first..first + net.groups();
+            first = groups.end;
+            let Some(t) = transition_of(net, e) else {
+                continue;
+            };
+            let marking = unpack_marking(net, &x[groups.clone()]);
+            let next = net.net.fire(&marking, t).ok_or_else(|| {
+                format!(
+                    "executed event {e} is transition {t} of net `{}`, not enabled in {marking:?}",
+                    net.name
+                )
+            })?;
+            x.splice(groups, pack_marking(net, &next));
+        }
     }
     Ok(x)
 }
@@ -576,11 +659,27 @@ fn replay(project: &Project, before: &[u32], executed: &[usize]) -> Result<Vec<u
 /// backends, comparing every scan and checking control equivalence.
 fn check_run(project: &Project, samples: &[(u32, Vec<bool>)]) -> Result<(), TestCaseError> {
     let table = TableImage::new(project).map_err(|e| TestCaseError::fail(e.to_string()))?;
-    let logic = LogicImage::new(project).map_err(|e| TestCaseError::fail(e.to_string()))?;
     let mut by_table = Controller::new(&table, HeapMemory::for_config(&table.config()))
         .map_err(|e| TestCaseError::fail(format!("table controller: {e:?}")))?;
-    let mut by_logic = Controller::new(&logic, HeapMemory::for_config(&logic.config()))
-        .map_err(|e| TestCaseError::fail(format!("logic controller: {e:?}")))?;
+    // Petri nets run on the table backend only: then its twin stands in
+    // for the logic backend.
+    let logic = if project.nets.is_empty() {
+        Some(LogicImage::new(project).map_err(|e| TestCaseError::fail(e.to_string()))?)
+    } else {
+        None
+    };
+    let twin = TableImage::new(project).map_err(|e| TestCaseError::fail(e.to_string()))?;
+    let mut by_logic: Controller<&dyn Program, _> = match &logic {
+        Some(logic) => Controller::new(
+            logic as &dyn Program,
+            HeapMemory::for_config(&logic.config()),
+        ),
+        None => Controller::new(
+            &twin as &dyn Program,
+            HeapMemory::for_config(&twin.config()),
+        ),
+    }
+    .map_err(|e| TestCaseError::fail(format!("logic controller: {e:?}")))?;
     let mut reference = Reference::new(project);
     let mut before = initial_states(project);
     let mut was_faulted = false;
@@ -779,6 +878,7 @@ impl ProjectSpec {
             switches: Vec::new(),
             events,
             supervisors,
+            nets: Vec::new(),
             board: None,
             warnings: Vec::new(),
             files: Vec::new(),
@@ -1329,6 +1429,110 @@ proptest! {
     }
 }
 
+/// Adds one or two random Petri nets to `project`, from `seed`: 2–6
+/// places holding 0–2 tokens each, the transitions a random subset of the
+/// events (each with its event's controllability), every transition
+/// taking one or two arcs of weight 1–2 and giving back as many tokens
+/// (so every net is bounded; weights of 2 make counters of two or more
+/// bits), and one new output per net driven by a place map of one or two
+/// places. The counters are laid out as `[[net]]` lays them out, from the
+/// bounds of the reachability graph.
+fn add_random_nets(project: &mut Project, seed: u64) {
+    use codegen::des::petri::{reach, NetBuilder};
+    use codegen::Location;
+    let mut state = seed | 1;
+    let mut next = move |n: usize| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state % n as u64) as usize
+    };
+    let at = || Location::new("random.net.toml", 1, 1);
+    for k in 0..1 + next(2) {
+        let places = 2 + next(5);
+        let mut b = NetBuilder::new(format!("n{k}"));
+        for p in 0..places {
+            b.add_place(&format!("p{p}"), None, next(3) as u32, at())
+                .expect("place");
+        }
+        let mut events = Vec::new();
+        for (e, ev) in project.events.iter().enumerate() {
+            if next(2) == 0 {
+                continue;
+            }
+            b.add_transition(&ev.name, None, ev.controllable, true, at())
+                .expect("transition");
+            // As many tokens out as in, spread over one or two places
+            // each way (one arc per place: weights add up).
+            let tokens = 1 + next(2) as u32;
+            let arcs = |next: &mut dyn FnMut(usize) -> usize| {
+                let mut weights = vec![0u32; places];
+                for _ in 0..tokens {
+                    weights[next(places)] += 1;
+                }
+                weights
+            };
+            let input = arcs(&mut next);
+            let output = arcs(&mut next);
+            for p in 0..places {
+                if input[p] > 0 {
+                    b.add_arc(&format!("p{p}"), &ev.name, input[p], at())
+                        .expect("input arc");
+                }
+                if output[p] > 0 {
+                    b.add_arc(&ev.name, &format!("p{p}"), output[p], at())
+                        .expect("output arc");
+                }
+            }
+            events.push(e);
+        }
+        let net = b.build();
+        let bounds = reach::reachability(&net, 100_000).expect("bounded").bounds;
+        let (fields, group_bits) = Net::pack_fields(&net, &bounds).expect("counters fit");
+        let n = project.nets.len();
+        let mapped: Vec<usize> = (0..1 + next(2)).map(|_| next(places)).collect();
+        project.outputs.push(Output {
+            name: format!("net{n}_out"),
+            safe: next(2) == 0,
+            drive: Drive::Places(vec![(n, mapped)]),
+            line: 0,
+        });
+        project.nets.push(Net {
+            name: format!("n{k}"),
+            events,
+            fields,
+            bounds,
+            group_bits,
+            markings: 0,
+            control_places: 0,
+            source: NetSource::File("random.net.toml".into()),
+            line: 0,
+            net,
+        });
+    }
+}
+
+proptest! {
+    #![proptest_config(config(1_500))]
+
+    /// Petri nets beside the automata: the table backend's net layout
+    /// against the reference's markings.
+    #[test]
+    fn table_backend_matches_reference_on_petri_nets(
+        spec in project(&NARROW, supervisor(1..=12)),
+        run in run(),
+        seed in any::<u64>(),
+    ) {
+        let mut project = spec.build();
+        add_random_nets(&mut project, seed);
+        let samples = run.samples(project.inputs.len(), project.scan_period_ms);
+        check_run(&project, &samples).map_err(|e| match e {
+            TestCaseError::Fail(why) => TestCaseError::fail(format!("{why}\n{}\nnets: {:#?}", describe(&project), project.nets)),
+            other => other,
+        })?;
+    }
+}
+
 proptest! {
     #![proptest_config(config(1_500))]
 
@@ -1742,6 +1946,7 @@ fn hand_project(
         switches: Vec::new(),
         events,
         supervisors: Vec::new(),
+        nets: Vec::new(),
         board: None,
         warnings: Vec::new(),
         files: Vec::new(),

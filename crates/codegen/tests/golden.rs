@@ -95,3 +95,10 @@ golden! {
     crane_logic: "crane", "logic";
     crane_match: "crane", "match";
 }
+
+/// A Petri net (seed D's mixing tanks, its control place synthesised at
+/// build time) in the table backend's net layout.
+#[test]
+fn mixers_table() {
+    check_golden("mixers.table.rs", &codegen_gen("petri/mixers", "table"));
+}

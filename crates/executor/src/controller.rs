@@ -648,7 +648,7 @@ fn write_outputs<M: Memory>(config: &Config<'_>, memory: &mut M) {
             spec.state_map.of(config.state_map).iter().any(|entry| {
                 ram.states
                     .get(entry.supervisor as usize)
-                    .is_some_and(|&x| x == entry.state)
+                    .is_some_and(|&x| entry.holds(x))
             })
         };
     }

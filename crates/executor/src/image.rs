@@ -31,12 +31,13 @@
 //! | event masks | 1 | the word as stored |
 //! | actions | 1 | kind (0 set, 1 clear, 2 start, 3 reset) `<< 16 \|` its output or timer |
 //! | memberships | 1 | `supervisor \| local << 16` |
-//! | state map | 2 | `supervisor`; `state` |
+//! | state map | 3 | `supervisor`; `state`; `mask` |
 //!
 //! then, per table in supervisor order, four runs: a 7-word header
-//! (events, state bits, layout (0 dense, 1 sparse), row-start bits (0 when
-//! dense), and the word counts of `defined`, `targets` and `row_starts`),
-//! then the words of `defined`, `targets` and `row_starts` as stored.
+//! (events, state bits, layout (0 dense, 1 sparse, 2 net), row-start bits
+//! (0 when dense or net), and the word counts of `defined`, `targets` and
+//! `row_starts` (a net's `fields`)), then the words of `defined`,
+//! `targets` and `row_starts` (`fields`) as stored.
 //!
 //! # The CRC
 //!
@@ -249,6 +250,7 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
                     _ => Run::Stored(match table.rows {
                         Rows::Dense => &[],
                         Rows::Sparse { row_starts, .. } => row_starts,
+                        Rows::Net { fields } => fields,
                     }),
                 }
             }
@@ -310,11 +312,12 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
                 [u32::from(m.supervisor) | u32::from(m.local) << 16]
             }),
             Run::StateMap(entries) => feed_records(entries, from, to, feeder, |e| {
-                [e.supervisor.into(), e.state]
+                [e.supervisor.into(), e.state, e.mask]
             }),
             Run::TableHeader(ref t) => {
                 let (layout, start_bits, row_starts) = match t.rows {
                     Rows::Dense => (0, 0, 0),
+                    Rows::Net { fields } => (2, 0, fields.len()),
                     Rows::Sparse {
                         row_starts,
                         start_bits,
@@ -416,7 +419,7 @@ impl Run<'_> {
             Run::Indices(x) => x.len(),
             Run::Actions(x) => x.len(),
             Run::Memberships(x) => x.len(),
-            Run::StateMap(x) => 2 * x.len(),
+            Run::StateMap(x) => 3 * x.len(),
             Run::TableHeader(_) => TABLE_HEADER_WORDS,
         }
     }

@@ -172,13 +172,49 @@ impl EventSpec {
 }
 
 /// One entry of a Moore output's state map: the output is 1 while the
-/// supervisor is in the state.
+/// supervisor's state `x` has `x & mask == state`. An automaton's entry
+/// names a whole state (`mask` all ones, [`StateMapEntry::in_state`]); a
+/// Petri net's names a count of tokens in one place, the bits of its
+/// counter in the packed marking ([`StateMapEntry::marked`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct StateMapEntry {
     /// The supervisor.
     pub supervisor: Index,
-    /// The state.
+    /// The state, or the masked bits of the state.
     pub state: u32,
+    /// The bits of the state compared.
+    pub mask: u32,
+}
+
+impl StateMapEntry {
+    /// While `supervisor` is in `state`.
+    pub const fn in_state(supervisor: Index, state: u32) -> StateMapEntry {
+        StateMapEntry {
+            supervisor,
+            state,
+            mask: u32::MAX,
+        }
+    }
+
+    /// While the counter in bits `mask` of net group `supervisor` holds
+    /// `count` (the counter's lowest bit is `mask`'s lowest set bit).
+    pub const fn marked(supervisor: Index, mask: u32, count: u32) -> StateMapEntry {
+        StateMapEntry {
+            supervisor,
+            state: match count.checked_shl(mask.trailing_zeros()) {
+                Some(bits) => bits & mask,
+                None => 0,
+            },
+            mask,
+        }
+    }
+
+    /// `true` when a supervisor in `state` drives the output through this
+    /// entry.
+    #[inline]
+    pub fn holds(&self, state: u32) -> bool {
+        state & self.mask == self.state
+    }
 }
 
 /// A supervisor's size, initial state and alphabet.

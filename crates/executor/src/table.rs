@@ -19,6 +19,30 @@
 //! The generator picks the layout with fewer words (dense on a tie: it is
 //! one step faster).
 //!
+//! # Petri nets
+//!
+//! A third layout, [`Rows::Net`], runs a group of places of a Petri net
+//! as one supervisor: its state is the group's marking, each place a
+//! counter of a few bits (a *field*, `fields[f]` the mask of its bits,
+//! wide enough for the place's bound), its local events the transitions
+//! with an arc to a place of the group. `defined` holds one word per local
+//! transition, `PRE[t]`: the weight of each input arc in its place's field;
+//! `targets` likewise holds `POST[t]`, the output arcs. δ(x, t) is defined
+//! when every field of `x` holds at least `PRE[t]`'s, and is then
+//! `x − PRE[t] + POST[t]` (no borrow crosses a field, since each holds
+//! enough), undefined if a counter would overflow its field (a bounded net
+//! never does; a corrupt marking may). `b` is the sum of the fields'
+//! widths, at most 31, and every `b`-bit value is a state. A net of more
+//! places runs as several such supervisors: the executor's synchronous
+//! product of them (a transition fires when every group it touches
+//! enables it, and moves each) is the net's firing rule.
+//!
+//! For example places `p` (bit 0) and `q` (bits 1–2, bound 3) and
+//! `t: p → 2·q`: `fields = [0b001, 0b110]`, `PRE[t] = 0b001`,
+//! `POST[t] = 0b100`; from `x = 0b011` (p = 1, q = 1), δ(x, t) = 0b110
+//! (p = 0, q = 3); from `0b010` it is undefined (p empty), and from
+//! `0b111` too (q would hold 4).
+//!
 //! # Worked example
 //!
 //! Three states, events `a` (local 0) and `b` (local 1), δ(0,a)=1,
@@ -55,6 +79,12 @@ pub enum Rows<'a> {
         row_starts: &'a [u32],
         /// Width of a row start.
         start_bits: u8,
+    },
+    /// A group of places of a Petri net: `defined` holds `PRE[t]` and
+    /// `targets` `POST[t]`, one word per local transition (module docs).
+    Net {
+        /// The mask of each place's counter, in place order.
+        fields: &'a [u32],
     },
 }
 
@@ -132,12 +162,21 @@ impl SupervisorTable<'_> {
         if local >= m {
             return None;
         }
+        if let Rows::Net { fields } = self.rows {
+            return fire(
+                fields,
+                state,
+                *self.defined.get(local)?,
+                *self.targets.get(local)?,
+            );
+        }
         let pair = state as usize * m + local;
         if !bit(self.defined, pair) {
             return None;
         }
         let entry = match self.rows {
             Rows::Dense => pair,
+            Rows::Net { .. } => return None,
             Rows::Sparse {
                 row_starts,
                 start_bits,
@@ -161,8 +200,35 @@ impl SupervisorTable<'_> {
         if len == 0 {
             return 0;
         }
+        if let Rows::Net { fields } = self.rows {
+            let (pre, post) = (self.defined, self.targets);
+            return (0..len).fold(0, |row, k| {
+                let t = from + k;
+                let defined = match (pre.get(t), post.get(t)) {
+                    (Some(&pre), Some(&post)) => fire(fields, state, pre, post).is_some(),
+                    _ => false,
+                };
+                row | u32::from(defined) << k
+            });
+        }
         read_bits_at(self.defined, state as usize * m + from, len as u8)
     }
+}
+
+/// The net layout's δ: `x − pre + post` when every field of `x` holds at
+/// least `pre`'s and no field overflows (module docs, "Petri nets").
+#[inline]
+pub fn fire(fields: &[u32], x: u32, pre: u32, post: u32) -> Option<u32> {
+    let mut next = x;
+    for &field in fields {
+        let (held, taken, added) = (x & field, pre & field, post & field);
+        // Each operand lies within `field`, so the sum overflows the
+        // field exactly when it exceeds the mask.
+        let left = held.checked_sub(taken)?;
+        let counter = left.checked_add(added).filter(|&c| c <= field)?;
+        next = next & !field | counter;
+    }
+    Some(next)
 }
 
 /// A program made of a [`Config`] and one [`SupervisorTable`] per
@@ -243,6 +309,67 @@ mod tests {
             assert_eq!(t.enabled(1, 0, 2), 0b10);
             assert_eq!(t.enabled(1, 1, 1), 0b1);
             assert_eq!(t.enabled(2, 0, 32), 0b01, "rows end at the table's events");
+        }
+    }
+
+    /// The net example of the module docs: `p` at bit 0, `q` at bits 1–2,
+    /// `t: p → 2·q`, and `u: q → p` as a second transition.
+    const NET: SupervisorTable<'static> = SupervisorTable {
+        events: 2,
+        state_bits: 3,
+        defined: &[0b001, 0b010],
+        targets: &[0b100, 0b001],
+        rows: Rows::Net {
+            fields: &[0b001, 0b110],
+        },
+    };
+
+    #[test]
+    fn net_example_fires_by_its_counters() {
+        assert_eq!(NET.next_state(0b011, 0), Some(0b110), "p=1,q=1 → p=0,q=3");
+        assert_eq!(NET.next_state(0b010, 0), None, "p empty");
+        assert_eq!(NET.next_state(0b111, 0), None, "q would hold 4");
+        assert_eq!(NET.next_state(0b111, 1), None, "p would hold 2");
+        assert_eq!(NET.next_state(0b110, 1), Some(0b101), "q=3 → q=2, p=1");
+        assert_eq!(NET.next_state(0b100, 1), Some(0b011), "q=2 → q=1, p=1");
+        assert_eq!(NET.next_state(0b011, 2), None, "local event out of range");
+        assert_eq!(
+            NET.enabled(0b011, 0, 2),
+            0b01,
+            "u would put a second token on p"
+        );
+        assert_eq!(NET.enabled(0b001, 0, 2), 0b01);
+        assert_eq!(
+            NET.enabled(0b110, 0, 32),
+            0b10,
+            "rows end at the table's events"
+        );
+        assert_eq!(NET.enabled(0b010, 1, 1), 0b1);
+    }
+
+    #[test]
+    fn net_firing_agrees_with_counter_arithmetic() {
+        // Every state and every pair of arcs on three 2-bit counters.
+        let fields = [0b000011, 0b001100, 0b110000];
+        let counters = |x: u32| [x & 3, x >> 2 & 3, x >> 4 & 3];
+        for x in 0..64u32 {
+            for pre in 0..64u32 {
+                for post in [0u32, 0b000001, 0b000110, 0b110000, 0b111111] {
+                    let (have, take, add) = (counters(x), counters(pre), counters(post));
+                    let expected = (0..3)
+                        .all(|f| have[f] >= take[f] && have[f] - take[f] + add[f] <= 3)
+                        .then(|| {
+                            (0..3)
+                                .map(|f| (have[f] - take[f] + add[f]) << (2 * f))
+                                .sum()
+                        });
+                    assert_eq!(
+                        fire(&fields, x, pre, post),
+                        expected,
+                        "x={x:#b} pre={pre:#b} post={post:#b}"
+                    );
+                }
+            }
         }
     }
 

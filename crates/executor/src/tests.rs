@@ -163,6 +163,7 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
         state_map: &[StateMapEntry {
             supervisor: 0,
             state: 2,
+            mask: u32::MAX,
         }],
     }
 }

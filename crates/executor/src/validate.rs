@@ -107,6 +107,16 @@ pub enum Flaw {
         /// The state whose row start is wrong.
         state: u32,
     },
+    /// A state-map entry's state has bits outside its mask.
+    StateMask,
+    /// A net group's fields overlap, are empty or not contiguous, or do
+    /// not cover exactly the bits of its states.
+    Fields,
+    /// A net transition's `PRE` or `POST` has bits outside the fields.
+    Arcs {
+        /// The local transition.
+        local: u32,
+    },
 }
 
 /// An image that fails the structure check: where, and what.
@@ -163,6 +173,9 @@ impl fmt::Display for Flaw {
             Flaw::StateBits => f.write_str("a state width that cannot hold the states"),
             Flaw::TableLength => f.write_str("fewer words than its entries need"),
             Flaw::RowStart { state } => write!(f, "a wrong row start for state {state}"),
+            Flaw::StateMask => f.write_str("a state with bits outside its mask"),
+            Flaw::Fields => f.write_str("net fields that overlap, are empty or not contiguous, or leave bits of the state out"),
+            Flaw::Arcs { local } => write!(f, "arcs of transition {local} outside the fields"),
         }
     }
 }
@@ -255,6 +268,9 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
         if entry.state >= states {
             return fail(part, out_of_range(entry.state, states));
         }
+        if entry.state & !entry.mask != 0 {
+            return fail(part, Flaw::StateMask);
+        }
     }
     for (e, spec) in c.events.iter().enumerate() {
         let part = Part::Event(e);
@@ -326,6 +342,9 @@ fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Resu
     if table.events != spec.alphabet.len {
         return fail(part, Flaw::TableEvents);
     }
+    if let Rows::Net { fields } = table.rows {
+        return validate_net(part, spec.states, table, fields);
+    }
     let states = u64::from(spec.states);
     let width = table.state_bits;
     if !(1..=32).contains(&width) || states.saturating_sub(1) >> width != 0 {
@@ -340,7 +359,7 @@ fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Resu
     let pairs = pairs as usize;
     let defined = (0..pairs).filter(|&p| bit(table.defined, p)).count() as u64;
     let (entries, sparse) = match table.rows {
-        Rows::Dense => (pairs as u64, None),
+        Rows::Dense | Rows::Net { .. } => (pairs as u64, None),
         Rows::Sparse {
             row_starts,
             start_bits,
@@ -377,6 +396,49 @@ fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Resu
             return fail(part, out_of_range(target, spec.states));
         }
         before += 1;
+    }
+    Ok(())
+}
+
+/// A net group (`table.rs`, "Petri nets"): `2^b` states for `b ≤ 31`,
+/// contiguous disjoint non-empty fields that cover exactly the state's `b`
+/// bits, one `PRE` and one `POST` word per local transition, both within
+/// the fields.
+fn validate_net(
+    part: Part,
+    states: u32,
+    table: &SupervisorTable<'_>,
+    fields: &[u32],
+) -> Result<(), Invalid> {
+    let width = table.state_bits;
+    if !(1..=31).contains(&width) || states != 1 << width {
+        return fail(part, Flaw::StateBits);
+    }
+    let mut covered = 0u32;
+    for &field in fields {
+        let shifted = field >> field.trailing_zeros().min(31);
+        let contiguous = field != 0 && shifted & shifted.wrapping_add(1) == 0;
+        if !contiguous || covered & field != 0 {
+            return fail(part, Flaw::Fields);
+        }
+        covered |= field;
+    }
+    if covered != states - 1 {
+        return fail(part, Flaw::Fields);
+    }
+    let m = usize::from(table.events);
+    if table.defined.len() != m || table.targets.len() != m {
+        return fail(part, Flaw::TableLength);
+    }
+    for (local, (&pre, &post)) in table.defined.iter().zip(table.targets).enumerate() {
+        if (pre | post) & !covered != 0 {
+            return fail(
+                part,
+                Flaw::Arcs {
+                    local: local as u32,
+                },
+            );
+        }
     }
     Ok(())
 }

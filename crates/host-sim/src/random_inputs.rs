@@ -56,15 +56,7 @@ impl GuidedInputs {
                 .filter(|&e| {
                     let ev = &project.events[e];
                     matches!(ev.trigger, Trigger::Rising(_) | Trigger::Falling(_))
-                        && project.supervisors.iter().enumerate().all(|(j, sup)| {
-                            sup.local_events.iter().all(|&(g, id)| {
-                                g != e
-                                    || sup
-                                        .automaton
-                                        .successor(codegen::StateId(states[j]), id)
-                                        .is_some()
-                            })
-                        })
+                        && project.event_feasible(e, states)
                 })
                 .collect();
             if !feasible.is_empty() {

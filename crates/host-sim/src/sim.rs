@@ -297,13 +297,9 @@ impl Sim {
     pub fn state(&self, name: &str) -> Result<String, SimError> {
         let j = self
             .project
-            .supervisor(name)
+            .executor_supervisor(name)
             .ok_or_else(|| SimError::Unknown(name.to_owned(), "a supervisor"))?;
-        let x = self.controller.states()[j];
-        Ok(self.project.supervisors[j]
-            .automaton
-            .state_name(codegen::StateId(x))
-            .into_owned())
+        Ok(self.project.state_name(j, self.controller.states()[j]))
     }
 
     /// The current level of output `name`.

@@ -55,17 +55,19 @@ impl TraceRow {
             time_ms,
             events: record.executed.iter().map(event).collect(),
             ignored: record.unexpected.iter().map(event).collect(),
-            states: project
-                .supervisors
+            states: record
+                .states
                 .iter()
-                .zip(record.states)
-                .map(|(s, &x)| {
-                    let name = if (x as usize) < s.automaton.num_states() {
-                        s.automaton.state_name(codegen::StateId(x)).into_owned()
-                    } else {
-                        format!("#{x}")
+                .enumerate()
+                .map(|(j, &x)| {
+                    let name = match project.net_group(j) {
+                        Some(_) => project.state_name(j, x),
+                        None if (x as usize) < project.supervisors[j].automaton.num_states() => {
+                            project.state_name(j, x)
+                        }
+                        None => format!("#{x}"),
                     };
-                    (s.name.clone(), name)
+                    (project.supervisor_name(j), name)
                 })
                 .collect(),
             outputs: record.outputs.to_vec(),

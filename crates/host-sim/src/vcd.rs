@@ -283,12 +283,19 @@ impl<'p, W: Write> ScanWriter<'p, W> {
         let outputs = d.scope("outputs", &project.outputs, |d, o| {
             d.var(VarType::Wire, 1, &o.name)
         })?;
-        let names = d.scope("states", &project.supervisors, |d, s| {
-            d.var(VarType::String, 1, &s.name)
+        let supervisors = 0..project.executor_supervisors();
+        let names = d.scope("states", supervisors.clone(), |d, j| {
+            d.var(VarType::String, 1, &project.supervisor_name(j))
         })?;
-        let numbers = d.scope("state_numbers", &project.supervisors, |d, s| {
-            let highest = s.automaton.num_states().saturating_sub(1).max(1) as u64;
-            d.var(VarType::Wire, highest.ilog2() + 1, &s.name)
+        let numbers = d.scope("state_numbers", supervisors, |d, j| {
+            let width = match project.net_group(j) {
+                Some((n, g)) => u32::from(project.nets[n].group_bits[g]),
+                None => {
+                    let states = project.supervisors[j].automaton.num_states();
+                    (states.saturating_sub(1).max(1) as u64).ilog2() + 1
+                }
+            };
+            d.var(VarType::Wire, width, &project.supervisor_name(j))
         })?;
         let events = d.scope("events", &project.events, |d, e| {
             d.var(VarType::Wire, 1, &e.name)
@@ -346,9 +353,15 @@ impl<'p, W: Write> ScanWriter<'p, W> {
         for (&var, &v) in self.outputs.iter().zip(&scan.outputs) {
             c.set(var, Written::Scalar(v))?;
         }
-        for (j, (sup, (_, state))) in project.supervisors.iter().zip(scan.states).enumerate() {
+        for (j, (_, state)) in scan.states.iter().enumerate() {
             c.set(self.names[j], Written::Text(escape(state)))?;
-            let number = sup.automaton.state_by_name(state).map(|s| u64::from(s.0));
+            let number = match project.net_group(j) {
+                Some((n, g)) => project.nets[n].parse_state(g, state).map(u64::from),
+                None => project.supervisors[j]
+                    .automaton
+                    .state_by_name(state)
+                    .map(|s| u64::from(s.0)),
+            };
             c.set(self.numbers[j], Written::Vector(number))?;
         }
         for name in scan.events {

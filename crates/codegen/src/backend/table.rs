@@ -6,6 +6,7 @@
 //! with row starts), whichever takes fewer words, dense on a tie.
 
 use crate::automaton::{Automaton, EventId, StateId};
+use crate::project::Net;
 use executor::table::{Rows, SupervisorTable};
 
 /// Which target layout a table uses.
@@ -16,6 +17,8 @@ pub enum Layout {
     Dense,
     /// Defined pairs only.
     Sparse,
+    /// A group of places of a Petri net (counters, `PRE`/`POST` words).
+    Net,
 }
 
 /// The encoded tables of one supervisor, owned.
@@ -31,7 +34,8 @@ pub struct EncodedTable {
     pub defined: Vec<u32>,
     /// Packed targets.
     pub targets: Vec<u32>,
-    /// Packed row starts (sparse layout only).
+    /// Packed row starts (sparse layout); the mask of each counter (net
+    /// layout).
     pub row_starts: Vec<u32>,
     /// Width of a row start (sparse layout only).
     pub start_bits: u8,
@@ -112,6 +116,31 @@ impl EncodedTable {
         }
     }
 
+    /// Encodes group `g` of `net` in the net layout: one `PRE` and one
+    /// `POST` word per transition touching the group, one mask per place.
+    pub fn encode_net(net: &Net, g: usize) -> EncodedTable {
+        let bits = net.group_bits[g];
+        let word = |arcs: &[(usize, u32)]| {
+            arcs.iter()
+                .filter(|&&(p, _)| net.fields[p].group == g)
+                .fold(0u32, |x, &(p, w)| {
+                    x | (w << net.fields[p].shift) & net.fields[p].mask()
+                })
+        };
+        let transitions = net.group_transitions(g);
+        let tr = net.net.transitions();
+        EncodedTable {
+            events: transitions.len() as u16,
+            states: 1 << bits,
+            state_bits: bits,
+            defined: transitions.iter().map(|&t| word(&tr[t].input)).collect(),
+            targets: transitions.iter().map(|&t| word(&tr[t].output)).collect(),
+            row_starts: net.group_places(g).map(|p| net.fields[p].mask()).collect(),
+            start_bits: 0,
+            layout: Layout::Net,
+        }
+    }
+
     /// A borrowed view for the executor.
     pub fn view(&self) -> SupervisorTable<'_> {
         SupervisorTable {
@@ -124,6 +153,9 @@ impl EncodedTable {
                 Layout::Sparse => Rows::Sparse {
                     row_starts: &self.row_starts,
                     start_bits: self.start_bits,
+                },
+                Layout::Net => Rows::Net {
+                    fields: &self.row_starts,
                 },
             },
         }

@@ -31,7 +31,6 @@ fn titled(title: &str, doc: &str) -> String {
     }
 }
 use crate::project::Origin;
-use crate::StateId;
 use executor::program as ex;
 use std::fmt::Write;
 
@@ -68,7 +67,10 @@ impl Emitter<'_> {
         let outputs: Vec<&str> = p.outputs.iter().map(|x| x.name.as_str()).collect();
         let timers: Vec<&str> = p.timers.iter().map(|x| x.name.as_str()).collect();
         let events: Vec<&str> = p.events.iter().map(|x| x.name.as_str()).collect();
-        let sups: Vec<&str> = p.supervisors.iter().map(|x| x.name.as_str()).collect();
+        let sup_names: Vec<String> = (0..p.executor_supervisors())
+            .map(|j| p.supervisor_name(j))
+            .collect();
+        let sups: Vec<&str> = sup_names.iter().map(String::as_str).collect();
         self.name_module("input", "Inputs, in declaration order.", &inputs);
         self.name_module("output", "Outputs, in declaration order.", &outputs);
         self.name_module("timer", "Timers, in declaration order.", &timers);
@@ -94,6 +96,53 @@ impl Emitter<'_> {
             );
         }
         let _ = writeln!(self.out, "}}");
+        if !p.nets.is_empty() {
+            self.place_names();
+        }
+    }
+
+    /// The `places` module: for each group of each net, the places it
+    /// holds and each one's counter mask in the group's packed marking.
+    fn place_names(&mut self) {
+        let p = self.project;
+        let _ = writeln!(
+            self.out,
+            "/// Places of each Petri-net group: ids in place order, and the mask of
+/// each one's counter in the group's state (its packed marking).
+#[allow(dead_code)]
+pub mod places {{"
+        );
+        for (n, net) in p.nets.iter().enumerate() {
+            for g in 0..net.groups() {
+                let name = net.group_name(g);
+                let places: Vec<usize> = net.group_places(g).collect();
+                let ids: Vec<String> = places
+                    .iter()
+                    .map(|&q| format!("{:?}", net.net.places()[q].id))
+                    .collect();
+                let masks: Vec<String> = places
+                    .iter()
+                    .map(|&q| format!("{:#x}", net.fields[q].mask()))
+                    .collect();
+                let _ = writeln!(
+                    self.out,
+                    "    /// Places of {} (supervisor {}).
+    pub static {}: [&str; {}] = [{}];
+    /// Counter masks of {}, in the order of its places.
+    pub static {}_MASKS: [u32; {}] = [{}];",
+                    quoted(&name),
+                    p.group_supervisor(n, g),
+                    ident(&name),
+                    ids.len(),
+                    ids.join(", "),
+                    quoted(&name),
+                    ident(&name),
+                    masks.len(),
+                    masks.join(", ")
+                );
+            }
+        }
+        let _ = writeln!(self.out, "}}");
     }
 
     fn input_name(&self, i: ex::Index) -> String {
@@ -113,12 +162,11 @@ impl Emitter<'_> {
     }
 
     fn supervisor_name(&self, s: ex::Index) -> String {
-        quoted(&self.project.supervisors[usize::from(s)].name)
+        quoted(&self.project.supervisor_name(usize::from(s)))
     }
 
     fn state_name(&self, s: ex::Index, state: u32) -> String {
-        let a = &self.project.supervisors[usize::from(s)].automaton;
-        quoted(&a.state_name(StateId(state)))
+        quoted(&self.project.state_name(usize::from(s), state))
     }
 
     /// The input names of a mask (a span of the input masks).
@@ -656,11 +704,20 @@ impl Emitter<'_> {
                 .state_map
                 .iter()
                 .map(|m| {
-                    format!(
-                        "StateMapEntry {{ supervisor: {}, state: {} }}",
-                        self.supervisor(m.supervisor),
-                        m.state
-                    )
+                    if m.mask == u32::MAX {
+                        format!(
+                            "StateMapEntry::in_state({}, {})",
+                            self.supervisor(m.supervisor),
+                            m.state
+                        )
+                    } else {
+                        let count = m.state >> m.mask.trailing_zeros().min(31);
+                        format!(
+                            "StateMapEntry::marked({}, {:#x}, {count})",
+                            self.supervisor(m.supervisor),
+                            m.mask
+                        )
+                    }
                 })
                 .collect(),
         );
@@ -668,7 +725,11 @@ impl Emitter<'_> {
             self.out,
             "{}const STATE_MAP: [StateMapEntry; {}] = [{map}];",
             titled(
-                "Moore outputs: (supervisor, state) pairs, by position",
+                if self.project.nets.is_empty() {
+                    "Moore outputs: (supervisor, state) pairs, by position"
+                } else {
+                    "Moore outputs: a supervisor's state, or a count of tokens in a net's place (its counter's mask), by position"
+                },
                 &doc
             ),
             pools.state_map.len()

@@ -185,7 +185,7 @@ impl Emitter<'_> {
     fn supervisor(&self, s: ex::Index) -> String {
         format!(
             "supervisor::{}",
-            ident(&self.project.supervisors[s as usize].name)
+            ident(&self.project.supervisor_name(usize::from(s)))
         )
     }
 
@@ -331,6 +331,11 @@ fn write_program(
     backend: Backend,
     progress: &dyn crate::ops::Progress,
 ) -> Result<Unformatted> {
+    match backend {
+        Backend::Table => {}
+        Backend::Logic => crate::image::table_only(project, "logic")?,
+        Backend::Match => crate::image::table_only(project, "match")?,
+    }
     let pools = ConfigPools::from_project(project)?;
     let mut e = Emitter {
         project,

@@ -65,6 +65,7 @@ impl Emitter<'_> {
             let layout = match table.layout {
                 Layout::Dense => "dense",
                 Layout::Sparse => "sparse",
+                Layout::Net => "net",
             };
             let _ = writeln!(
                 self.out,
@@ -83,7 +84,7 @@ impl Emitter<'_> {
                 words(&table.targets),
             );
             let rows = match table.layout {
-                Layout::Dense => "Rows::Dense".to_owned(),
+                Layout::Dense | Layout::Net => "Rows::Dense".to_owned(),
                 Layout::Sparse => {
                     let _ = writeln!(
                         self.out,
@@ -103,6 +104,82 @@ impl Emitter<'_> {
                 table.events, table.state_bits
             ));
             stats.push(SupervisorStats::of_table(&sup.name, table));
+        }
+        let nets = image
+            .tables
+            .get(self.project.supervisors.len()..)
+            .unwrap_or(&[]);
+        let mut groups = nets.iter();
+        for net in &self.project.nets {
+            for g in 0..net.groups() {
+                let Some(table) = groups.next() else { break };
+                let name = net.group_name(g);
+                let id = ident(&name);
+                let places: Vec<String> = net
+                    .group_places(g)
+                    .map(|p| {
+                        let f = net.fields[p];
+                        let bits = if f.width == 1 {
+                            format!("bit {}", f.shift)
+                        } else {
+                            format!("bits {}–{}", f.shift, f.shift + f.width - 1)
+                        };
+                        format!("{} ({bits})", net.net.places()[p].id)
+                    })
+                    .collect();
+                let transitions = net.group_transitions(g);
+                let arcs = |arcs: &[(usize, u32)]| -> String {
+                    let terms: Vec<String> = arcs
+                        .iter()
+                        .filter(|&&(p, _)| net.fields[p].group == g)
+                        .map(|&(p, w)| match w {
+                            1 => net.net.places()[p].id.clone(),
+                            w => format!("{w}·{}", net.net.places()[p].id),
+                        })
+                        .collect();
+                    if terms.is_empty() {
+                        "∅".to_owned()
+                    } else {
+                        terms.join(" + ")
+                    }
+                };
+                let moves: Vec<String> = transitions
+                    .iter()
+                    .map(|&t| {
+                        let tr = &net.net.transitions()[t];
+                        format!(
+                            "/// - {}: {} → {}\n",
+                            quoted(&tr.id),
+                            doc_text(&arcs(&tr.input)),
+                            doc_text(&arcs(&tr.output))
+                        )
+                    })
+                    .collect();
+                let _ = writeln!(
+                    self.out,
+                    "/// Net group {} ({} places as counters in {} bits, {} local transitions, net layout, {} bytes).\n/// Places: {}.\n/// Local transitions (`PRE` → `POST`):\n{}const {id}_PRE: [u32; {}] = [{}];\n/// `POST` words of {}.\nconst {id}_POST: [u32; {}] = [{}];\n/// Counter masks of {}, in the order of its places.\nconst {id}_FIELDS: [u32; {}] = [{}];",
+                    quoted(&name),
+                    table.row_starts.len(),
+                    table.state_bits,
+                    table.events,
+                    table.bytes(),
+                    doc_text(&places.join(", ")),
+                    moves.concat(),
+                    table.defined.len(),
+                    words(&table.defined),
+                    quoted(&name),
+                    table.targets.len(),
+                    words(&table.targets),
+                    quoted(&name),
+                    table.row_starts.len(),
+                    words(&table.row_starts),
+                );
+                views.push(format!(
+                    "SupervisorTable {{ events: {}, state_bits: {}, defined: &{id}_PRE, targets: &{id}_POST, rows: Rows::Net {{ fields: &{id}_FIELDS }} }}",
+                    table.events, table.state_bits
+                ));
+                stats.push(SupervisorStats::of_table(&name, table));
+            }
         }
         let _ = writeln!(
             self.out,

@@ -36,6 +36,6 @@ pub fn load(path: &Path) -> Result<Project> {
 pub fn from_str(text: &str, path: &Path) -> Result<Project> {
     let raw = parse::parse(text, path)?;
     let file = locate::ProjectFile::new(path, text);
-    let sources = sources::load(&raw.supervisor, &file)?;
+    let sources = sources::load(&raw.supervisor, &raw.net, &file)?;
     validate::validate(raw, sources, &file)
 }

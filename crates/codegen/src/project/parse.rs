@@ -120,6 +120,8 @@ pub(crate) struct RawProject {
     #[serde(default)]
     pub supervisor: Vec<Spanned<RawSupervisor>>,
     #[serde(default)]
+    pub net: Vec<Spanned<RawNet>>,
+    #[serde(default)]
     pub board: Option<Spanned<RawBoard>>,
 }
 
@@ -165,6 +167,9 @@ pub(crate) struct RawOutput {
     /// State map: supervisor → state names.
     #[serde(default)]
     pub states: Option<Spanned<Entries<Names>>>,
+    /// Place map: net → place ids.
+    #[serde(default)]
+    pub places: Option<Spanned<Entries<Names>>>,
 }
 
 /// An entry of `[timers]`.
@@ -223,6 +228,22 @@ pub(crate) struct RawSupervisor {
     /// [`crate::backend::logic::DEFAULT_MAX_EFFORT`]).
     #[serde(default)]
     pub max_logic_effort: Option<Spanned<u64>>,
+}
+
+/// A `[[net]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawNet {
+    pub name: Name,
+    pub file: Name,
+    #[serde(default)]
+    pub constraints: Option<Name>,
+    #[serde(default)]
+    pub transform: Option<Spanned<bool>>,
+    /// The most markings the reachability analysis may reach (default
+    /// [`des::petri::reach::DEFAULT_MAX_STATES`]).
+    #[serde(default)]
+    pub max_markings: Option<Spanned<u64>>,
 }
 
 /// `synthesize = { plants, specs, minimize, max_states }`.
@@ -302,7 +323,7 @@ impl<'de, T: Deserialize<'de>> Deserialize<'de> for RawPin<T> {
 }
 
 /// What serde calls our structs, and what a user should read instead.
-const STRUCT_NAMES: [(&str, &str); 11] = [
+const STRUCT_NAMES: [(&str, &str); 12] = [
     ("struct RawProject", "a project file"),
     ("struct RawPlc", "the `[plc]` table"),
     (
@@ -322,6 +343,7 @@ const STRUCT_NAMES: [(&str, &str); 11] = [
         "an event table such as `{ rising = \"x\" }`",
     ),
     ("struct RawSupervisor", "a supervisor table"),
+    ("struct RawNet", "a net table"),
     (
         "struct RawSynthesize",
         "a table such as `{ plants = [...], specs = [...] }`",

@@ -27,8 +27,8 @@
 //! printed it could inject a `cargo:` directive into their build.
 
 use super::locate::ProjectFile;
-use super::model::SupervisorSource;
-use super::parse::{names, Name, RawSupervisor};
+use super::model::{NetSource, SupervisorSource};
+use super::parse::{names, Name, RawNet, RawSupervisor};
 use crate::automaton::{Alphabet, Automaton};
 use crate::build::printable_path;
 use crate::error::{Error, Result};
@@ -59,10 +59,25 @@ pub(crate) struct LoadedSupervisor {
     pub origins: Vec<ModelOrigin>,
 }
 
+/// A `[[net]]` as read (and synthesised), analysed, not yet checked
+/// against the project.
+pub(crate) struct LoadedNet {
+    /// The net to run.
+    pub net: des::petri::PetriNet,
+    /// Where it came from.
+    pub source: NetSource,
+    /// Its reachability graph's figures.
+    pub reach: des::petri::reach::Reachability,
+    /// The control places added by synthesis.
+    pub control_places: usize,
+}
+
 /// What the files of a project hold.
 pub(crate) struct Sources {
     /// One per `[[supervisor]]`, in declaration order.
     pub supervisors: Vec<LoadedSupervisor>,
+    /// One per `[[net]]`, in declaration order.
+    pub nets: Vec<LoadedNet>,
     /// Every file the project is built from: the project file, then each
     /// model file in the order it was first read.
     pub files: Vec<PathBuf>,
@@ -72,6 +87,7 @@ pub(crate) struct Sources {
 /// `project`.
 pub(crate) fn load(
     supervisors: &[Spanned<RawSupervisor>],
+    nets: &[Spanned<RawNet>],
     project: &ProjectFile,
 ) -> Result<Sources> {
     let mut loader = Loader {
@@ -87,8 +103,13 @@ pub(crate) fn load(
         .iter()
         .map(|sup| loader.supervisor(sup))
         .collect::<Result<_>>()?;
+    let nets = nets
+        .iter()
+        .map(|net| loader.net(net))
+        .collect::<Result<_>>()?;
     Ok(Sources {
         supervisors,
+        nets,
         files: loader.files,
     })
 }
@@ -159,6 +180,110 @@ impl Loader<'_> {
                 }
                 self.synthesize(synth)
             }
+        }
+    }
+
+    /// The net of a `[[net]]`: read, its control places synthesised when
+    /// it has `constraints`, and its reachability graph explored (the
+    /// counters' widths come from the bounds, so an unbounded net, or one
+    /// beyond `max_markings`, is refused here).
+    fn net(&mut self, raw: &Spanned<RawNet>) -> Result<LoadedNet> {
+        use des::petri::{self, reach};
+        let r = raw.get_ref();
+        let file = &r.file;
+        let path = self.dir.join(file.get_ref());
+        let plant = self.read_net(&path, &file.span())?;
+        let (net, source, control_places) = match &r.constraints {
+            None => {
+                if let Some(t) = &r.transform {
+                    return Err(self.error(
+                        &t.span(),
+                        "`transform` applies to `constraints`; this net has none",
+                    ));
+                }
+                (plant, NetSource::File(path), 0)
+            }
+            Some(c) => {
+                let constraints_path = self.dir.join(c.get_ref());
+                self.check_printable(&constraints_path, &c.span(), None)?;
+                self.depend_on(&constraints_path);
+                let constraints = petri::constraints::read_file(&constraints_path, &plant)
+                    .map_err(|e| self.located_io(e, &c.span(), "constraints", ".toml"))?;
+                let transform = r.transform.as_ref().is_some_and(|t| *t.get_ref());
+                let enforced = if transform {
+                    constraints
+                        .iter()
+                        .map(|c| {
+                            petri::admissible::make_admissible(&plant, c)
+                                .map_err(|why| Error::model(c.location.clone(), why))
+                        })
+                        .collect::<Result<Vec<_>>>()?
+                } else {
+                    constraints
+                };
+                let supervised = petri::synth::synthesize(&plant, &enforced)?;
+                let source = NetSource::Synthesized {
+                    plant: path,
+                    constraints: constraints_path,
+                    transform,
+                };
+                (supervised.net, source, supervised.control.len())
+            }
+        };
+        let max = match &r.max_markings {
+            None => reach::DEFAULT_MAX_STATES,
+            Some(n) => match usize::try_from(*n.get_ref()) {
+                Ok(n) if n > 0 => n,
+                _ => {
+                    return Err(self.error(
+                        &n.span(),
+                        "max_markings must be a positive number of markings",
+                    ))
+                }
+            },
+        };
+        let reach = reach::reachability(&net, max).map_err(|e| match e {
+            Error::Incompatible(message) => self.error(
+                &raw.span(),
+                format!(
+                    "net `{}`: {message}; a net runs with a counter per place, so it must be bounded",
+                    r.name.get_ref()
+                ),
+            ),
+            other => other,
+        })?;
+        Ok(LoadedNet {
+            net,
+            source,
+            reach,
+            control_places,
+        })
+    }
+
+    /// Reads a net file named at `span` (`.toml` or `.pnml`).
+    fn read_net(&mut self, file: &Path, span: &Range<usize>) -> Result<des::petri::PetriNet> {
+        self.check_printable(file, span, None)?;
+        self.depend_on(file);
+        des::petri::read_file(file).map_err(|e| self.located_io(e, span, "net", ".toml or .pnml"))
+    }
+
+    /// An I/O or format error of a file named at `span`, located there;
+    /// errors inside the file unchanged.
+    /// `what` is the kind of file (`model`), `expected` its extensions.
+    fn located_io(&self, e: Error, span: &Range<usize>, what: &str, expected: &str) -> Error {
+        match e {
+            Error::Io { path, source } => self.error(
+                span,
+                format!("cannot read {what} file `{}`: {source}", path.display()),
+            ),
+            Error::UnknownFormat { path } => self.error(
+                span,
+                format!(
+                    "`{}`: unknown {what} format (expected {expected})",
+                    path.display()
+                ),
+            ),
+            other => other,
         }
     }
 
@@ -255,20 +380,8 @@ impl Loader<'_> {
     fn read_model(&mut self, file: &Path, span: &Range<usize>) -> Result<Vec<Component>> {
         self.check_printable(file, span, None)?;
         self.depend_on(file);
-        formats::read_file(file).map_err(|e| match e {
-            Error::Io { path, source } => self.error(
-                span,
-                format!("cannot read model file `{}`: {source}", path.display()),
-            ),
-            Error::UnknownFormat { path } => self.error(
-                span,
-                format!(
-                    "`{}`: unknown model format (expected .toml, .gen, .ads or .wmod)",
-                    path.display()
-                ),
-            ),
-            other => other,
-        })
+        formats::read_file(file)
+            .map_err(|e| self.located_io(e, span, "model", ".toml, .gen, .ads or .wmod"))
     }
 
     /// Picks the supervisor among a file's components.

@@ -133,6 +133,7 @@ fn ring_config(rom_test_bytes_per_scan: u16) -> Config<'static> {
         state_map: &[StateMapEntry {
             supervisor: 0,
             state: 0,
+            mask: u32::MAX,
         }],
     }
 }
@@ -331,6 +332,7 @@ fn every_pool() -> TableProgram<'static> {
         state_map: &[StateMapEntry {
             supervisor: 11,
             state: 12,
+            mask: u32::MAX,
         }],
         ..ring_config(8)
     };
@@ -385,7 +387,8 @@ fn the_crc_is_crc32_mpeg2_over_the_documented_words() {
         // input masks, event lists, event masks
         0x11, 0x22, 5, 6, 7, 8, 0x33, 0x44, 0x55,
         // start timer 0; supervisor 9's local event 10; state map
-        2 << 16, 9 | 10 << 16, 11, 12,
+        // (supervisor, state, mask)
+        2 << 16, 9 | 10 << 16, 11, 12, u32::MAX,
         // table header: events, state bits, sparse, start bits, lengths
         2, 2, 1, 2, 1, 1, 1,
         // defined, targets, row starts
@@ -450,7 +453,8 @@ fn every_field_of_the_configuration_and_tables_is_in_the_image() {
         ("event masks", with(Config { event_masks: leak(vec![0x33, 0x44, 0x56]), ..c })),
         ("action", with(Config { actions: one(Action::Reset(0)), ..c })),
         ("membership", with(Config { memberships: one(Membership { supervisor: 9, local: 11 }), ..c })),
-        ("state map", with(Config { state_map: one(StateMapEntry { supervisor: 11, state: 13 }), ..c })),
+        ("state map", with(Config { state_map: one(StateMapEntry { supervisor: 11, state: 13, mask: u32::MAX }), ..c })),
+        ("state map mask", with(Config { state_map: one(StateMapEntry { supervisor: 11, state: 12, mask: 14 }), ..c })),
         ("table events", with_table(SupervisorTable { events: 3, ..table })),
         ("state bits", with_table(SupervisorTable { state_bits: 3, ..table })),
         ("defined", with_table(SupervisorTable { defined: &[0x1b], ..table })),
@@ -458,6 +462,7 @@ fn every_field_of_the_configuration_and_tables_is_in_the_image() {
         ("row starts", with_table(SupervisorTable { rows: Rows::Sparse { row_starts: &[0x25], start_bits: 2 }, ..table })),
         ("start bits", with_table(SupervisorTable { rows: Rows::Sparse { row_starts: &[0x24], start_bits: 3 }, ..table })),
         ("layout", with_table(SupervisorTable { rows: Rows::Dense, ..table })),
+        ("net layout", with_table(SupervisorTable { rows: Rows::Net { fields: &[0x24] }, ..table })),
         ("no table", TableProgram { tables: &[], ..p }),
     ];
     let mut seen = std::collections::BTreeMap::new();

@@ -17,7 +17,7 @@
 //!
 //! What an event does is checked in [`super::actions`].
 
-use super::super::model::{Action, Event, Input, Origin, Supervisor, Switch, Timer, Trigger};
+use super::super::model::{Action, Event, Input, Net, Origin, Supervisor, Switch, Timer, Trigger};
 use super::super::parse::{names, Entries, Name, Names, RawEvent};
 use super::outputs::OutputUse;
 use super::{Declared, Validator};
@@ -208,10 +208,16 @@ impl Validator<'_> {
         &mut self,
         events: &Declared<Event>,
         supervisors: &[Supervisor],
+        nets: &[Net],
     ) -> Result<()> {
         let mut in_alphabet = vec![false; events.items.len()];
         for sup in supervisors {
             for &(g, _) in &sup.local_events {
+                in_alphabet[g] = true;
+            }
+        }
+        for net in nets {
+            for &g in &net.events {
                 in_alphabet[g] = true;
             }
         }

@@ -15,7 +15,8 @@
 //! - [`outputs`], [`switches`], [`state_maps`]: how outputs are driven;
 //! - [`events`]: sources and conditions, events no supervisor knows;
 //!   [`actions`]: what an event does, and in which order;
-//! - [`supervisors`]: supervisors against the declared events;
+//! - [`supervisors`]: supervisors against the declared events; [`nets`]:
+//!   Petri nets against them, and their counters;
 //! - [`board`]: the `[board]` pin map.
 //!
 //! # Order of passes
@@ -42,6 +43,7 @@ pub mod actions;
 pub mod board;
 pub mod events;
 pub mod names;
+pub mod nets;
 pub mod numbers;
 pub mod outputs;
 pub mod plc;
@@ -149,8 +151,9 @@ impl Validator<'_> {
         };
         let events = self.events(&raw.events, &env, &mut output_uses)?;
         let supervisors = self.supervisors(&raw.supervisor, sources.supervisors, &events)?;
-        self.events_no_supervisor_knows(&events, &supervisors.items)?;
-        let outputs = self.outputs(&raw.outputs, &output_uses.items, &supervisors)?;
+        let nets = self.nets(&raw.net, sources.nets, &events)?;
+        self.events_no_supervisor_knows(&events, &supervisors.items, &nets.items)?;
+        let outputs = self.outputs(&raw.outputs, &output_uses.items, &supervisors, &nets)?;
         self.timers_nothing_starts(&timers, &events.items);
         let board = self.board(
             raw.board.as_ref(),
@@ -176,6 +179,7 @@ impl Validator<'_> {
             switches: switches.items,
             events: events.items,
             supervisors: supervisors.items,
+            nets: nets.items,
             board,
             warnings: std::mem::take(&mut self.warnings),
             files: sources.files,

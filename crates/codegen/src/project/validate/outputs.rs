@@ -1,13 +1,15 @@
 //! Outputs: what drives each one.
 //!
-//! An output is driven by actions (`set`, `clear`, switch positions) or by
-//! a state map ([`super::state_maps`]), never both. An output belongs to at
+//! An output is driven by actions (`set`, `clear`, switch positions), by
+//! a state map ([`super::state_maps`]) or by a place map (1 while a listed
+//! place of a `[[net]]` holds a token), never two of these. An output
+//! belongs to at
 //! most one switch, and an output of a switch is driven only through that
 //! switch (never by `set` or `clear`), so the switch always knows its
 //! position ([`super::switches`], [`super::actions`]). An output with a
 //! state map takes no `initial`. An output driven by nothing is a warning.
 
-use super::super::model::{Drive, Output, Supervisor};
+use super::super::model::{Drive, Net, Output, Supervisor};
 use super::super::parse::{Entries, Name, RawOutput};
 use super::{Declared, Validator};
 use crate::error::Result;
@@ -34,17 +36,31 @@ impl Validator<'_> {
         for (name, decl) in &raw.0 {
             self.claim("output", name.get_ref(), &name.span())?;
             let decl = decl.get_ref();
-            if let (Some(_), Some(initial)) = (&decl.states, &decl.initial) {
+            if let (Some(_), Some(places)) = (&decl.states, &decl.places) {
+                return Err(self.error(
+                    &places.span(),
+                    format!(
+                        "output `{}` has a state map: it is driven by states or by places, not both (output driven twice)",
+                        name.get_ref()
+                    ),
+                ));
+            }
+            let map = decl.states.as_ref().or(decl.places.as_ref());
+            if let (Some(_), Some(initial)) = (map, &decl.initial) {
+                let (kind, follows) = match decl.states {
+                    Some(_) => ("state", "the supervisor states"),
+                    None => ("place", "the net's marking"),
+                };
                 return Err(self.error(
                     &initial.span(),
                     format!(
-                        "output `{}` has a state map (a Moore output): it takes no `initial`, its level follows the supervisor states",
+                        "output `{}` has a {kind} map (a Moore output): it takes no `initial`, its level follows {follows}",
                         name.get_ref()
                     ),
                 ));
             }
             let usage = OutputUse {
-                state_map: decl.states.as_ref().map(Spanned::span),
+                state_map: map.map(Spanned::span),
                 switch: None,
                 acted_on: false,
             };
@@ -74,13 +90,15 @@ impl Validator<'_> {
         raw: &Entries<RawOutput>,
         uses: &[OutputUse],
         supervisors: &Declared<Supervisor>,
+        nets: &Declared<Net>,
     ) -> Result<Vec<Output>> {
         let mut outputs = Vec::with_capacity(uses.len());
         for ((name, decl), usage) in raw.0.iter().zip(uses) {
             let decl = decl.get_ref();
-            let drive = match &decl.states {
-                Some(map) => Drive::States(self.state_map(name, map, supervisors)?),
-                None => {
+            let drive = match (&decl.states, &decl.places) {
+                (Some(map), _) => Drive::States(self.state_map(name, map, supervisors)?),
+                (None, Some(map)) => Drive::Places(self.place_map(name, map, nets)?),
+                (None, None) => {
                     if usage.switch.is_none() && !usage.acted_on {
                         self.warn(
                             &name.span(),

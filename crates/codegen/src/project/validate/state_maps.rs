@@ -4,8 +4,12 @@
 //! A state map names at least one supervisor, and at least one state of
 //! each; every supervisor is declared and every state is one of its
 //! automaton's (by name). A state listed twice counts once.
+//!
+//! A place map (`places = { net = ["p1", …] }`) is the same for Petri
+//! nets: at least one place of each listed net, every place one of the
+//! net's by id; the output is 1 while some listed place holds a token.
 
-use super::super::model::Supervisor;
+use super::super::model::{Net, Supervisor};
 use super::super::parse::{names, Entries, Name, Names};
 use super::{Declared, Validator};
 use crate::automaton::StateId;
@@ -61,6 +65,51 @@ impl Validator<'_> {
                 }
             }
             entries.push((j, ids));
+        }
+        Ok(entries)
+    }
+
+    /// The place map `map` of `output`: (net index, its places).
+    pub(super) fn place_map(
+        &self,
+        output: &Name,
+        map: &Spanned<Entries<Names>>,
+        nets: &Declared<Net>,
+    ) -> Result<Vec<(usize, Vec<usize>)>> {
+        let out = output.get_ref();
+        if map.get_ref().0.is_empty() {
+            return Err(self.error(
+                &map.span(),
+                format!("the place map of output `{out}` names no place; a place map must name at least one place"),
+            ));
+        }
+        let mut entries = Vec::new();
+        for (net_name, places) in &map.get_ref().0 {
+            let n = self.resolve(nets, net_name)?;
+            let net = &nets.items[n];
+            let list = names(Some(places));
+            if list.is_empty() {
+                return Err(self.error(
+                    &places.span(),
+                    format!(
+                        "the place map of output `{out}` lists no place of net `{}`; a place map must name at least one place",
+                        net.name
+                    ),
+                ));
+            }
+            let mut ids: Vec<usize> = Vec::with_capacity(list.len());
+            for place in &list {
+                let p = net.net.place(place.get_ref()).ok_or_else(|| {
+                    self.error(
+                        &place.span(),
+                        format!("net `{}` has no place `{}`", net.name, place.get_ref()),
+                    )
+                })?;
+                if !ids.contains(&p) {
+                    ids.push(p);
+                }
+            }
+            entries.push((n, ids));
         }
         Ok(entries)
     }
