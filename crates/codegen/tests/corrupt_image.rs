@@ -276,6 +276,70 @@ fn an_image_with_a_matching_crc_but_a_broken_structure_is_corrupt_from_start_up(
     }
 }
 
+/// The mixers of seed D (`models/petri/mixers.plc.toml`, one net group of
+/// ten 1-bit counters) with `corrupt` applied and its CRC recomputed.
+fn mixers_rewritten(corrupt: impl FnOnce(&mut TableImage)) -> TableImage {
+    let mut image = TableImage::new(&model("petri/mixers.plc.toml")).unwrap();
+    assert_eq!(validate(&image), Ok(()), "the intact net image");
+    corrupt(&mut image);
+    image.crc = image.computed_crc();
+    image
+}
+
+#[test]
+fn a_net_image_with_a_matching_crc_but_a_broken_structure_is_corrupt_from_start_up() {
+    let at = |part, flaw| Err(Invalid { part, flaw });
+    let cases: Vec<(&str, TableImage, Result<(), Invalid>)> = vec![
+        (
+            "two counters sharing a bit",
+            mixers_rewritten(|p| p.tables[0].row_starts[1] = 0b11),
+            at(Part::Table(0), Flaw::Fields),
+        ),
+        (
+            "a counter whose bits are not contiguous",
+            mixers_rewritten(|p| p.tables[0].row_starts[1] = 0b1010),
+            at(Part::Table(0), Flaw::Fields),
+        ),
+        (
+            "a counter left out (a bit of the state in no field)",
+            mixers_rewritten(|p| {
+                p.tables[0].row_starts.pop();
+            }),
+            at(Part::Table(0), Flaw::Fields),
+        ),
+        (
+            "a state width that does not match the states",
+            mixers_rewritten(|p| p.tables[0].state_bits = 11),
+            at(Part::Table(0), Flaw::StateBits),
+        ),
+        (
+            "a PRE word with a bit past the fields",
+            mixers_rewritten(|p| p.tables[0].defined[2] |= 1 << 12),
+            at(Part::Table(0), Flaw::Arcs { local: 2 }),
+        ),
+        (
+            "a POST word missing",
+            mixers_rewritten(|p| {
+                p.tables[0].targets.pop();
+            }),
+            at(Part::Table(0), Flaw::TableLength),
+        ),
+        (
+            "a place map entry with bits outside its mask",
+            mixers_rewritten(|p| p.pools.state_map[0].state |= 1),
+            at(Part::StateMap(0), Flaw::StateMask),
+        ),
+    ];
+    for (what, image, flaw) in &cases {
+        assert_eq!(validate(image), *flaw, "{what}");
+        let mut c = Controller::new(image, HeapMemory::for_config(&image.config())).unwrap();
+        assert_eq!(c.fault(), Some(Fault::Corrupt), "{what}");
+        let r = c.scan(0, &[true; 8]);
+        assert!(r.outputs.iter().all(|&o| !o), "{what}: the safe image");
+        assert!(r.executed.is_empty(), "{what}");
+    }
+}
+
 /// The body of the `fuzz_image` target (`crates/executor/fuzz`): an image
 /// corrupted as its input says (under the old CRC or a recomputed one),
 /// then scans at times and with raw inputs the input chooses.

@@ -30,12 +30,14 @@ use std::path::Path;
 
 /// The seed projects (under `models/`): sensors and Moore outputs (press),
 /// commands with request inputs and two supervisors (crane), a timer and
-/// actions (conveyor), eight supervisors, switches and timers (boiler).
-pub const SEED_PROJECTS: [&str; 4] = [
+/// actions (conveyor), eight supervisors, switches and timers (boiler), a
+/// Petri net in the net layout with place maps (mixers).
+pub const SEED_PROJECTS: [&str; 5] = [
     "press.plc.toml",
     "crane.plc.toml",
     "conveyor.plc.toml",
     "boiler/boiler.plc.toml",
+    "petri/mixers.plc.toml",
 ];
 
 /// The table images of [`SEED_PROJECTS`], `models` being the repository's

@@ -1,0 +1,176 @@
+//! `[[net]]` in PLC projects: nets read or synthesised, checked against
+//! the events, laid out as counters; every refusal at its line.
+
+mod common;
+
+use codegen::image::TableImage;
+use codegen::project::{Drive, NetSource};
+use common::{assert_errors_at_marked_lines, load_err, load_ok};
+use executor::memory::HeapMemory;
+use executor::{Controller, Program};
+
+/// The events of `nets/two.toml`: `go` a command, `done` on a rising edge.
+const EVENTS: &str = "[inputs]\nfinished = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"finished\" }\n";
+
+#[test]
+fn a_net_with_constraints_runs_as_counters_with_its_control_place() {
+    let p = load_ok(&format!(
+        "[plc]\nname = \"x\"\n{EVENTS}[outputs]\nrunning = {{ places = {{ two = [\"busy\"] }} }}\n[[net]]\nname = \"two\"\nfile = \"nets/two.toml\"\nconstraints = \"nets/one_busy.constraints.toml\"\n"
+    ));
+    let net = &p.nets[0];
+    assert!(matches!(
+        net.source,
+        NetSource::Synthesized {
+            transform: false,
+            ..
+        }
+    ));
+    assert_eq!(net.control_places, 1);
+    // free ≤ 2 (2 bits), busy ≤ 1, the control place ≤ 1: 4 bits, one group.
+    assert_eq!(net.bounds, [2, 1, 1]);
+    assert_eq!(net.group_bits, [4]);
+    assert_eq!(net.events, [0, 1]);
+    assert_eq!(p.outputs[0].drive, Drive::Places(vec![(0, vec![1])]));
+    assert_eq!(p.executor_supervisors(), 1);
+    assert_eq!(p.supervisor_name(0), "two");
+    assert_eq!(
+        p.state_name(0, net.pack(0, net.net.initial())),
+        "2·free + c1"
+    );
+
+    // Run it: `go` once (the control place allows one busy machine),
+    // then nothing until `done`.
+    let image = TableImage::new(&p).unwrap();
+    let mut c = Controller::new(&image, HeapMemory::for_config(&image.config())).unwrap();
+    let r = c.scan(0, &[false]);
+    assert_eq!(r.executed, [0]);
+    assert_eq!(r.outputs, [true]);
+    assert_eq!(p.state_name(0, r.states[0]), "free + busy");
+    let r = c.scan(10, &[false]);
+    assert!(
+        r.executed.is_empty(),
+        "the control place holds the second start"
+    );
+    let r = c.scan(20, &[true]);
+    assert_eq!(r.executed, [1, 0], "done, then go again");
+    assert_eq!(p.state_name(0, r.states[0]), "free + busy");
+}
+
+#[test]
+fn an_uncontrollable_transition_the_net_does_not_enable_is_unexpected() {
+    let p = load_ok(
+        "[plc]\nname = \"x\"\n[inputs]\nfinished = {}\nstart = {}\n[events]\ngo = { controllable = true, request = \"start\" }\ndone = { rising = \"finished\" }\n[[net]]\nname = \"two\"\nfile = \"nets/two.toml\"\n",
+    );
+    let image = TableImage::new(&p).unwrap();
+    let mut c = Controller::new(&image, HeapMemory::for_config(&image.config())).unwrap();
+    assert!(c.scan(0, &[false, false]).executed.is_empty());
+    // `done` with no machine busy: the net does not enable it.
+    let r = c.scan(10, &[true, false]);
+    assert_eq!(r.unexpected, [1]);
+    assert_eq!(c.fault(), Some(executor::Fault::Unexpected { event: 1 }));
+}
+
+#[test]
+fn dead_markings_are_a_warning_with_a_firing_sequence() {
+    let p = load_ok(
+        "[plc]\nname = \"x\"\n[events]\ngo = { controllable = true }\n[[net]]\nname = \"d\"\nfile = \"nets/dead.toml\"\n",
+    );
+    assert_eq!(p.warnings.len(), 1, "{:?}", p.warnings);
+    assert_eq!(p.warnings[0].line, 5);
+    assert!(
+        p.warnings[0]
+            .message
+            .contains("1 dead marking(s), e.g. b after go"),
+        "{}",
+        p.warnings[0].message
+    );
+}
+
+#[test]
+fn every_net_rule_rejects_its_violation_at_the_offending_line() {
+    let net = "[[net]]\nname = \"two\"\nfile = \"nets/two.toml\"\n";
+    let cases: Vec<(String, &str)> = vec![
+        (
+            "[plc]\nname = \"x\"\n[events]\ngo = { controllable = true }\n[[net]] # <-\nname = \"two\"\nfile = \"nets/two.toml\"\n".to_owned(),
+            "transition `done` of net `two` (`",
+        ),
+        (
+            format!("[plc]\nname = \"x\"\n[inputs]\nf = {{}}\n[events]\ngo = {{ rising = \"f\" }} # <-\ndone = {{ rising = \"f\" }}\n{net}"),
+            "event `go` is uncontrollable here but controllable in net `two`",
+        ),
+        (
+            "[plc]\nname = \"x\"\n[inputs]\nf = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"f\" }\n[[net]] # <-\nname = \"h\"\nfile = \"nets/hidden.toml\"\n".to_owned(),
+            "transition `done` of net `h` (`",
+        ),
+        (
+            "[plc]\nname = \"x\"\n[events]\ngo = { controllable = true }\n[[net]] # <-\nname = \"u\"\nfile = \"nets/unbounded.toml\"\n".to_owned(),
+            "net `u`: ",
+        ),
+        (
+            "[plc]\nname = \"x\"\n[events]\ngo = { controllable = true }\n[[net]]\nname = \"u\"\nfile = \"nets/unbounded.toml\"\nmax_markings = 0 # <-\n".to_owned(),
+            "max_markings must be a positive number of markings",
+        ),
+        (
+            format!("[plc]\nname = \"x\"\n{EVENTS}[[net]]\nname = \"two\"\nfile = \"nets/missing.toml\" # <-\n"),
+            "cannot read net file `",
+        ),
+        (
+            format!("[plc]\nname = \"x\"\n{EVENTS}[[net]]\nname = \"two\"\nfile = \"nets/two.toml\"\ntransform = true # <-\n"),
+            "`transform` applies to `constraints`; this net has none",
+        ),
+        (
+            format!("[plc]\nname = \"x\"\n{EVENTS}[outputs]\nlamp = {{ places = {{ two = [\"idle\"] }} }} # <-\n{net}"),
+            "net `two` has no place `idle`",
+        ),
+        (
+            format!("[plc]\nname = \"x\"\n{EVENTS}[outputs]\nlamp = {{ places = {{ other = [\"busy\"] }} }} # <-\n{net}"),
+            "unknown net `other`",
+        ),
+        (
+            format!("[plc]\nname = \"x\"\n{EVENTS}[outputs]\nlamp = {{ initial = true, places = {{ two = [\"busy\"] }} }} # <-\n{net}"),
+            "output `lamp` has a place map (a Moore output): it takes no `initial`",
+        ),
+        (
+            format!("[plc]\nname = \"x\"\n{EVENTS}[outputs]\nlamp = {{}}\n[[net]]\nname = \"lamp\" # <-\nfile = \"nets/two.toml\"\n"),
+            "lamp",
+        ),
+    ];
+    assert_errors_at_marked_lines(cases);
+}
+
+#[test]
+fn an_inadmissible_constraint_is_refused_in_its_file_or_transformed() {
+    let text = |transform: &str| {
+        format!("[plc]\nname = \"x\"\n{EVENTS}[[net]]\nname = \"two\"\nfile = \"nets/two.toml\"\nconstraints = \"nets/no_free.constraints.toml\"\n{transform}")
+    };
+    let msg = load_err(&text(""));
+    assert!(msg.contains("no_free.constraints.toml:"), "{msg}");
+    assert!(msg.contains("`done`"), "{msg}");
+    // free ≤ 2 through `done` (uncontrollable) is free + busy ≤ 2 once
+    // transformed, which the net keeps by itself: both machines start.
+    let p = load_ok(&text("transform = true\n"));
+    assert_eq!(p.nets[0].control_places, 1);
+    let image = TableImage::new(&p).unwrap();
+    let mut c = Controller::new(&image, HeapMemory::for_config(&image.config())).unwrap();
+    assert_eq!(c.scan(0, &[false]).executed, [0]);
+    let r = c.scan(10, &[false]);
+    assert_eq!(r.executed, [0]);
+    assert_eq!(p.state_name(0, r.states[0]), "2·busy");
+}
+
+#[test]
+fn nets_run_on_the_table_backend_only() {
+    let p = load_ok(&format!(
+        "[plc]\nname = \"x\"\n{EVENTS}[[net]]\nname = \"two\"\nfile = \"nets/two.toml\"\n"
+    ));
+    for backend in [codegen::emit::Backend::Logic, codegen::emit::Backend::Match] {
+        let msg = codegen::emit::generate(&p, backend, "")
+            .unwrap_err()
+            .to_string();
+        assert!(msg.contains("t.plc.toml:8:"), "{msg}");
+        assert!(
+            msg.contains("Petri nets run on the table backend only"),
+            "{msg}"
+        );
+    }
+}
