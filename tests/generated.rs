@@ -62,6 +62,7 @@ generated!(
     hostile_table,
     hostile_logic,
     hostile_match,
+    mixers_table,
 );
 
 // The random name cases (`build_names.rs`): `generated!` over their
@@ -217,6 +218,7 @@ conformance! {
     press7_match: "press7", Match, [PRESS], &[];
     conveyor_match: "conveyor", Match, [CONVEYOR], CONVEYOR_NEVER;
     crane_match: "crane", Match, [SUP_CRANE1, SUP_SECTION], &[];
+    mixers_table: "petri/mixers", Table, [], &[];
 }
 
 /// Input sequences per model and backend: (seed, activity), each of
@@ -506,9 +508,12 @@ fn check<P: Program + 'static, M: Memory>(g: Generated<P, M>) {
         names(p.events.iter().map(|x| x.name.as_str()).collect()),
         "{what}: event names"
     );
+    // Automata, then the groups of every Petri net.
     assert_eq!(
         owned(g.supervisors),
-        names(p.supervisors.iter().map(|x| x.name.as_str()).collect()),
+        (0..p.executor_supervisors())
+            .map(|j| p.supervisor_name(j))
+            .collect::<Vec<_>>(),
         "{what}: supervisor names"
     );
     assert_eq!(
@@ -518,7 +523,7 @@ fn check<P: Program + 'static, M: Memory>(g: Generated<P, M>) {
             p.outputs.len(),
             p.timers.len(),
             p.events.len(),
-            p.supervisors.len()
+            p.executor_supervisors()
         ],
         "{what}: COUNT constants"
     );
@@ -640,8 +645,11 @@ fn check<P: Program + 'static, M: Memory>(g: Generated<P, M>) {
             sup.name
         );
     }
+    // A project can fault only on an uncontrollable event (the mixers'
+    // transitions are all commands) and leave fault mode only by a reset.
+    let can_fault = p.events.iter().any(|e| !e.controllable);
     assert!(
-        coverage.faults > 0 && coverage.resets > 0,
+        !can_fault || coverage.faults > 0 && (p.reset.is_none() || coverage.resets > 0),
         "{what}: {} faults and {} resets; the stimuli should cause both",
         coverage.faults,
         coverage.resets
