@@ -65,7 +65,7 @@ fn two_batches_started_together_both_complete_where_the_paper_deadlocks() {
     let both = Operator::new()
         .press(1_000, Unit::A, 1_000)
         .press(1_000, Unit::B, 1_000);
-    let run = run(&both, 120);
+    let run = run(&both, 24);
     assert_eq!(run.batches(Unit::A).len(), 1, "events: {:?}", run.events);
     assert_eq!(run.batches(Unit::B).len(), 1, "events: {:?}", run.events);
     // Both starts in the first scan, then mixing tank a takes substance B
@@ -79,6 +79,26 @@ fn two_batches_started_together_both_complete_where_the_paper_deadlocks() {
         .collect();
     assert_eq!(first, ["t_ra8", "t_rb8", "t_ma2", "t_mb1"]);
     assert_eq!(run.marking, "ra13+rb13+c1+c2+c3+c4+c5");
+
+    // Its inputs replayed open loop give the same events: the scenario the
+    // QEMU harness replays (`cargo xtask qemu cell <this file>`).
+    let csv = run.inputs_csv(project()).unwrap();
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cell-two-batches.inputs.csv");
+    std::fs::write(&path, &csv).unwrap();
+    let rows = host_sim::inputs::parse(&csv, &path, project()).unwrap();
+    let mut sim = Sim::new(project().clone(), Backend::Table).unwrap();
+    let mut events = Vec::new();
+    for r in &rows {
+        let row = sim.scan_with(r.time_ms, &r.values).unwrap();
+        events.extend(row.events.iter().map(|e| (r.time_ms, e.clone())));
+    }
+    assert_eq!(events, run.events);
+    println!(
+        "two batches: {} scans, last event at {} s; inputs in {}",
+        run.scans,
+        run.last_event_ms() / 1000,
+        path.display()
+    );
 }
 
 #[test]
@@ -190,15 +210,59 @@ fn the_timed_net_is_the_paper_net_with_uncontrollable_timers() {
     assert_eq!(project().nets[0].control_places, 5);
 }
 
-/// The project `cell.plc.toml` with its `[[net]]` table's lines replaced
-/// by `net`, written into `dir` (model files by absolute path).
-fn variant(dir: &Path, net: &str) -> Project {
+/// The project `cell.plc.toml` with its `[[net]]` table replaced by
+/// `table` (model files by absolute path) and each line of its text
+/// passed through `edit`, written into `dir` and loaded.
+fn variant_with(dir: &Path, table: &str, edit: &dyn Fn(&str) -> String) -> Project {
     let text = std::fs::read_to_string(cell_dir().join("cell.plc.toml")).unwrap();
     let (head, tail) = text.split_once("[[net]]").unwrap();
     let board = &tail[tail.find("\n# Nucleo").unwrap()..];
+    let head: String = head.lines().map(|l| edit(l) + "\n").collect();
     let path = dir.join("variant.plc.toml");
-    std::fs::write(&path, format!("{head}{net}\n{board}")).unwrap();
+    std::fs::write(&path, format!("{head}{table}\n{board}")).unwrap();
     codegen::project::load(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// [`variant_with`] the rest of the project as it is.
+fn variant(dir: &Path, table: &str) -> Project {
+    variant_with(dir, table, &|line| line.to_owned())
+}
+
+/// The same cell with its supervisor as an automaton: the reachability
+/// graph of the controlled net (`codegen petri reach`; its states are
+/// named by their markings), each output's place map turned into the
+/// state map of the markings that mark the place.
+fn automaton_project(dir: &Path) -> Project {
+    use codegen::formats::{self, Component, Kind};
+    let net = &project().nets[0].net;
+    let reach = codegen::des::petri::reach::reachability(net, 100_000).unwrap();
+    let file = dir.join("cell.supervisor.toml");
+    let supervisor = Component {
+        kind: Kind::Supervisor,
+        automaton: reach.automaton.clone(),
+    };
+    formats::write_file(&file, &[supervisor]).unwrap();
+    let state_map = |line: &str| {
+        let Some((output, rest)) = line.split_once(" = { places = { cell = [\"") else {
+            return line.to_owned();
+        };
+        let place = net.place(rest.split('"').next().unwrap()).unwrap();
+        let states: Vec<String> = (0..reach.markings.len())
+            .filter(|&i| reach.markings[i][place] > 0)
+            .map(|i| {
+                format!(
+                    "{:?}",
+                    reach.automaton.state_name(codegen::StateId(i as u32))
+                )
+            })
+            .collect();
+        format!(
+            "{output} = {{ states = {{ cell = [{}] }} }}",
+            states.join(", ")
+        )
+    };
+    let table = format!("[[supervisor]]\nname = \"cell\"\nfile = {file:?}\n");
+    variant_with(dir, &table, &state_map)
 }
 
 #[test]
@@ -235,4 +299,54 @@ fn without_a_supervisor_the_checks_catch_the_double_booked_filling_valve() {
         rules.contains(&&Rule::FillValveBooking(Unit::A)),
         "{rules:?}"
     );
+}
+
+#[test]
+fn the_controlled_net_runs_in_a_fraction_of_the_automaton_supervisors_image() {
+    // Kept after the test, for `cargo xtask qemu|size` on it.
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cell-automaton");
+    std::fs::create_dir_all(&dir).unwrap();
+    let automaton = automaton_project(&dir);
+    let figures = |p: &Project, states: usize| {
+        let generated = codegen::emit::generate(p, Backend::Table, "cell.rs").unwrap();
+        let tables: usize = generated.stats.iter().map(|s| s.table_bytes).sum();
+        (states, tables, generated.image.image_bytes)
+    };
+    let net = figures(project(), project().nets[0].markings);
+    let sup = figures(&automaton, automaton.supervisors[0].automaton.num_states());
+    println!("| supervisor | states | table bytes | image bytes |");
+    println!(
+        "| controlled net (5 control places) | {} | {} | {} |",
+        net.0, net.1, net.2
+    );
+    println!(
+        "| automaton (reachability graph) | {} | {} | {} |",
+        sup.0, sup.1, sup.2
+    );
+    // The same supervisor: as many markings as states ...
+    assert_eq!(net.0, sup.0);
+    // ... in fewer table bytes, and a fraction of the image: the
+    // automaton's outputs need state maps of the markings.
+    assert!(net.1 < sup.1, "{net:?} vs {sup:?}");
+    assert!(net.2 * 2 < sup.2, "{net:?} vs {sup:?}");
+
+    // And the same controller: two batches in closed loop give the same
+    // events and outputs scan by scan, and the automaton's states read as
+    // markings keep every invariant.
+    let both = Operator::new()
+        .press(1_000, Unit::A, 1_000)
+        .press(1_000, Unit::B, 1_000);
+    let params = CellParams::default();
+    let watch = Watch::of_project(project(), &params).unwrap();
+    let mut sim = Sim::new(automaton, Backend::Table).unwrap();
+    let mut plant = CellPlant::new(params);
+    let on_automaton = cell::run(&mut sim, &mut plant, &both, &watch, 24 * 60_000).unwrap();
+    let on_net = run(&both, 24);
+    assert!(
+        on_automaton.violations.is_empty(),
+        "{:?}",
+        on_automaton.violations
+    );
+    assert_eq!(on_automaton.events, on_net.events);
+    assert_eq!(on_automaton.commands, on_net.commands);
 }

@@ -167,6 +167,7 @@ pub fn run(
     let mut next = 0;
     let mut out = CellRun {
         max_reaction_temps: [f64::MIN; 2],
+        scan_period_ms: period,
         ..CellRun::default()
     };
     while plant.time_ms() < end {
@@ -178,7 +179,11 @@ pub fn run(
             plant.press(reactor, pressed);
             next += 1;
         }
-        io.write_inputs(&plant.sensors(), sim)?;
+        let sensors = plant.sensors();
+        io.write_inputs(&sensors, sim)?;
+        if out.sensors.last().is_none_or(|(_, s)| *s != sensors) {
+            out.sensors.push((plant.time_ms(), sensors));
+        }
         let row = sim.scan().clone();
         let commands = io.read_outputs(&row.outputs);
         out.events

@@ -4,7 +4,9 @@
 
 use super::invariants::Violation;
 use super::physics::CellState;
-use super::signals::{Commands, Unit};
+use super::signals::{CellIo, Commands, Sensors, Unit};
+use crate::inputs::{self, InputRow};
+use codegen::project::Project;
 
 /// A finished run.
 #[derive(Debug, Clone, Default)]
@@ -15,6 +17,11 @@ pub struct CellRun {
     pub events: Vec<(u64, String)>,
     /// The cell's output image at the first scan and whenever it changed.
     pub commands: Vec<(u64, Commands)>,
+    /// The switches and buttons the controller read, at the first scan
+    /// and whenever they changed.
+    pub sensors: Vec<(u64, Sensors)>,
+    /// The scan period, ms.
+    pub scan_period_ms: u64,
     /// Every broken invariant, scan by scan.
     pub violations: Vec<Violation>,
     /// The plant at the end.
@@ -65,6 +72,27 @@ impl CellRun {
             .zip(ends)
             .map(|(&start_ms, end_ms)| Batch { start_ms, end_ms })
             .collect()
+    }
+
+    /// The run's inputs as an `inputs.csv` for `project` (one row per
+    /// scan), to replay it elsewhere: `host-sim replay`, the QEMU harness.
+    pub fn inputs_csv(&self, project: &Project) -> Result<String, Vec<String>> {
+        let io = CellIo::new(project)?;
+        let mut rows = Vec::with_capacity(self.scans as usize);
+        let mut change = 0;
+        for k in 0..self.scans {
+            let time_ms = k * self.scan_period_ms;
+            while self
+                .sensors
+                .get(change + 1)
+                .is_some_and(|&(t, _)| t <= time_ms)
+            {
+                change += 1;
+            }
+            let values = io.raw_image(&self.sensors[change].1, project.inputs.len());
+            rows.push(InputRow { time_ms, values });
+        }
+        Ok(inputs::to_csv(project, &rows))
     }
 
     /// Time of the last executed event, 0 without one.

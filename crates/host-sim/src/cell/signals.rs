@@ -136,7 +136,7 @@ const REACTOR_INPUTS: [&str; 5] = [
 /// [`CellIo::output_names`].
 #[derive(Debug, Clone)]
 pub struct CellIo {
-    inputs: Vec<String>,
+    inputs: Vec<(String, usize)>,
     outputs: Vec<usize>,
 }
 
@@ -157,8 +157,10 @@ impl CellIo {
                 .collect();
             found
         };
-        find(Self::input_names(), &|n| project.input(n), "input");
-        let inputs = Self::input_names();
+        let inputs = Self::input_names()
+            .into_iter()
+            .zip(find(Self::input_names(), &|n| project.input(n), "input"))
+            .collect();
         let outputs = find(Self::output_names(), &|n| project.output(n), "output");
         if missing.is_empty() {
             Ok(CellIo { inputs, outputs })
@@ -203,6 +205,24 @@ impl CellIo {
     /// Sets `sensors` as the inputs of `sim` (other inputs keep their
     /// values).
     pub fn write_inputs(&self, sensors: &Sensors, sim: &mut Sim) -> Result<(), SimError> {
+        for ((name, _), v) in self.inputs.iter().zip(Self::values(sensors)) {
+            sim.set(name, v)?;
+        }
+        Ok(())
+    }
+
+    /// The raw input image of `sensors` for a project of `width` inputs
+    /// (the others 0).
+    pub fn raw_image(&self, sensors: &Sensors, width: usize) -> Vec<bool> {
+        let mut raw = vec![false; width];
+        for (&(_, i), v) in self.inputs.iter().zip(Self::values(sensors)) {
+            raw[i] = v;
+        }
+        raw
+    }
+
+    /// The values of `sensors` in the order of [`CellIo::input_names`].
+    fn values(sensors: &Sensors) -> Vec<bool> {
         let mut values = sensors.start.to_vec();
         for m in &sensors.mixers {
             values.extend([m.level1, m.full, m.empty]);
@@ -216,10 +236,7 @@ impl CellIo {
                 r.inlet_b_open,
             ]);
         }
-        for (name, v) in self.inputs.iter().zip(values) {
-            sim.set(name, v)?;
-        }
-        Ok(())
+        values
     }
 
     /// The cell's commands in the output image `outputs`.
