@@ -127,7 +127,7 @@ impl Checker {
         };
         let first_control = net.places().len() - constraints.len();
         Checker {
-            params: params.clone(),
+            params: *params,
             units: [unit(Unit::A), unit(Unit::B)],
             constraints: constraints
                 .into_iter()

@@ -4,7 +4,7 @@
 
 /// Tank sizes, flows, temperatures and the temperature controller's
 /// tuning. Lengths in m, areas in m², flows in m³/s, temperatures in °C.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CellParams {
     /// A_m: cross-section of a mixing tank.
     pub mixer_area: f64,

@@ -155,7 +155,7 @@ impl CellPlant {
 
     /// One explicit Euler step of `dt` seconds.
     fn integrate(&mut self, dt: f64) {
-        let p = self.params.clone();
+        let p = self.params;
         let into_reactor = {
             let (a, b) = (self.discharge_flows(Unit::A), self.discharge_flows(Unit::B));
             [a[0] + b[0], a[1] + b[1]]
