@@ -102,3 +102,9 @@ golden! {
 fn mixers_table() {
     check_golden("mixers.table.rs", &codegen_gen("petri/mixers", "table"));
 }
+
+/// Seed D's batch process cell: 47 places in two groups, 24 place maps.
+#[test]
+fn cell_table() {
+    check_golden("cell.table.rs", &codegen_gen("petri/cell/cell", "table"));
+}

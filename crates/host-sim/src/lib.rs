@@ -11,6 +11,8 @@
 //! - [`scenario`]: postcard scenarios for the QEMU harness (`host-sim
 //!   record`), from an input file or [`random_inputs`]; [`rng`]: the seeded
 //!   generator behind everything random.
+//! - [`cell`]: the batch process cell (two mixing tanks, two reactors)
+//!   in closed loop with its controlled Petri net, every scan checked.
 //! - [`plant`]: the gas-fired boiler in closed loop (`host-sim boiler`):
 //!   its physics and sensor faults, scripts of operator actions and faults,
 //!   the named scenarios, the safety checker, and a run's SVG and VCD.
@@ -18,6 +20,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod cell;
 pub mod inputs;
 pub mod lockstep;
 pub mod partial;
