@@ -1179,3 +1179,34 @@ fn gen_logic_stats_show_each_supervisors_effort_against_its_limit() {
         run.stdout
     );
 }
+
+#[test]
+fn gen_stats_show_a_net_group_with_its_markings_and_no_naive_table() {
+    let (code, stats) = run_json(["gen", "models/petri/mixers.plc.toml", "--stats"]);
+    assert_eq!(code, 0, "{stats}");
+    let project = codegen::project::load(&model("models/petri/mixers.plc.toml")).unwrap();
+    let group = &stats.as_array().unwrap()[0];
+    assert_eq!(group["name"], "mixers");
+    assert_eq!(group["layout"], "net");
+    assert_eq!(group["states"], project.nets[0].markings as u64);
+    assert_eq!(group["naive_bytes"], 0);
+    // 8 transitions: a PRE and a POST word each, one mask per place.
+    let places = project.nets[0].net.places().len() as u64;
+    assert_eq!(group["table_bytes"], 4 * (2 * 8 + places));
+    let run = run_codegen(["gen", "models/petri/mixers.plc.toml", "--stats"]);
+    let row = run
+        .stdout
+        .lines()
+        .find(|l| l.trim_start().starts_with("mixers "))
+        .unwrap_or_else(|| panic!("{}", run.stdout));
+    let columns: Vec<&str> = row.split_whitespace().collect();
+    let expected = [
+        project.nets[0].markings.to_string(),
+        "8".to_owned(),
+        "net".to_owned(),
+        (4 * (2 * 8 + places)).to_string(),
+        "-".to_owned(),
+        "-".to_owned(),
+    ];
+    assert_eq!(columns[1..], expected, "{row}");
+}

@@ -156,35 +156,62 @@ fn print_stats(out: &mut Out, project: &Path, stats: &[SupervisorStats], backend
             );
             let (mut ours, mut naive) = (0, 0);
             for s in stats {
+                use codegen::backend::table::Layout;
                 ours += s.table_bytes;
                 naive += s.naive_bytes;
+                let (naive_text, ratio) = match s.layout {
+                    // A net group's counters have no naive table.
+                    Some(Layout::Net) => ("-".to_owned(), "-".to_owned()),
+                    _ => (
+                        s.naive_bytes.to_string(),
+                        format!("{:.2}x", s.naive_bytes as f64 / s.table_bytes.max(1) as f64),
+                    ),
+                };
                 outln!(
                     out,
-                    "  {:<24} {:>7} {:>7} {:>7} {:>10} {:>10} {:>6.2}x",
+                    "  {:<24} {:>7} {:>7} {:>7} {:>10} {:>10} {:>7}",
                     s.name,
                     s.states,
                     s.events,
                     match s.layout {
-                        Some(codegen::backend::table::Layout::Sparse) => "sparse",
+                        Some(Layout::Sparse) => "sparse",
+                        Some(Layout::Net) => "net",
                         _ => "dense",
                     },
                     s.table_bytes,
-                    s.naive_bytes,
-                    s.naive_bytes as f64 / s.table_bytes.max(1) as f64
+                    naive_text,
+                    ratio
                 );
             }
+            let (naive_text, ratio) = if naive == 0 {
+                ("-".to_owned(), "-".to_owned())
+            } else {
+                (
+                    naive.to_string(),
+                    format!("{:.2}x", naive as f64 / ours.max(1) as f64),
+                )
+            };
             outln!(
                 out,
-                "  {:<24} {:>7} {:>7} {:>7} {:>10} {:>10} {:>6.2}x",
+                "  {:<24} {:>7} {:>7} {:>7} {:>10} {:>10} {:>7}",
                 "total",
                 "",
                 "",
                 "",
                 ours,
-                naive,
-                naive as f64 / ours.max(1) as f64
+                naive_text,
+                ratio
             );
             outln!(out, "  (naive: one u16 per state × event pair)");
+            if stats
+                .iter()
+                .any(|s| s.layout == Some(codegen::backend::table::Layout::Net))
+            {
+                outln!(
+                    out,
+                    "  (net: a Petri net's group of place counters; states: the net's reachable markings)"
+                );
+            }
         }
         Backend::Logic | Backend::Match => {
             // The logic backend adds its minimisation effort and limit.

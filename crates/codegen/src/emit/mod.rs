@@ -69,7 +69,7 @@ impl std::str::FromStr for Backend {
 pub struct SupervisorStats {
     /// Supervisor name.
     pub name: String,
-    /// States.
+    /// States; for a group of a Petri net, the net's reachable markings.
     pub states: u32,
     /// Local events.
     pub events: u16,
@@ -77,7 +77,8 @@ pub struct SupervisorStats {
     pub layout: Option<Layout>,
     /// Table bytes (table backend).
     pub table_bytes: usize,
-    /// Bytes of a naive `u16`-per-entry dense table.
+    /// Bytes of a naive `u16`-per-entry dense table; 0 for a net group
+    /// (its counters have no state × event table to compare with).
     pub naive_bytes: usize,
     /// Cubes of the minimised functions (logic backend).
     pub cubes: usize,

@@ -178,7 +178,11 @@ impl Emitter<'_> {
                     "SupervisorTable {{ events: {}, state_bits: {}, defined: &{id}_PRE, targets: &{id}_POST, rows: Rows::Net {{ fields: &{id}_FIELDS }} }}",
                     table.events, table.state_bits
                 ));
-                stats.push(SupervisorStats::of_table(&name, table));
+                stats.push(SupervisorStats {
+                    states: u32::try_from(net.markings).unwrap_or(u32::MAX),
+                    naive_bytes: 0,
+                    ..SupervisorStats::of_table(&name, table)
+                });
             }
         }
         let _ = writeln!(
