@@ -160,29 +160,35 @@ impl ConfigPools {
             list.iter().map(|&i| index(i, what)).collect()
         };
 
-        // Which supervisors have each event, with its local index there.
-        let mut members_of: Vec<Vec<ex::Membership>> = vec![Vec::new(); project.events.len()];
-        for (j, sup) in project.supervisors.iter().enumerate() {
-            for (local, &(global, _)) in sup.local_events.iter().enumerate() {
-                members_of[global].push(ex::Membership {
-                    supervisor: index(j, "supervisors")?,
-                    local: index(local, "events")?,
-                });
+        // Every executor supervisor as (states, initial, alphabet in local
+        // order): the automata, then the net groups, whose local events are
+        // the transitions touching the group.
+        let mut specs: Vec<(u32, u32, Vec<usize>)> = Vec::new();
+        for s in &project.supervisors {
+            let initial = s.automaton.initial().ok_or_else(|| {
+                Error::Incompatible(format!("supervisor `{}` has no initial state", s.name))
+            })?;
+            let alphabet = s.local_events.iter().map(|&(e, _)| e).collect();
+            specs.push((s.automaton.num_states() as u32, initial.0, alphabet));
+        }
+        for net in &project.nets {
+            for g in 0..net.groups() {
+                let alphabet = net
+                    .group_transitions(g)
+                    .iter()
+                    .map(|&t| net.events[t])
+                    .collect();
+                specs.push((
+                    1 << net.group_bits[g],
+                    net.pack(g, net.net.initial()),
+                    alphabet,
+                ));
             }
         }
-        // Net groups: local events are the transitions touching the group.
-        let group_alphabets: Vec<Vec<usize>> = project
-            .nets
-            .iter()
-            .flat_map(|net| {
-                (0..net.groups()).map(move |g| {
-                    let ts = net.group_transitions(g);
-                    ts.iter().map(|&t| net.events[t]).collect()
-                })
-            })
-            .collect();
-        for (k, alphabet) in group_alphabets.iter().enumerate() {
-            let j = project.supervisors.len() + k;
+
+        // Which supervisors have each event, with its local index there.
+        let mut members_of: Vec<Vec<ex::Membership>> = vec![Vec::new(); project.events.len()];
+        for (j, (_, _, alphabet)) in specs.iter().enumerate() {
             for (local, &global) in alphabet.iter().enumerate() {
                 members_of[global].push(ex::Membership {
                     supervisor: index(j, "supervisors")?,
@@ -313,27 +319,6 @@ impl ConfigPools {
         // Event sets: what each supervisor never blocks, then the commands
         // the controller may choose without a request.
         let mut event_masks = MaskPool::new("event", project.events.len());
-        // (states, initial, alphabet) of every executor supervisor: the
-        // automata, then the net groups.
-        let mut specs: Vec<(u32, u32, Vec<usize>)> = Vec::new();
-        for s in &project.supervisors {
-            let initial = s.automaton.initial().ok_or_else(|| {
-                Error::Incompatible(format!("supervisor `{}` has no initial state", s.name))
-            })?;
-            let alphabet = s.local_events.iter().map(|&(e, _)| e).collect();
-            specs.push((s.automaton.num_states() as u32, initial.0, alphabet));
-        }
-        let mut alphabets = group_alphabets.into_iter();
-        for net in &project.nets {
-            for g in 0..net.groups() {
-                let alphabet = alphabets.next().unwrap_or_default();
-                specs.push((
-                    1 << net.group_bits[g],
-                    net.pack(g, net.net.initial()),
-                    alphabet,
-                ));
-            }
-        }
         let mut supervisors = Vec::with_capacity(specs.len());
         for (states, initial, alphabet) in specs {
             let outside: Vec<usize> = (0..project.events.len())

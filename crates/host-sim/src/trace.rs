@@ -59,16 +59,7 @@ impl TraceRow {
                 .states
                 .iter()
                 .enumerate()
-                .map(|(j, &x)| {
-                    let name = match project.net_group(j) {
-                        Some(_) => project.state_name(j, x),
-                        None if (x as usize) < project.supervisors[j].automaton.num_states() => {
-                            project.state_name(j, x)
-                        }
-                        None => format!("#{x}"),
-                    };
-                    (project.supervisor_name(j), name)
-                })
+                .map(|(j, &x)| (project.supervisor_name(j), project.state_name(j, x)))
                 .collect(),
             outputs: record.outputs.to_vec(),
             fault: record.fault.map(|f| fault_text(f, project)),

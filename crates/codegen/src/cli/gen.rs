@@ -154,19 +154,23 @@ fn print_stats(out: &mut Out, project: &Path, stats: &[SupervisorStats], backend
                 "naive",
                 "ratio"
             );
+            use codegen::backend::table::Layout;
+            // The naive size and its ratio to ours, `-` where there is no
+            // naive table (a net group's counters; a total of net groups).
+            let columns = |naive: Option<usize>, ours: usize| match naive {
+                None => ("-".to_owned(), "-".to_owned()),
+                Some(naive) => (
+                    naive.to_string(),
+                    format!("{:.2}x", naive as f64 / ours.max(1) as f64),
+                ),
+            };
             let (mut ours, mut naive) = (0, 0);
             for s in stats {
-                use codegen::backend::table::Layout;
                 ours += s.table_bytes;
                 naive += s.naive_bytes;
-                let (naive_text, ratio) = match s.layout {
-                    // A net group's counters have no naive table.
-                    Some(Layout::Net) => ("-".to_owned(), "-".to_owned()),
-                    _ => (
-                        s.naive_bytes.to_string(),
-                        format!("{:.2}x", s.naive_bytes as f64 / s.table_bytes.max(1) as f64),
-                    ),
-                };
+                let is_net = s.layout == Some(Layout::Net);
+                let (naive_text, ratio) =
+                    columns((!is_net).then_some(s.naive_bytes), s.table_bytes);
                 outln!(
                     out,
                     "  {:<24} {:>7} {:>7} {:>7} {:>10} {:>10} {:>7}",
@@ -183,14 +187,9 @@ fn print_stats(out: &mut Out, project: &Path, stats: &[SupervisorStats], backend
                     ratio
                 );
             }
-            let (naive_text, ratio) = if naive == 0 {
-                ("-".to_owned(), "-".to_owned())
-            } else {
-                (
-                    naive.to_string(),
-                    format!("{:.2}x", naive as f64 / ours.max(1) as f64),
-                )
-            };
+            let only_nets =
+                !stats.is_empty() && stats.iter().all(|s| s.layout == Some(Layout::Net));
+            let (naive_text, ratio) = columns((!only_nets).then_some(naive), ours);
             outln!(
                 out,
                 "  {:<24} {:>7} {:>7} {:>7} {:>10} {:>10} {:>7}",
@@ -203,10 +202,7 @@ fn print_stats(out: &mut Out, project: &Path, stats: &[SupervisorStats], backend
                 ratio
             );
             outln!(out, "  (naive: one u16 per state × event pair)");
-            if stats
-                .iter()
-                .any(|s| s.layout == Some(codegen::backend::table::Layout::Net))
-            {
+            if stats.iter().any(|s| s.layout == Some(Layout::Net)) {
                 outln!(
                     out,
                     "  (net: a Petri net's group of place counters; states: the net's reachable markings)"

@@ -13,7 +13,6 @@
 
 use super::output::{outln, Out};
 use super::Outcome;
-use codegen::des::petri::admissible::make_admissible;
 use codegen::des::petri::compare::Comparison;
 use codegen::des::petri::constraints::Constraint;
 use codegen::des::petri::invariants::{self, Semiflow};
@@ -168,16 +167,7 @@ pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome,
         } => {
             let plant = petri::read_file(net)?;
             let cs = petri::constraints::read_file(constraints, &plant)?;
-            let enforced = if *transform {
-                cs.iter()
-                    .map(|c| {
-                        make_admissible(&plant, c)
-                            .map_err(|why| Error::model(c.location.clone(), why))
-                    })
-                    .collect::<Result<Vec<_>, _>>()?
-            } else {
-                cs.clone()
-            };
+            let enforced = petri::admissible::enforced(&plant, &cs, *transform)?;
             let s = petri::synth::synthesize(&plant, &enforced)?;
             let r = reach::reachability(&s.net, *max_states)?;
             let cmp = petri::compare::against_supcon(&plant, &cs, &s, *max_states)?;

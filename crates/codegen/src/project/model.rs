@@ -654,7 +654,8 @@ impl Project {
     }
 
     /// The name of state `state` of executor supervisor `j`: an
-    /// automaton's state name, a net group's marking.
+    /// automaton's state name (`#state` past its states), a net group's
+    /// marking.
     pub fn state_name(&self, j: usize, state: u32) -> String {
         match self.net_group(j) {
             Some((n, g)) => self.nets[n].state_name(g, state),
@@ -663,7 +664,7 @@ impl Project {
                 if (state as usize) < a.num_states() {
                     a.state_name(StateId(state)).into_owned()
                 } else {
-                    state.to_string()
+                    format!("#{state}")
                 }
             }
         }

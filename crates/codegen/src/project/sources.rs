@@ -210,17 +210,7 @@ impl Loader<'_> {
                 let constraints = petri::constraints::read_file(&constraints_path, &plant)
                     .map_err(|e| self.located_io(e, &c.span(), "constraints", ".toml"))?;
                 let transform = r.transform.as_ref().is_some_and(|t| *t.get_ref());
-                let enforced = if transform {
-                    constraints
-                        .iter()
-                        .map(|c| {
-                            petri::admissible::make_admissible(&plant, c)
-                                .map_err(|why| Error::model(c.location.clone(), why))
-                        })
-                        .collect::<Result<Vec<_>>>()?
-                } else {
-                    constraints
-                };
+                let enforced = petri::admissible::enforced(&plant, &constraints, transform)?;
                 let supervised = petri::synth::synthesize(&plant, &enforced)?;
                 let source = NetSource::Synthesized {
                     plant: path,

@@ -20,6 +20,25 @@
 
 use super::constraints::Constraint;
 use super::PetriNet;
+use crate::error::{Error, Result};
+
+/// The constraints to enforce for `constraints` on `net`: with
+/// `transform`, each made admissible ([`make_admissible`]; a failure is an
+/// error at the constraint's location), otherwise as they are (synthesis
+/// then refuses an inadmissible one).
+pub fn enforced(
+    net: &PetriNet,
+    constraints: &[Constraint],
+    transform: bool,
+) -> Result<Vec<Constraint>> {
+    if !transform {
+        return Ok(constraints.to_vec());
+    }
+    constraints
+        .iter()
+        .map(|c| make_admissible(net, c).map_err(|why| Error::model(c.location.clone(), why)))
+        .collect()
+}
 
 /// An admissible constraint that implies `c`, or why none was found.
 pub fn make_admissible(net: &PetriNet, c: &Constraint) -> Result<Constraint, String> {

@@ -132,7 +132,7 @@ impl Watch {
         let project = sim.project();
         let states = sim.controller().states();
         if let Some(net) = project.nets.first() {
-            let first = project.supervisors.len();
+            let first = project.group_supervisor(0, 0);
             return Ok(net.unpack(&states[first..first + net.groups()]));
         }
         let name = project.state_name(0, states[0]);
