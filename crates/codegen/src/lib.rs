@@ -20,6 +20,7 @@ pub mod backend;
 pub mod board;
 pub mod build;
 pub mod emit;
+pub mod iec;
 pub mod image;
 pub mod project;
 

@@ -13,6 +13,7 @@ mod info;
 mod key;
 mod output;
 mod petri;
+mod plc;
 mod progress;
 mod synth;
 mod wiring;
@@ -85,6 +86,12 @@ enum Command {
     /// reachability graph, conversion.
     #[command(subcommand)]
     Petri(petri::PetriCommand),
+    /// A project as an IEC 61131-3 Structured Text function block and
+    /// program (`.st`) for industrial PLCs.
+    St(plc::PlcArgs),
+    /// A project as PLCopen XML (TC6 v2.01) with ST bodies, for PLC tools
+    /// that import it.
+    Plcopen(plc::PlcArgs),
 }
 
 /// How a command ended when it did not fail outright.
@@ -110,6 +117,8 @@ pub fn main() -> ExitCode {
         Command::Dot(args) => dot::run(&args, json, &mut out),
         Command::Wiring { project } => wiring::run(&project, json, &mut out),
         Command::Petri(command) => petri::run(&command, json, &mut out),
+        Command::St(args) => plc::run(&args, plc::Flavour::St, json, &mut out),
+        Command::Plcopen(args) => plc::run(&args, plc::Flavour::PlcOpen, json, &mut out),
     };
     let code = match &result {
         Ok(Outcome::Holds) => ExitCode::SUCCESS,

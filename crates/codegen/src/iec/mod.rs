@@ -1,0 +1,122 @@
+//! Export to industrial PLCs: a project as IEC 61131-3 Structured Text
+//! ([`st`]) and PLCopen XML ([`plcopen`]).
+//!
+//! [`export`] builds two POUs: the controller function block
+//! ([`scan::controller`], the whole scan of docs/semantics.md: debounce,
+//! edges, timers on a millisecond clock input, the uncontrollable then
+//! the controllable phase, actions, state maps, fault mode and reset,
+//! supervisors as constant transition arrays) and a program that calls
+//! it once per task cycle with the inputs and outputs at `%I`/`%Q`
+//! addresses ([`program`]). Names go through [`names`]. What the PLC
+//! must provide (the task cycle, the image check) is in the README,
+//! "Industrial PLCs".
+
+pub mod names;
+pub mod plcopen;
+pub mod pou;
+pub mod program;
+pub mod scan;
+pub mod st;
+
+use crate::project::Project;
+use crate::Result;
+use names::Namer;
+use pou::Pou;
+pub use program::IoMap;
+
+/// The identifiers of one export.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Names {
+    /// The controller function block.
+    pub controller: String,
+    /// The program calling it.
+    pub program: String,
+    /// Each input's variable (controller input, program variable).
+    pub inputs: Vec<String>,
+    /// Each output's variable.
+    pub outputs: Vec<String>,
+    /// Each input's index constant (`IN_…`).
+    pub input_index: Vec<String>,
+    /// Each output's index constant (`Q_…`), used by action-driven ones.
+    pub output_index: Vec<String>,
+    /// Each timer's index constant (`TM_…`).
+    pub timers: Vec<String>,
+    /// Each event's number constant (`EV_…`).
+    pub events: Vec<String>,
+    /// Each automaton supervisor's state variable (`S_…`).
+    pub states: Vec<String>,
+    /// Each automaton supervisor's transition array (`D_…`).
+    pub tables: Vec<String>,
+    /// Each net's marking array (`M_…`).
+    pub nets: Vec<String>,
+}
+
+/// A project ready to print.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Export {
+    /// The controller function block, then the program.
+    pub pous: Vec<Pou>,
+    /// The identifiers chosen.
+    pub names: Names,
+    /// Free-text names that changed on the way to identifiers: (name,
+    /// identifier), in the order met.
+    pub renamed: Vec<(String, String)>,
+    /// The command that regenerates the file (for its header).
+    pub regenerate: String,
+    /// The project's name.
+    pub project: String,
+}
+
+impl Export {
+    /// Bytes of the constant arrays (the supervisors' transition arrays
+    /// and the debounce presets), at the element sizes declared.
+    pub fn array_bytes(&self) -> usize {
+        self.pous
+            .iter()
+            .flat_map(|p| p.vars(pou::Section::Constant))
+            .filter(|v| matches!(v.ty, pou::Type::Array { .. }))
+            .map(|v| v.ty.bytes())
+            .sum()
+    }
+}
+
+/// Instance and clock names of the program, reserved in the controller's
+/// namespace so that no signal can take them.
+const PROGRAM_IDS: [&str; 2] = ["ctrl", "clock_ms"];
+
+/// `project` as a controller function block and a program wiring it to
+/// the addresses of `io`; `regenerate` is the command named in the
+/// header.
+pub fn export(project: &Project, io: &IoMap, regenerate: &str) -> Result<Export> {
+    let mut pous = Namer::new();
+    let controller = pous.name("", &format!("{}_ctrl", project.name));
+    let program = pous.name("", &format!("{}_main", project.name));
+    let mut namer = Namer::new();
+    namer.reserve(&controller);
+    namer.reserve(&program);
+    let mut names = scan::names(project, &mut namer, &PROGRAM_IDS);
+    names.controller = controller;
+    names.program = program;
+    let addresses = io.addresses(project)?;
+    let fb = scan::controller(project, &names);
+    let main = program::program(project, &names, &addresses, &PROGRAM_IDS);
+    Ok(Export {
+        pous: vec![fb, main],
+        names,
+        renamed: namer.changed,
+        regenerate: regenerate.to_owned(),
+        project: project.name.clone(),
+    })
+}
+
+/// Free text made safe inside an ST comment and an XML CDATA section:
+/// no comment delimiters, no `]]>`, no line breaks or control characters.
+pub fn comment_text(text: &str) -> String {
+    let flat: String = text
+        .chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect();
+    flat.replace("(*", "( *")
+        .replace("*)", "* )")
+        .replace("]]>", "] ]>")
+}

@@ -1,0 +1,984 @@
+//! The controller function block: the whole scan of docs/semantics.md
+//! ("One scan", "Fault mode") in Structured Text.
+//!
+//! Signals, timers, events and supervisors become arrays indexed by
+//! named constants (`FILT[IN_start]`, `T_RUN[TM_runon]`, `EVENTS[n] :=
+//! EV_go`), each automaton a state variable `S_<name>` and a constant
+//! transition array `D_<name>[state, local event]` (−1: no transition),
+//! each Petri net a marking array `M_<name>[place]`. Steps are written in
+//! the order of the specification, each event as its own block, so a
+//! reader can follow one event from its occurrence to its actions.
+
+use super::names::Namer;
+use super::pou::{Init, Pou, PouKind, Section, Type, Var, VarBlock};
+use super::{comment_text, Names};
+use crate::automaton::StateId;
+use crate::project::{Action, Drive, Event, Project, Trigger, Unexpected};
+
+/// Fault cause numbers of the `FAULT_CAUSE` output.
+pub const CAUSE_UNEXPECTED: i64 = 1;
+/// A supervisor state out of range (corrupt memory).
+pub const CAUSE_CORRUPT: i64 = 2;
+
+/// The `UDINT` half range: a difference of clock readings below it is a
+/// time at or after the other (wrap-safe, docs/semantics.md).
+const HALF: &str = "UDINT#16#80000000";
+
+/// Statements with indentation.
+#[derive(Default)]
+struct Body {
+    lines: Vec<String>,
+    depth: usize,
+}
+
+impl Body {
+    fn line(&mut self, text: impl AsRef<str>) {
+        self.lines
+            .push(format!("{}{}", "    ".repeat(self.depth), text.as_ref()));
+    }
+    fn open(&mut self, text: impl AsRef<str>) {
+        self.line(text);
+        self.depth += 1;
+    }
+    fn mid(&mut self, text: impl AsRef<str>) {
+        self.depth -= 1;
+        self.line(text);
+        self.depth += 1;
+    }
+    fn close(&mut self, text: impl AsRef<str>) {
+        self.depth -= 1;
+        self.line(text);
+    }
+    fn blank(&mut self) {
+        self.lines.push(String::new());
+    }
+}
+
+/// The controller function block of `project` with the identifiers of
+/// `names`.
+pub fn controller(project: &Project, names: &Names) -> Pou {
+    let b = Builder { project, names };
+    Pou {
+        name: names.controller.clone(),
+        kind: PouKind::FunctionBlock,
+        doc: vec![
+            format!(
+                "The supervisory controller of project '{}': one call is one scan",
+                comment_text(&project.name)
+            ),
+            format!(
+                "(docs/semantics.md). Call it once per task cycle, every {} ms, with NOW_MS",
+                project.scan_period_ms
+            ),
+            "a millisecond clock (wrapping UDINT).".into(),
+        ],
+        blocks: b.declarations(),
+        body: b.body(),
+    }
+}
+
+struct Builder<'a> {
+    project: &'a Project,
+    names: &'a Names,
+}
+
+fn bool_lit(b: bool) -> String {
+    if b { "TRUE" } else { "FALSE" }.into()
+}
+
+/// The element type of supervisor tables: states and −1.
+fn state_type(states: usize) -> Type {
+    Type::signed_for(-1, states as i64)
+}
+
+impl Builder<'_> {
+    fn ni(&self) -> usize {
+        self.project.inputs.len()
+    }
+
+    fn declarations(&self) -> Vec<VarBlock> {
+        let p = self.project;
+        let n = self.names;
+        let mut inputs = vec![Var::new(
+            "NOW_MS",
+            Type::Udint,
+            "millisecond clock: wraps at 2^32",
+        )];
+        for (i, input) in p.inputs.iter().enumerate() {
+            inputs.push(Var::new(
+                &n.inputs[i],
+                Type::Bool,
+                format!("input '{}'", comment_text(&input.name)),
+            ));
+        }
+        let mut outputs = Vec::new();
+        for (o, output) in p.outputs.iter().enumerate() {
+            outputs.push(Var::new(
+                &n.outputs[o],
+                Type::Bool,
+                format!(
+                    "output '{}' (safe level {})",
+                    comment_text(&output.name),
+                    u8::from(output.safe)
+                ),
+            ));
+        }
+        let event_ty = Type::Int;
+        let ne = p.events.len().max(1);
+        let nu = p.events.iter().filter(|e| !e.controllable).count().max(1);
+        outputs.extend([
+            Var::new(
+                "FAULT",
+                Type::Bool,
+                "in fault mode: every output at its safe level",
+            ),
+            Var::new(
+                "FAULT_CAUSE",
+                Type::Int,
+                "0 none, 1 unexpected event (FAULT_EVENT), 2 supervisor state out of range",
+            ),
+            Var::new(
+                "FAULT_EVENT",
+                event_ty.clone(),
+                "the unexpected event, -1 if none",
+            )
+            .init(Init::Value("-1".into())),
+            Var::new("FAULTS", Type::Udint, "faults entered since power-on"),
+            Var::new(
+                "IGNORED",
+                Type::Udint,
+                "unexpected events ignored since power-on",
+            ),
+            Var::new("N_EVENTS", Type::Int, "events executed in this scan"),
+            Var::new(
+                "EVENTS",
+                Type::Array {
+                    dims: vec![(1, ne as i64)],
+                    elem: Box::new(event_ty.clone()),
+                },
+                "the events executed in this scan, in order (EV_ constants)",
+            ),
+            Var::new("N_UNEXPECTED", Type::Int, "unexpected events in this scan"),
+            Var::new(
+                "UNEXPECTED",
+                Type::Array {
+                    dims: vec![(1, nu as i64)],
+                    elem: Box::new(event_ty),
+                },
+                "the unexpected events of this scan, in order",
+            ),
+        ]);
+        for (j, sup) in p.supervisors.iter().enumerate() {
+            let a = &sup.automaton;
+            let initial = a.initial().map_or(0, |s| s.0);
+            outputs.push(
+                Var::new(
+                    &n.states[j],
+                    Type::signed_for(0, a.num_states() as i64 - 1).max_int(),
+                    format!(
+                        "state of supervisor '{}' ({} states)",
+                        comment_text(&sup.name),
+                        a.num_states()
+                    ),
+                )
+                .init(Init::Value(initial.to_string())),
+            );
+        }
+        for (k, net) in p.nets.iter().enumerate() {
+            let places = net.net.places();
+            outputs.push(
+                Var::new(
+                    &n.nets[k],
+                    Type::array(places.len(), Type::Int),
+                    format!(
+                        "marking of net '{}': tokens per place",
+                        comment_text(&net.name)
+                    ),
+                )
+                .init(Init::Rows(vec![(
+                    places
+                        .iter()
+                        .map(|pl| comment_text(&pl.id))
+                        .collect::<Vec<_>>()
+                        .join(" "),
+                    net.net.initial().iter().map(|m| m.to_string()).collect(),
+                )])),
+            );
+        }
+
+        let mut locals = vec![
+            Var::new("FIRST", Type::Bool, "scan 0: no edges").init(Init::Value("TRUE".into()))
+        ];
+        if self.ni() > 0 {
+            let arr = || Type::array(self.ni(), Type::Bool);
+            locals.push(Var::new("RAW", arr(), "raw input image"));
+            locals.push(Var::new("FILT", arr(), "filtered input image of this scan"));
+            locals.push(Var::new(
+                "PREV",
+                arr(),
+                "filtered input image of the last scan",
+            ));
+            if self.debounced() {
+                locals.push(Var::new(
+                    "DEB",
+                    Type::array(self.ni(), Type::Int),
+                    "debounce: consecutive scans the raw value has differed",
+                ));
+            }
+        }
+        if !p.outputs.is_empty() {
+            locals.push(
+                Var::new(
+                    "LATCH",
+                    Type::array(p.outputs.len(), Type::Bool),
+                    "levels of action-driven outputs",
+                )
+                .init(Init::Rows(vec![(
+                    String::new(),
+                    p.outputs
+                        .iter()
+                        .map(|o| bool_lit(matches!(o.drive, Drive::Actions { initial: true })))
+                        .collect(),
+                )])),
+            );
+        }
+        if !p.timers.is_empty() {
+            locals.push(Var::new(
+                "T_RUN",
+                Type::array(p.timers.len(), Type::Bool),
+                "timer running",
+            ));
+            locals.push(Var::new(
+                "T_DL",
+                Type::array(p.timers.len(), Type::Udint),
+                "timer deadline (NOW_MS at start + preset)",
+            ));
+        }
+        locals.push(Var::new(
+            "OCC",
+            Type::array(ne, Type::Bool),
+            "uncontrollable events that occurred in this scan",
+        ));
+        if self.uses_done() {
+            locals.push(Var::new(
+                "DONE",
+                Type::array(ne, Type::Bool),
+                "commands executed in this scan",
+            ));
+        }
+        locals.push(Var::new("I", Type::Int, "loop index"));
+        locals.push(Var::new("CMD", Type::Int, "commands chosen in this scan"));
+
+        let mut constants = Vec::new();
+        for (i, input) in p.inputs.iter().enumerate() {
+            constants.push(
+                Var::new(
+                    &n.input_index[i],
+                    Type::Int,
+                    format!("input '{}'", comment_text(&input.name)),
+                )
+                .init(Init::Value(i.to_string())),
+            );
+        }
+        for (o, output) in p.outputs.iter().enumerate() {
+            if matches!(output.drive, Drive::Actions { .. }) {
+                constants.push(
+                    Var::new(
+                        &n.output_index[o],
+                        Type::Int,
+                        format!("output '{}'", comment_text(&output.name)),
+                    )
+                    .init(Init::Value(o.to_string())),
+                );
+            }
+        }
+        for (t, timer) in p.timers.iter().enumerate() {
+            constants.push(
+                Var::new(
+                    &n.timers[t],
+                    Type::Int,
+                    format!(
+                        "timer '{}', {} ms",
+                        comment_text(&timer.name),
+                        timer.preset_ms
+                    ),
+                )
+                .init(Init::Value(t.to_string())),
+            );
+        }
+        for (e, event) in p.events.iter().enumerate() {
+            constants.push(
+                Var::new(
+                    &n.events[e],
+                    Type::Int,
+                    format!(
+                        "event '{}', {}",
+                        comment_text(&event.name),
+                        if event.controllable {
+                            "controllable"
+                        } else {
+                            "uncontrollable"
+                        }
+                    ),
+                )
+                .init(Init::Value(e.to_string())),
+            );
+        }
+        if self.debounced() {
+            constants.push(
+                Var::new(
+                    "DEBOUNCE",
+                    Type::array(self.ni(), Type::Int),
+                    "debounce scans per input (0 and 1: none)",
+                )
+                .init(Init::Rows(vec![(
+                    String::new(),
+                    p.inputs
+                        .iter()
+                        .map(|i| i.debounce_scans.to_string())
+                        .collect(),
+                )])),
+            );
+        }
+        for (j, sup) in p.supervisors.iter().enumerate() {
+            constants.push(self.table(j, sup));
+        }
+
+        let mut blocks = vec![
+            VarBlock {
+                section: Section::Input,
+                vars: inputs,
+            },
+            VarBlock {
+                section: Section::Output,
+                vars: outputs,
+            },
+            VarBlock {
+                section: Section::Local,
+                vars: locals,
+            },
+        ];
+        if !constants.is_empty() {
+            blocks.push(VarBlock {
+                section: Section::Constant,
+                vars: constants,
+            });
+        }
+        blocks
+    }
+
+    /// Supervisor `j`'s transition array: a row per state, a column per
+    /// local event, the target state or −1.
+    fn table(&self, j: usize, sup: &crate::project::Supervisor) -> Var {
+        let a = &sup.automaton;
+        let columns: Vec<String> = sup
+            .local_events
+            .iter()
+            .map(|&(g, _)| comment_text(&self.project.events[g].name))
+            .collect();
+        let rows = (0..a.num_states() as u32)
+            .map(|s| {
+                let targets = sup
+                    .local_events
+                    .iter()
+                    .map(|&(_, id)| {
+                        a.successor(StateId(s), id)
+                            .map_or("-1".to_owned(), |t| t.0.to_string())
+                    })
+                    .collect();
+                let name = a.state_name(StateId(s));
+                let label = if name == s.to_string() {
+                    name.into_owned()
+                } else {
+                    format!("{s}: {}", comment_text(&name))
+                };
+                (label, targets)
+            })
+            .collect();
+        Var::new(
+            &self.names.tables[j],
+            Type::Array {
+                dims: vec![
+                    (0, a.num_states() as i64 - 1),
+                    (0, sup.local_events.len() as i64 - 1),
+                ],
+                elem: Box::new(state_type(a.num_states())),
+            },
+            format!(
+                "supervisor '{}': next state by [state, event], -1 none; events {}",
+                comment_text(&sup.name),
+                columns.join(", ")
+            ),
+        )
+        .init(Init::Rows(rows))
+    }
+
+    fn debounced(&self) -> bool {
+        self.project.inputs.iter().any(|i| i.debounce_scans >= 2)
+    }
+
+    fn uses_done(&self) -> bool {
+        self.project.max_commands_per_scan != 1 && self.commands().count() > 0
+    }
+
+    fn commands(&self) -> impl Iterator<Item = (usize, &Event)> {
+        self.project
+            .events
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.controllable)
+    }
+
+    fn filt(&self, i: usize) -> String {
+        format!("FILT[{}]", self.names.input_index[i])
+    }
+
+    fn prev(&self, i: usize) -> String {
+        format!("PREV[{}]", self.names.input_index[i])
+    }
+
+    /// OR of the inputs, in `image` (FILT or PREV).
+    fn any(&self, inputs: &[usize], image: &str) -> String {
+        let terms: Vec<String> = inputs
+            .iter()
+            .map(|&i| format!("{image}[{}]", self.names.input_index[i]))
+            .collect();
+        if terms.len() == 1 {
+            terms[0].clone()
+        } else {
+            format!("({})", terms.join(" OR "))
+        }
+    }
+
+    /// The `when`/`unless` conditions of `event`, `None` when it has none.
+    fn conditions(&self, event: &Event) -> Option<String> {
+        let terms: Vec<String> = event
+            .when
+            .iter()
+            .map(|&i| self.filt(i))
+            .chain(
+                event
+                    .unless
+                    .iter()
+                    .map(|&i| format!("NOT {}", self.filt(i))),
+            )
+            .collect();
+        (!terms.is_empty()).then(|| terms.join(" AND "))
+    }
+
+    fn due(&self, t: &str) -> String {
+        format!("T_RUN[{t}] AND NOW_MS - T_DL[{t}] < {HALF}")
+    }
+
+    /// Whether every supervisor and net having event `e` lets it occur.
+    fn feasible(&self, e: usize) -> String {
+        let p = self.project;
+        let mut terms = Vec::new();
+        for (j, sup) in p.supervisors.iter().enumerate() {
+            for (k, &(g, _)) in sup.local_events.iter().enumerate() {
+                if g == e {
+                    terms.push(format!(
+                        "{}[{}, {k}] >= 0",
+                        self.names.tables[j], self.names.states[j]
+                    ));
+                }
+            }
+        }
+        for (n, net) in p.nets.iter().enumerate() {
+            for (t, _) in net.events.iter().enumerate().filter(|(_, &g)| g == e) {
+                for &(place, w) in &net.net.transitions()[t].input {
+                    terms.push(format!("{}[{place}] >= {w}", self.names.nets[n]));
+                }
+            }
+        }
+        if terms.is_empty() {
+            "TRUE".into()
+        } else {
+            terms.join(" AND ")
+        }
+    }
+
+    /// Executes event `e`: every supervisor and net having it moves, then
+    /// its actions apply, then it is recorded.
+    fn execute(&self, body: &mut Body, e: usize) {
+        let p = self.project;
+        let n = self.names;
+        for (j, sup) in p.supervisors.iter().enumerate() {
+            for (k, &(g, _)) in sup.local_events.iter().enumerate() {
+                if g == e {
+                    body.line(format!(
+                        "{s} := {d}[{s}, {k}];",
+                        s = n.states[j],
+                        d = n.tables[j]
+                    ));
+                }
+            }
+        }
+        for (k, net) in p.nets.iter().enumerate() {
+            for (t, _) in net.events.iter().enumerate().filter(|(_, &g)| g == e) {
+                let tr = &net.net.transitions()[t];
+                let mut change = vec![0i64; net.net.places().len()];
+                for &(place, w) in &tr.input {
+                    change[place] -= i64::from(w);
+                }
+                for &(place, w) in &tr.output {
+                    change[place] += i64::from(w);
+                }
+                for (place, &d) in change.iter().enumerate().filter(|(_, &d)| d != 0) {
+                    let sign = if d < 0 { '-' } else { '+' };
+                    body.line(format!(
+                        "{m}[{place}] := {m}[{place}] {sign} {}; (* {} *)",
+                        d.abs(),
+                        comment_text(&net.net.places()[place].id),
+                        m = n.nets[k],
+                    ));
+                }
+            }
+        }
+        for action in &p.events[e].actions {
+            match *action {
+                Action::Clear(o) => body.line(format!("LATCH[{}] := FALSE;", n.output_index[o])),
+                Action::Set(o) => body.line(format!("LATCH[{}] := TRUE;", n.output_index[o])),
+                Action::Reset(t) => body.line(format!("T_RUN[{}] := FALSE;", n.timers[t])),
+                Action::Start(t) => {
+                    body.line(format!("T_RUN[{}] := TRUE;", n.timers[t]));
+                    body.line(format!(
+                        "T_DL[{}] := NOW_MS + UDINT#{};",
+                        n.timers[t], p.timers[t].preset_ms
+                    ));
+                }
+            }
+        }
+        body.line("N_EVENTS := N_EVENTS + 1;");
+        body.line(format!("EVENTS[N_EVENTS] := {};", n.events[e]));
+    }
+
+    /// Re-initialisation after a reset: initial states and markings,
+    /// timers stopped, action-driven outputs at their initial levels.
+    fn initialise(&self, body: &mut Body) {
+        let p = self.project;
+        for (j, sup) in p.supervisors.iter().enumerate() {
+            let initial = sup.automaton.initial().map_or(0, |s| s.0);
+            body.line(format!("{} := {initial};", self.names.states[j]));
+        }
+        for (k, net) in p.nets.iter().enumerate() {
+            for (place, m) in net.net.initial().iter().enumerate() {
+                body.line(format!("{}[{place}] := {m};", self.names.nets[k]));
+            }
+        }
+        if !p.timers.is_empty() {
+            body.open(format!("FOR I := 0 TO {} DO", p.timers.len() - 1));
+            body.line("T_RUN[I] := FALSE;");
+            body.close("END_FOR;");
+        }
+        for (o, output) in p.outputs.iter().enumerate() {
+            if let Drive::Actions { initial } = output.drive {
+                body.line(format!(
+                    "LATCH[{}] := {};",
+                    self.names.output_index[o],
+                    bool_lit(initial)
+                ));
+            }
+        }
+        body.line("FAULT := FALSE;");
+        body.line("FAULT_CAUSE := 0;");
+        body.line("FAULT_EVENT := -1;");
+    }
+
+    fn body(&self) -> Vec<String> {
+        let mut b = Body::default();
+        self.sample(&mut b);
+        b.blank();
+        self.integrity(&mut b);
+        b.blank();
+        b.line("(* 2. Fault mode: the scan ends here, on a reset with the initial state. *)");
+        b.open("IF FAULT THEN");
+        match self.project.reset {
+            Some(r) => {
+                b.open(format!("IF {} AND NOT {} THEN", self.filt(r), self.prev(r)));
+                self.initialise(&mut b);
+                b.close("END_IF;");
+            }
+            None => b.line("; (* no reset input: fault mode until power-off *)"),
+        }
+        b.mid("ELSE");
+        self.occurrences(&mut b);
+        b.blank();
+        self.uncontrollable(&mut b);
+        b.blank();
+        self.controllable(&mut b);
+        b.close("END_IF;");
+        b.blank();
+        self.outputs(&mut b);
+        b.lines
+    }
+
+    fn sample(&self, b: &mut Body) {
+        let p = self.project;
+        b.line("N_EVENTS := 0;");
+        b.line("N_UNEXPECTED := 0;");
+        b.blank();
+        b.line("(* 1. Sample: raw image, debounce, the last scan's filtered image. *)");
+        for i in 0..p.inputs.len() {
+            b.line(format!(
+                "RAW[{}] := {};",
+                self.names.input_index[i], self.names.inputs[i]
+            ));
+        }
+        if p.inputs.is_empty() {
+            b.line("FIRST := FALSE;");
+            return;
+        }
+        let last = p.inputs.len() - 1;
+        b.open("IF FIRST THEN");
+        b.line("FIRST := FALSE;");
+        b.open(format!("FOR I := 0 TO {last} DO"));
+        b.line("FILT[I] := RAW[I];");
+        b.line("PREV[I] := RAW[I];");
+        b.close("END_FOR;");
+        b.mid("ELSE");
+        b.open(format!("FOR I := 0 TO {last} DO"));
+        b.line("PREV[I] := FILT[I];");
+        if self.debounced() {
+            b.open("IF DEBOUNCE[I] < 2 THEN");
+            b.line("FILT[I] := RAW[I];");
+            b.mid("ELSIF RAW[I] <> FILT[I] THEN");
+            b.line("DEB[I] := DEB[I] + 1;");
+            b.open("IF DEB[I] >= DEBOUNCE[I] THEN");
+            b.line("FILT[I] := RAW[I];");
+            b.line("DEB[I] := 0;");
+            b.close("END_IF;");
+            b.mid("ELSE");
+            b.line("DEB[I] := 0;");
+            b.close("END_IF;");
+        } else {
+            b.line("FILT[I] := RAW[I];");
+        }
+        b.close("END_FOR;");
+        b.close("END_IF;");
+    }
+
+    fn integrity(&self, b: &mut Body) {
+        let p = self.project;
+        if p.supervisors.is_empty() {
+            return;
+        }
+        b.line("(* 2. Integrity: a state out of range can only be corrupt memory. *)");
+        let terms: Vec<String> = p
+            .supervisors
+            .iter()
+            .enumerate()
+            .map(|(j, sup)| {
+                format!(
+                    "{s} < 0 OR {s} > {}",
+                    sup.automaton.num_states() - 1,
+                    s = self.names.states[j]
+                )
+            })
+            .collect();
+        b.open(format!("IF ({}) AND NOT FAULT THEN", terms.join(" OR ")));
+        b.line("FAULT := TRUE;");
+        b.line(format!("FAULT_CAUSE := {CAUSE_CORRUPT};"));
+        b.line("FAULTS := FAULTS + 1;");
+        b.close("END_IF;");
+    }
+
+    fn occurrences(&self, b: &mut Body) {
+        let p = self.project;
+        b.line("(* 3. Occurrences: edges of the filtered image, timers run out; then every");
+        b.line("   timer run out stops. *)");
+        for (e, event) in p.events.iter().enumerate() {
+            let source = match &event.trigger {
+                Trigger::Command => continue,
+                Trigger::Rising(inputs) => format!(
+                    "{} AND NOT {}",
+                    self.any(inputs, "FILT"),
+                    self.any(inputs, "PREV")
+                ),
+                Trigger::Falling(inputs) => format!(
+                    "NOT {} AND {}",
+                    self.any(inputs, "FILT"),
+                    self.any(inputs, "PREV")
+                ),
+                Trigger::Expired(t) => self.due(&self.names.timers[*t]),
+            };
+            let cond = match self.conditions(event) {
+                Some(c) => format!(" AND {c}"),
+                None => String::new(),
+            };
+            b.line(format!("OCC[{}] := {source}{cond};", self.names.events[e]));
+        }
+        if !p.timers.is_empty() {
+            b.open(format!("FOR I := 0 TO {} DO", p.timers.len() - 1));
+            b.open(format!("IF {} THEN", self.due("I")));
+            b.line("T_RUN[I] := FALSE;");
+            b.close("END_IF;");
+            b.close("END_FOR;");
+        }
+    }
+
+    fn uncontrollable(&self, b: &mut Body) {
+        let p = self.project;
+        let fault = p.unexpected == Unexpected::Fault;
+        b.line("(* 4. Uncontrollable phase, in declaration order: execute an event every");
+        b.line(if fault {
+            "   supervisor having it allows, else fault mode. *)"
+        } else {
+            "   supervisor having it allows, else ignore and count it. *)"
+        });
+        for (e, event) in p.events.iter().enumerate() {
+            if event.controllable {
+                continue;
+            }
+            let ev = &self.names.events[e];
+            b.open(if fault {
+                format!("IF OCC[{ev}] AND NOT FAULT THEN")
+            } else {
+                format!("IF OCC[{ev}] THEN")
+            });
+            b.open(format!("IF {} THEN", self.feasible(e)));
+            self.execute(b, e);
+            b.mid("ELSE");
+            b.line("N_UNEXPECTED := N_UNEXPECTED + 1;");
+            b.line(format!("UNEXPECTED[N_UNEXPECTED] := {ev};"));
+            if fault {
+                b.line("FAULT := TRUE;");
+                b.line(format!("FAULT_CAUSE := {CAUSE_UNEXPECTED};"));
+                b.line(format!("FAULT_EVENT := {ev};"));
+                b.line("FAULTS := FAULTS + 1;");
+            } else {
+                b.line("IGNORED := IGNORED + 1;");
+            }
+            b.close("END_IF;");
+            b.close("END_IF;");
+        }
+    }
+
+    fn controllable(&self, b: &mut Body) {
+        let p = self.project;
+        let commands: Vec<(usize, &Event)> = self.commands().collect();
+        b.line("(* 5. Controllable phase: the first command in declaration order that every");
+        b.line("   supervisor having it allows and, if it has a request input, is requested;");
+        let limit = match p.max_commands_per_scan {
+            0 => commands.len(),
+            n => usize::from(n).min(commands.len()),
+        };
+        b.line(format!(
+            "   at most {} per scan{}. *)",
+            limit,
+            if self.uses_done() { ", each once" } else { "" }
+        ));
+        if commands.is_empty() {
+            return;
+        }
+        let guard = if p.unexpected == Unexpected::Fault {
+            "IF NOT FAULT THEN"
+        } else {
+            "IF TRUE THEN"
+        };
+        let guarded = p.unexpected == Unexpected::Fault;
+        if guarded {
+            b.open(guard);
+        }
+        if self.uses_done() {
+            for &(e, _) in &commands {
+                b.line(format!("DONE[{}] := FALSE;", self.names.events[e]));
+            }
+        }
+        b.open(format!("FOR CMD := 1 TO {limit} DO"));
+        for (k, &(e, event)) in commands.iter().enumerate() {
+            let ev = &self.names.events[e];
+            let mut terms = Vec::new();
+            if self.uses_done() {
+                terms.push(format!("NOT DONE[{ev}]"));
+            }
+            if let Some(r) = event.request {
+                terms.push(self.filt(r));
+            }
+            let feasible = self.feasible(e);
+            if feasible != "TRUE" || terms.is_empty() {
+                terms.push(feasible);
+            }
+            let keyword = if k == 0 { "IF" } else { "ELSIF" };
+            let head = format!(
+                "{keyword} {} THEN (* {} *)",
+                terms.join(" AND "),
+                comment_text(&event.name)
+            );
+            if k == 0 {
+                b.open(head);
+            } else {
+                b.mid(head);
+            }
+            self.execute(b, e);
+            if self.uses_done() {
+                b.line(format!("DONE[{ev}] := TRUE;"));
+            }
+        }
+        b.mid("ELSE");
+        b.line("EXIT;");
+        b.close("END_IF;");
+        b.close("END_FOR;");
+        if guarded {
+            b.close("END_IF;");
+        }
+    }
+
+    fn outputs(&self, b: &mut Body) {
+        let p = self.project;
+        let n = self.names;
+        b.line("(* 6. Outputs: safe levels in fault mode, else latched levels and state maps. *)");
+        if p.outputs.is_empty() {
+            return;
+        }
+        b.open("IF FAULT THEN");
+        for (o, output) in p.outputs.iter().enumerate() {
+            b.line(format!("{} := {};", n.outputs[o], bool_lit(output.safe)));
+        }
+        b.mid("ELSE");
+        for (o, output) in p.outputs.iter().enumerate() {
+            let value = match &output.drive {
+                Drive::Actions { .. } => format!("LATCH[{}]", n.output_index[o]),
+                Drive::States(map) => {
+                    let terms: Vec<String> = map
+                        .iter()
+                        .flat_map(|(j, states)| {
+                            states
+                                .iter()
+                                .map(move |s| format!("({} = {})", n.states[*j], s.0))
+                        })
+                        .collect();
+                    or_terms(terms)
+                }
+                Drive::Places(map) => {
+                    let terms: Vec<String> = map
+                        .iter()
+                        .flat_map(|(k, places)| {
+                            places
+                                .iter()
+                                .map(move |pl| format!("({}[{pl}] >= 1)", n.nets[*k]))
+                        })
+                        .collect();
+                    or_terms(terms)
+                }
+            };
+            b.line(format!("{} := {value};", n.outputs[o]));
+        }
+        b.close("END_IF;");
+    }
+}
+
+fn or_terms(terms: Vec<String>) -> String {
+    if terms.is_empty() {
+        "FALSE".into()
+    } else {
+        terms.join(" OR ")
+    }
+}
+
+trait MaxInt {
+    fn max_int(self) -> Type;
+}
+
+impl MaxInt for Type {
+    /// State variables are at least `INT` (a PLC's usual word).
+    fn max_int(self) -> Type {
+        match self {
+            Type::Sint => Type::Int,
+            t => t,
+        }
+    }
+}
+
+/// Registers every identifier the controller and the program use in
+/// `namer` and returns them.
+pub fn names(project: &Project, namer: &mut Namer, program_ids: &[&str]) -> Names {
+    for id in [
+        "NOW_MS",
+        "FAULT",
+        "FAULT_CAUSE",
+        "FAULT_EVENT",
+        "FAULTS",
+        "IGNORED",
+        "N_EVENTS",
+        "EVENTS",
+        "N_UNEXPECTED",
+        "UNEXPECTED",
+        "FIRST",
+        "RAW",
+        "FILT",
+        "PREV",
+        "DEB",
+        "DEBOUNCE",
+        "LATCH",
+        "T_RUN",
+        "T_DL",
+        "OCC",
+        "DONE",
+        "I",
+        "CMD",
+    ]
+    .iter()
+    .chain(program_ids)
+    {
+        namer.reserve(id);
+    }
+    let inputs = project
+        .inputs
+        .iter()
+        .map(|i| namer.name("", &i.name))
+        .collect();
+    let outputs = project
+        .outputs
+        .iter()
+        .map(|o| namer.name("", &o.name))
+        .collect();
+    let input_index = project
+        .inputs
+        .iter()
+        .map(|i| namer.name("IN_", &i.name))
+        .collect();
+    let output_index = project
+        .outputs
+        .iter()
+        .map(|o| namer.name("Q_", &o.name))
+        .collect();
+    let timers = project
+        .timers
+        .iter()
+        .map(|t| namer.name("TM_", &t.name))
+        .collect();
+    let events = project
+        .events
+        .iter()
+        .map(|e| namer.name("EV_", &e.name))
+        .collect();
+    let states = project
+        .supervisors
+        .iter()
+        .map(|s| namer.name("S_", &s.name))
+        .collect();
+    let tables = project
+        .supervisors
+        .iter()
+        .map(|s| namer.name("D_", &s.name))
+        .collect();
+    let nets = project
+        .nets
+        .iter()
+        .map(|n| namer.name("M_", &n.name))
+        .collect();
+    Names {
+        controller: String::new(),
+        program: String::new(),
+        inputs,
+        outputs,
+        input_index,
+        output_index,
+        timers,
+        events,
+        states,
+        tables,
+        nets,
+    }
+}
