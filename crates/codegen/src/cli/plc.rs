@@ -19,6 +19,11 @@ pub struct PlcArgs {
     /// Write the file here instead of stdout.
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
+    /// `codegen st`: end the file with a `CONFIGURATION` that runs the
+    /// program in a cyclic task of the scan period (OpenPLC's runtime
+    /// compiles such a file as it is).
+    #[arg(long)]
+    configuration: bool,
     /// Print the sizes (lines, constant array bytes, POUs) instead of the
     /// file.
     #[arg(long)]
@@ -44,6 +49,12 @@ struct Stats {
 }
 
 pub fn run(args: &PlcArgs, flavour: Flavour, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+    if args.configuration && flavour == Flavour::PlcOpen {
+        return Err(Error::Incompatible(
+            "--configuration is for `codegen st`: PLCopen XML always holds its configuration and task"
+                .into(),
+        ));
+    }
     let project = project::load(&args.project)?;
     for w in &project.warnings {
         warn(format_args!(
@@ -67,6 +78,9 @@ pub fn run(args: &PlcArgs, flavour: Flavour, json: bool, out: &mut Out) -> Resul
     }
     let export = iec::export(&project, &io, &regenerate)?;
     let text = match flavour {
+        Flavour::St if args.configuration => {
+            iec::st::print(&export) + &iec::st::configuration(&export)
+        }
         Flavour::St => iec::st::print(&export),
         Flavour::PlcOpen => iec::plcopen::print(&export),
     };

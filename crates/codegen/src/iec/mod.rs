@@ -31,6 +31,10 @@ pub struct Names {
     pub controller: String,
     /// The program calling it.
     pub program: String,
+    /// The configuration, its resource, its cyclic task and the program's
+    /// instance in it (PLCopen XML's `instances`; ST with
+    /// `--configuration`).
+    pub configuration: [String; 4],
     /// Each input's variable (controller input, program variable).
     pub inputs: Vec<String>,
     /// Each output's variable.
@@ -65,6 +69,8 @@ pub struct Export {
     pub regenerate: String,
     /// The project's name.
     pub project: String,
+    /// The scan period, the task's interval.
+    pub scan_period_ms: u32,
 }
 
 impl Export {
@@ -91,12 +97,19 @@ pub fn export(project: &Project, io: &IoMap, regenerate: &str) -> Result<Export>
     let mut pous = Namer::new();
     let controller = pous.name("", &format!("{}_ctrl", project.name));
     let program = pous.name("", &format!("{}_main", project.name));
+    let configuration = [
+        pous.name("", &format!("{}_config", project.name)),
+        pous.name("", &format!("{}_resource", project.name)),
+        pous.name("", "scan_task"),
+        pous.name("", "main"),
+    ];
     let mut namer = Namer::new();
     namer.reserve(&controller);
     namer.reserve(&program);
     let mut names = scan::names(project, &mut namer, &PROGRAM_IDS);
     names.controller = controller;
     names.program = program;
+    names.configuration = configuration;
     let addresses = io.addresses(project)?;
     let fb = scan::controller(project, &names);
     let main = program::program(project, &names, &addresses, &PROGRAM_IDS);
@@ -106,16 +119,26 @@ pub fn export(project: &Project, io: &IoMap, regenerate: &str) -> Result<Export>
         renamed: namer.changed,
         regenerate: regenerate.to_owned(),
         project: project.name.clone(),
+        scan_period_ms: project.scan_period_ms,
     })
 }
 
 /// Free text made safe inside an ST comment and an XML CDATA section:
-/// no comment delimiters, no `]]>`, no line breaks or control characters.
+/// no comment delimiters, no `]]>`, line breaks and control characters as
+/// spaces, bidirectional overrides and isolates (which could make a
+/// reader see other code than the PLC compiles) written as `<U+202E>`.
 pub fn comment_text(text: &str) -> String {
-    let flat: String = text
-        .chars()
-        .map(|c| if c.is_control() { ' ' } else { c })
-        .collect();
+    let mut flat = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
+            flat.push(' ');
+        } else if matches!(c, '\u{061c}' | '\u{200e}' | '\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
+        {
+            flat.push_str(&format!("<U+{:04X}>", c as u32));
+        } else {
+            flat.push(c);
+        }
+    }
     flat.replace("(*", "( *")
         .replace("*)", "* )")
         .replace("]]>", "] ]>")

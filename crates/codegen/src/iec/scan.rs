@@ -971,6 +971,7 @@ pub fn names(project: &Project, namer: &mut Namer, program_ids: &[&str]) -> Name
     Names {
         controller: String::new(),
         program: String::new(),
+        configuration: Default::default(),
         inputs,
         outputs,
         input_index,

@@ -110,3 +110,16 @@ fn print_var(out: &mut String, var: &Var) {
         }
     }
 }
+
+/// A `CONFIGURATION` running the program in a cyclic task of the scan
+/// period, for tools that compile a whole `.st` file into a PLC
+/// application (OpenPLC's runtime); append it to [`print`]'s text.
+pub fn configuration(export: &Export) -> String {
+    let [config, resource, task, instance] = &export.names.configuration;
+    format!(
+        "\nCONFIGURATION {config}\n    RESOURCE {resource} ON PLC\n        \
+         TASK {task} (INTERVAL := T#{}ms, PRIORITY := 0);\n        \
+         PROGRAM {instance} WITH {task} : {};\n    END_RESOURCE\nEND_CONFIGURATION\n",
+        export.scan_period_ms, export.names.program
+    )
+}

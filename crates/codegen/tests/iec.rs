@@ -1,0 +1,296 @@
+//! The IEC 61131-3 export (`codegen::iec`): identifiers, the I/O map and
+//! its errors, and what the Structured Text says about a project. That
+//! the exported text runs exactly as the executor does is shown by
+//! `tests/st_lockstep.rs` (package `e2e`), which executes it.
+
+use codegen::iec::pou::{PouKind, Section};
+use codegen::iec::{self, names, IoMap};
+use codegen::project::{self, Project};
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+const SEEDS: [&str; 10] = [
+    "models/motivating.plc.toml",
+    "models/press.plc.toml",
+    "models/press7.plc.toml",
+    "models/conveyor.plc.toml",
+    "models/crane.plc.toml",
+    "models/agv.plc.toml",
+    "models/boiler/boiler.plc.toml",
+    "models/petri/mixers.plc.toml",
+    "models/petri/cell/cell.plc.toml",
+    "tests/fixtures/hostile/hostile.plc.toml",
+];
+
+fn load(rel: &str) -> Project {
+    project::load(&root().join(rel)).unwrap_or_else(|e| panic!("{rel}: {e}"))
+}
+
+/// An IEC identifier: a letter or `_`, then letters, digits and single
+/// underscores, not ending in `_`.
+fn is_identifier(id: &str) -> bool {
+    let b = id.as_bytes();
+    !b.is_empty()
+        && (b[0].is_ascii_alphabetic() || b[0] == b'_')
+        && b.iter().all(|c| c.is_ascii_alphanumeric() || *c == b'_')
+        && !id.contains("__")
+        && !id.ends_with('_')
+}
+
+#[test]
+fn every_declared_name_is_a_unique_unreserved_iec_identifier() {
+    for rel in SEEDS {
+        let project = load(rel);
+        let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
+        let pou_names: Vec<&str> = export.pous.iter().map(|p| p.name.as_str()).collect();
+        for pou in &export.pous {
+            let mut seen = HashSet::new();
+            for name in pou_names.iter().copied().chain(
+                pou.blocks
+                    .iter()
+                    .flat_map(|b| b.vars.iter().map(|v| v.name.as_str())),
+            ) {
+                assert!(is_identifier(name), "{rel}: `{name}`");
+                assert!(!names::is_reserved(name), "{rel}: `{name}` is reserved");
+                assert!(
+                    seen.insert(name.to_ascii_uppercase()),
+                    "{rel}: `{name}` twice in {}",
+                    pou.name
+                );
+            }
+        }
+        // Inputs in, outputs out, with the project's names where those
+        // are identifiers already.
+        let fb = &export.pous[0];
+        assert_eq!(fb.kind, PouKind::FunctionBlock);
+        let inputs: Vec<&str> = fb.vars(Section::Input).map(|v| v.name.as_str()).collect();
+        assert_eq!(inputs.len(), project.inputs.len() + 1, "{rel}");
+        for (i, input) in project.inputs.iter().enumerate() {
+            if is_identifier(&input.name) && !names::is_reserved(&input.name) {
+                assert_eq!(export.names.inputs[i], input.name, "{rel}");
+            }
+            assert_eq!(inputs[i + 1], export.names.inputs[i]);
+        }
+        assert_eq!(export.pous[1].kind, PouKind::Program);
+    }
+}
+
+/// A project whose names meet the block's own names, each other (by
+/// case and by mapping), keywords and standard function blocks.
+fn colliding() -> Project {
+    let text = r#"
+[plc]
+name = "END_PROGRAM"
+
+[inputs]
+FAULT = {}
+"now-ms" = {}
+TON = {}
+"x-1" = {}
+ctrl = {}
+EV_go = {}
+
+[outputs]
+"IF" = {}
+"clock ms" = {}
+
+[events]
+go = { controllable = true, set = ["IF"] }
+done = { rising = "FAULT" }
+"#;
+    let path = root().join("tests/fixtures/hostile/colliding.plc.toml");
+    let text = format!("{text}\n[[supervisor]]\nname = \"machine\"\nfile = \"machine.toml\"\n");
+    project::from_str(&text, &path).expect("a valid project")
+}
+
+#[test]
+fn names_that_meet_get_suffixes_and_are_listed_in_the_header() {
+    let project = colliding();
+    let export =
+        iec::export(&project, &IoMap::sequential(), "codegen st colliding").expect("exports");
+    let n = &export.names;
+    assert_eq!(
+        n.inputs,
+        ["FAULT_2", "now_ms_2", "TON_2", "x_1", "ctrl_2", "EV_go"]
+    );
+    assert_eq!(n.outputs, ["IF_2", "clock_ms_2"]);
+    assert_eq!(n.events, ["EV_go_2", "EV_done"]);
+    assert_eq!(export.pous[0].name, "END_PROGRAM_ctrl");
+    let text = iec::st::print(&export);
+    for (from, to) in &export.renamed {
+        assert!(
+            text.contains(&format!("'{from}' -> {to}")),
+            "{from} -> {to}"
+        );
+    }
+    assert_eq!(export.renamed.len(), 7, "{:?}", export.renamed);
+}
+
+#[test]
+fn comments_cannot_be_closed_or_turned_around_by_a_name() {
+    let text = r#"
+[plc]
+name = "*) x := 1; (* ]]> \u202e"
+
+[inputs]
+"a*)b" = {}
+
+[outputs]
+"(*c" = {}
+
+[events]
+go = { controllable = true, set = ["(*c"] }
+done = { rising = "a*)b" }
+
+[[supervisor]]
+name = "m*)"
+file = "machine.toml"
+"#;
+    let path = root().join("tests/fixtures/hostile/comments.plc.toml");
+    let project = project::from_str(text, &path).expect("valid");
+    let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
+    let st = iec::st::print(&export);
+    // Every comment opened on a line closes on it or, for the header,
+    // at its end; no comment closes twice.
+    let mut depth = 0i32;
+    let bytes = st.as_bytes();
+    let mut k = 0;
+    while k + 1 < bytes.len() {
+        match (bytes[k], bytes[k + 1]) {
+            (b'(', b'*') => {
+                assert_eq!(depth, 0, "nested comment at byte {k}");
+                depth += 1;
+                k += 2;
+            }
+            (b'*', b')') => {
+                assert_eq!(depth, 1, "comment closed outside a comment at byte {k}");
+                depth -= 1;
+                k += 2;
+            }
+            _ => k += 1,
+        }
+    }
+    assert_eq!(depth, 0);
+    assert!(!st.contains("]]>"));
+    assert!(!st.contains('\u{202e}'));
+    assert!(st.contains("<U+202E>"));
+}
+
+fn io_error(map: &str) -> (u32, String) {
+    let project = load("models/motivating.plc.toml");
+    let io = IoMap::parse(map, Path::new("io.toml"))
+        .and_then(|io| iec::export(&project, &io, "t").map(|_| io));
+    let e = io.expect_err("refused");
+    let (at, message) = e.located().expect("a located error");
+    (at.line, message.to_owned())
+}
+
+const FULL: &str = r#"[inputs]
+x_a = "%IX0.0"
+x_b = "%IX0.1"
+x_e = "%IX0.2"
+x_f = "%IX0.3"
+req_c_lo = "%IX1.0"
+reset = "%I*"
+[outputs]
+x_c_hi = "%qx0.0"
+x_c_lo = "%QX0.1"
+x_d_on = "%QX4.7"
+"#;
+
+#[test]
+fn an_io_map_places_every_signal_and_its_errors_name_the_line() {
+    let project = load("models/motivating.plc.toml");
+    let io = IoMap::parse(FULL, Path::new("io.toml")).expect("parses");
+    let export = iec::export(&project, &io, "t").expect("exports");
+    let st = iec::st::print(&export);
+    for decl in [
+        "x_a AT %IX0.0 : BOOL;",
+        "req_c_lo AT %IX1.0 : BOOL;",
+        "reset AT %I* : BOOL;",
+        "x_c_hi AT %QX0.0 : BOOL;",
+        "x_d_on AT %QX4.7 : BOOL;",
+    ] {
+        assert!(st.contains(decl), "{decl}");
+    }
+
+    let (line, m) = io_error(&FULL.replace("x_b = \"%IX0.1\"", "x_b = \"%IX0.9\""));
+    assert_eq!(line, 3, "{m}");
+    assert!(m.contains("%IX0.9") && m.contains("bit 0-7"), "{m}");
+    let (line, m) = io_error(&FULL.replace("x_e = \"%IX0.2\"", "x_e = \"%QX0.2\""));
+    assert_eq!(line, 4, "{m}");
+    let (line, m) = io_error(&FULL.replace("x_f = \"%IX0.3\"", "x_f = \"%IX0.0\""));
+    assert_eq!(line, 5, "{m}");
+    assert!(m.contains("already given on line 2"), "{m}");
+    let (line, m) = io_error(&FULL.replace("x_c_lo", "x_c_mid"));
+    assert_eq!(line, 10, "{m}");
+    assert!(m.contains("`x_c_mid` is not an output"), "{m}");
+    let (line, m) = io_error(&FULL.replace("x_a = \"%IX0.0\"\n", ""));
+    assert_eq!(line, 1, "{m}");
+    assert!(m.contains("x_a") && m.contains("no address"), "{m}");
+    let (line, m) = io_error(&format!("{FULL}[timers]\nt = \"%IX9.0\"\n"));
+    assert_eq!(line, 12, "{m}");
+    let (line, m) = io_error(&FULL.replace("\"%IX0.1\"", "1"));
+    assert_eq!(line, 3, "{m}");
+}
+
+#[test]
+fn default_addresses_count_bits_then_bytes() {
+    let project = load("models/boiler/boiler.plc.toml");
+    let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
+    let program = &export.pous[1];
+    let addresses: Vec<&str> = program
+        .vars(Section::Local)
+        .filter_map(|v| v.address.as_deref())
+        .collect();
+    let inputs = project.inputs.len();
+    assert_eq!(addresses.len(), inputs + project.outputs.len());
+    for (k, a) in addresses[..inputs].iter().enumerate() {
+        assert_eq!(*a, format!("%IX{}.{}", k / 8, k % 8));
+    }
+    for (k, a) in addresses[inputs..].iter().enumerate() {
+        assert_eq!(*a, format!("%QX{}.{}", k / 8, k % 8));
+    }
+}
+
+#[test]
+fn the_transition_arrays_are_the_supervisors_transition_functions() {
+    use codegen::iec::pou::{Init, Type};
+    use codegen::StateId;
+    for rel in ["models/crane.plc.toml", "models/boiler/boiler.plc.toml"] {
+        let project = load(rel);
+        let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
+        for (j, sup) in project.supervisors.iter().enumerate() {
+            let var = export.pous[0]
+                .vars(Section::Constant)
+                .find(|v| v.name == export.names.tables[j])
+                .expect("a transition array");
+            let Type::Array { dims, .. } = &var.ty else {
+                panic!("not an array")
+            };
+            let a = &sup.automaton;
+            assert_eq!(dims[0], (0, a.num_states() as i64 - 1));
+            assert_eq!(dims[1], (0, sup.local_events.len() as i64 - 1));
+            let Some(Init::Rows(rows)) = &var.init else {
+                panic!("no rows")
+            };
+            for (s, (_, row)) in rows.iter().enumerate() {
+                for (k, &(_, id)) in sup.local_events.iter().enumerate() {
+                    let expected = a
+                        .successor(StateId(s as u32), id)
+                        .map_or(-1, |t| i64::from(t.0));
+                    assert_eq!(
+                        row[k].parse::<i64>().unwrap(),
+                        expected,
+                        "{rel} {} {s} {k}",
+                        sup.name
+                    );
+                }
+            }
+        }
+    }
+}
