@@ -108,3 +108,31 @@ fn mixers_table() {
 fn cell_table() {
     check_golden("cell.table.rs", &codegen_gen("petri/cell/cell", "table"));
 }
+
+/// The output of `codegen <args>`, run from the repository root.
+fn codegen(args: &[&str]) -> String {
+    let output = Command::new(env!("CARGO_BIN_EXE_codegen"))
+        .current_dir(root())
+        .args(args)
+        .output()
+        .expect("the codegen binary runs");
+    assert!(
+        output.status.success(),
+        "codegen {args:?} failed:\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout).expect("UTF-8")
+}
+
+/// The Structured Text export (`codegen st`) of the motivating example,
+/// the press (timers, debounce, a state map) and the mixers (a net).
+#[test]
+fn structured_text() {
+    for project in ["motivating", "press", "petri/mixers"] {
+        let name = project.rsplit('/').next().expect("a name");
+        check_golden(
+            &format!("{name}.st"),
+            &codegen(&["st", &format!("models/{project}.plc.toml")]),
+        );
+    }
+}
