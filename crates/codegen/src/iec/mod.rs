@@ -11,6 +11,7 @@
 //! must provide (the task cycle, the image check) is in the README,
 //! "Industrial PLCs".
 
+pub mod ladder;
 pub mod names;
 pub mod plcopen;
 pub mod pou;
