@@ -75,6 +75,9 @@ pub(crate) struct Cx<'c> {
     pub(super) loops: u32,
     /// Functions called and where, for the recursion check.
     pub calls: Vec<(usize, Pos)>,
+    /// The type the enclosing assignment or argument expects: gives
+    /// `SEL(g, 1, 2)` and the like a type when all their values are literals.
+    expected: Option<Type>,
 }
 
 impl<'c> Cx<'c> {
@@ -94,6 +97,7 @@ impl<'c> Cx<'c> {
             for_vars: Vec::new(),
             loops: 0,
             calls: Vec::new(),
+            expected: None,
         }
     }
 
@@ -112,6 +116,7 @@ impl<'c> Cx<'c> {
             for_vars: Vec::new(),
             loops: 0,
             calls: Vec::new(),
+            expected: None,
         }
     }
 
@@ -121,7 +126,7 @@ impl<'c> Cx<'c> {
 
     /// The cell of a constant expression of type `ty`.
     pub(super) fn constant(&mut self, e: &ast::Expr, ty: Type) -> Result<i64, Error> {
-        let typed = self.expr(e)?;
+        let typed = self.expr_for(e, ty)?;
         match self.coerce(typed, ty, e.pos(), "initial value")? {
             Expr::Const(cell) => Ok(cell),
             _ => Err(error(
@@ -185,6 +190,14 @@ impl<'c> Cx<'c> {
             ));
         }
         Ok(typed.code)
+    }
+
+    /// `e`, compiled where a value of type `expected` is wanted.
+    pub(super) fn expr_for(&mut self, e: &ast::Expr, expected: Type) -> Result<Typed, Error> {
+        let outer = self.expected.replace(expected);
+        let typed = self.expr(e);
+        self.expected = outer;
+        typed
     }
 
     pub(super) fn expr(&mut self, e: &ast::Expr) -> Result<Typed, Error> {
@@ -285,6 +298,9 @@ impl<'c> Cx<'c> {
         }
         let symbol = op.symbol();
         let (ty, l, r) = self.unify(symbol, left, right, pos)?;
+        if matches!(op, BinaryOp::Div | BinaryOp::Mod) && matches!(r, Expr::Const(0)) {
+            return Err(error(ErrorKind::Range, pos, "division by zero"));
+        }
         let operands = Box::new((l, r));
         let (code, result) = match op {
             BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div | BinaryOp::Mod => {
@@ -518,7 +534,10 @@ impl<'c> Cx<'c> {
         let mut stride: u32 = 1;
         let mut out = Vec::with_capacity(dims.len());
         for (&(lo, hi), e) in dims.iter().zip(indices).rev() {
-            let typed = self.expr(e)?;
+            let outer = self.expected.take();
+            let typed = self.expr(e);
+            self.expected = outer;
+            let typed = typed?;
             let (index, unsigned) = match typed.ty {
                 ETy::Literal(v) => {
                     if v < i128::from(lo) || v > i128::from(hi) {
@@ -572,7 +591,11 @@ impl<'c> Cx<'c> {
 
     fn call_expr(&mut self, name: &ast::Ident, args: &[ast::Arg]) -> Result<Typed, Error> {
         let key = name.key();
-        if let Some(var) = lookup(self.vars, self.var_index, &key) {
+        let is_function =
+            |id: &usize| self.pous[*id].as_ref().map(|p| p.kind) == Some(PouKind::Function);
+        // Inside function `f`, `f` is the result variable but `f(...)` a call.
+        let function = self.index.get(&key).filter(|id| is_function(id));
+        if let Some(var) = lookup(self.vars, self.var_index, &key).filter(|_| function.is_none()) {
             let message = if var.instance_of.is_some() {
                 format!(
                     "calling function block instance `{}` is a statement, not a value",
@@ -685,7 +708,7 @@ impl<'c> Cx<'c> {
                     "array inputs are not supported",
                 ));
             };
-            let typed = self.expr(e)?;
+            let typed = self.expr_for(e, ty)?;
             let code = self.coerce(typed, ty, e.pos(), &format!("input `{}`", input.name))?;
             out.push((input.slot, code));
         }
@@ -778,7 +801,8 @@ impl<'c> Cx<'c> {
                 }
             });
         }
-        let Some(ty) = ty else {
+        let context = self.expected.filter(|t| matches!(t, Type::Int(_)));
+        let Some(ty) = ty.or(context) else {
             return Err(error(
                 ErrorKind::Type,
                 name.pos,
@@ -863,18 +887,19 @@ impl<'c> Cx<'c> {
                     }
                 };
                 let n = self.expr(count)?;
-                let n =
-                    match n.ty {
-                        ETy::Literal(v) if v >= 0 => Expr::Const(v.min(i128::from(u8::MAX)) as i64),
-                        ETy::Int(c) if !c.is_bit_string() => n.code,
-                        ty => return Err(error(
+                let n = match n.ty {
+                    ETy::Literal(v) if v >= 0 => Expr::Const(v.min(i128::from(u8::MAX)) as i64),
+                    ETy::Int(c) if !c.is_bit_string() => n.code,
+                    ty => {
+                        return Err(error(
                             ErrorKind::Type,
                             count.pos(),
                             format!(
                                 "{key}'s shift count must be a non-negative integer, found {ty}"
                             ),
-                        )),
-                    };
+                        ))
+                    }
+                };
                 let b = match key {
                     "SHL" => Builtin::Shl(t),
                     "SHR" => Builtin::Shr(t),
@@ -906,6 +931,13 @@ fn typed_literal(ty: &ast::Ident, value: TypedValue, pos: Pos) -> Result<Typed, 
     let cell = match (t, value) {
         (Type::Bool, TypedValue::Bool(b)) => i64::from(b),
         (Type::Bool, TypedValue::Int(v @ (0 | 1))) => v as i64,
+        (Type::Bool, TypedValue::Int(v)) => {
+            return Err(error(
+                ErrorKind::Range,
+                pos,
+                format!("BOOL#{v}: a BOOL literal is 0 or 1"),
+            ))
+        }
         (Type::Int(it), TypedValue::Int(v)) if it.contains(v) => it.cell_of(v),
         (Type::Int(it), TypedValue::Int(v)) => {
             return Err(error(

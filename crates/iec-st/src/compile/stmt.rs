@@ -17,7 +17,7 @@ impl Cx<'_> {
         Ok(match stmt {
             S::Assign { target, value, pos } => {
                 let access = self.resolve(target, true)?;
-                let typed = self.expr(value)?;
+                let typed = self.expr_for(value, access.ty)?;
                 let code = self.coerce(typed, access.ty, *pos, "assignment")?;
                 Stmt::Assign(access.place, code)
             }
@@ -314,7 +314,7 @@ impl Cx<'_> {
             };
             match arg {
                 Arg::Input(n, e) => {
-                    let typed = self.expr(e)?;
+                    let typed = self.expr_for(e, member_ty)?;
                     let code =
                         self.coerce(typed, member_ty, e.pos(), &format!("input `{}`", n.text))?;
                     inputs.push((member.slot, code));
