@@ -330,9 +330,7 @@ impl Lexer<'_> {
         }
         let text = std::str::from_utf8(&self.src[start..self.at]).expect("ASCII");
         let bytes = text.as_bytes();
-        let well_formed = !bytes.windows(2).any(|w| w == b"__")
-            && !(bytes.len() > 1 && bytes.ends_with(b"_"))
-            && text != "_";
+        let well_formed = !(bytes.windows(2).any(|w| w == b"__") || bytes.ends_with(b"_"));
         if !well_formed {
             return Err(self.error(
                 pos,
