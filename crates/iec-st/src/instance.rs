@@ -221,6 +221,26 @@ impl Instance {
         Err(Error::host(path, "empty path"))
     }
 
+    /// The top-level variable located at `address` (`%IX0.3`, any case).
+    pub fn slot_at(&self, address: &str) -> Result<Slot, Error> {
+        let var = self
+            .top()
+            .vars
+            .iter()
+            .find(|v| {
+                v.address
+                    .as_deref()
+                    .is_some_and(|a| a.eq_ignore_ascii_case(address))
+            })
+            .ok_or_else(|| {
+                Error::host(
+                    address,
+                    format!("no variable of {} is located there", self.pou_name()),
+                )
+            })?;
+        self.slot(&var.name)
+    }
+
     fn check(&self, slot: Slot) -> Result<usize, Error> {
         if slot.file != self.file || slot.pou as usize != self.pou {
             return Err(Error::host(

@@ -168,20 +168,18 @@ impl Parser {
         }
         let address = if self.eat(&Tok::Kw(Kw::At)) {
             let pos = self.pos();
-            match self.next().tok {
-                Tok::Address(a) if names.len() == 1 => Some((a, pos)),
-                Tok::Address(_) => {
-                    return Err(Error::at(
-                        ErrorKind::Syntax,
-                        pos,
-                        "`AT` locates one variable, not a list",
-                    ))
-                }
-                _ => {
-                    self.at -= 1;
-                    return Err(self.unexpected("an address such as `%IX0.0`"));
-                }
+            let Tok::Address(address) = self.peek().clone() else {
+                return Err(self.unexpected("an address such as `%IX0.0`"));
+            };
+            if names.len() > 1 {
+                return Err(Error::at(
+                    ErrorKind::Syntax,
+                    pos,
+                    "`AT` locates one variable, not a list",
+                ));
             }
+            self.next();
+            Some((address, pos))
         } else {
             None
         };

@@ -68,8 +68,8 @@ fn setup() -> (Instance, Io) {
     let file = parse(SOURCE).unwrap();
     let p = file.instantiate("main").unwrap();
     let io = Io {
-        inputs: ["sensor", "start", "reset", "ack"].map(|n| p.slot(n).unwrap()),
-        motor: p.slot("motor").unwrap(),
+        inputs: ["%IX0.0", "%IX0.1", "%ix0.2", "%IX0.3"].map(|a| p.slot_at(a).unwrap()),
+        motor: p.slot_at("%QX0.0").unwrap(),
         alarm: p.slot("alarm").unwrap(),
         state: p.slot("state").unwrap(),
         fired: p.slot("sc.fired").unwrap(),
