@@ -1,6 +1,8 @@
 //! The compile step: lays out every POU's frame, evaluates initial values,
 //! checks types and access rules, and resolves names in bodies to slots.
 
+mod access;
+mod call;
 mod expr;
 mod layout;
 mod stmt;
