@@ -1,0 +1,570 @@
+//! The exported Structured Text, executed: every seed project and the
+//! boiler exported with `codegen::iec` (as `codegen st` writes it),
+//! parsed and run by `iec-st` (an interpreter of the IEC 61131-3 subset,
+//! written from the standard, which shares no code with the exporter or
+//! the executor), in lockstep with host-sim's executor on the same
+//! inputs. Every scan compares every output, every supervisor state (a
+//! net's marking packed as the executor packs it), the executed and the
+//! unexpected events in order, the fault and its cause, and the fault and
+//! ignore counters.
+//!
+//! Inputs: host-sim's guided random sequences (every project, at least
+//! 10,000 scans, with faults and resets), the press's recorded cycle, the
+//! boiler's closed-loop scenarios with its plant, and the batch cell's
+//! two-batch closed loop. The program POU (the one a PLC task runs) is
+//! run too, on its located inputs with its own clock.
+
+use codegen::iec::{self, IoMap};
+use codegen::project::{self, Project};
+use executor::Fault;
+use host_sim::inputs::InputRow;
+use host_sim::random_inputs::guided_inputs;
+use host_sim::Sim;
+use iec_st::{Instance, IntType, Slot, Value};
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn load(rel: &str) -> Project {
+    project::load(&root().join(rel)).unwrap_or_else(|e| panic!("{rel}: {e}"))
+}
+
+/// The exported ST text of `project` (default addresses).
+fn st_text(project: &Project) -> String {
+    let export = iec::export(project, &IoMap::sequential(), "codegen st (test)")
+        .unwrap_or_else(|e| panic!("{}: {e}", project.name));
+    iec::st::print(&export)
+}
+
+/// The controller function block of an exported file, run by the
+/// interpreter, with the slots the comparison reads.
+struct StController {
+    fb: Instance,
+    now: Slot,
+    inputs: Vec<Slot>,
+    outputs: Vec<Slot>,
+    /// Automaton state variables.
+    states: Vec<Slot>,
+    /// Per net, a slot per place.
+    markings: Vec<Vec<Slot>>,
+    fault: Slot,
+    cause: Slot,
+    fault_event: Slot,
+    faults: Slot,
+    ignored: Slot,
+    n_events: Slot,
+    events: Vec<Slot>,
+    n_unexpected: Slot,
+    unexpected: Vec<Slot>,
+}
+
+fn int(v: Value) -> i64 {
+    v.as_i64().expect("an integer")
+}
+
+impl StController {
+    fn new(project: &Project, text: &str) -> StController {
+        let names = iec::export(project, &IoMap::sequential(), "t")
+            .expect("exports")
+            .names;
+        let file = iec_st::parse(text).unwrap_or_else(|e| panic!("{}: {e}", project.name));
+        let fb = file
+            .instantiate(&names.controller)
+            .unwrap_or_else(|e| panic!("{}: {e}", project.name));
+        let slot = |path: &str| {
+            fb.slot(path)
+                .unwrap_or_else(|e| panic!("{}: {path}: {e}", project.name))
+        };
+        let events = (1..=project.events.len().max(1))
+            .map(|k| slot(&format!("EVENTS[{k}]")))
+            .collect();
+        let uncontrollable = project.events.iter().filter(|e| !e.controllable).count();
+        let unexpected = (1..=uncontrollable.max(1))
+            .map(|k| slot(&format!("UNEXPECTED[{k}]")))
+            .collect();
+        let markings = project
+            .nets
+            .iter()
+            .enumerate()
+            .map(|(n, net)| {
+                (0..net.net.places().len())
+                    .map(|p| slot(&format!("{}[{p}]", names.nets[n])))
+                    .collect()
+            })
+            .collect();
+        StController {
+            now: slot("NOW_MS"),
+            inputs: names.inputs.iter().map(|n| slot(n)).collect(),
+            outputs: names.outputs.iter().map(|n| slot(n)).collect(),
+            states: names.states.iter().map(|n| slot(n)).collect(),
+            markings,
+            fault: slot("FAULT"),
+            cause: slot("FAULT_CAUSE"),
+            fault_event: slot("FAULT_EVENT"),
+            faults: slot("FAULTS"),
+            ignored: slot("IGNORED"),
+            n_events: slot("N_EVENTS"),
+            events,
+            n_unexpected: slot("N_UNEXPECTED"),
+            unexpected,
+            fb,
+        }
+    }
+
+    fn scan(&mut self, time_ms: u64, raw: &[bool]) {
+        self.fb
+            .set_slot(self.now, Value::int(IntType::Udint, i128::from(time_ms as u32)).expect("in range"))
+            .expect("NOW_MS");
+        for (slot, &v) in self.inputs.iter().zip(raw) {
+            self.fb.set_slot(*slot, Value::Bool(v)).expect("input");
+        }
+        self.fb.call().expect("the scan runs without a runtime error");
+    }
+
+    fn get(&self, slot: &Slot) -> Value {
+        self.fb.get_slot(*slot).expect("a slot of this block")
+    }
+
+    fn list(&self, n: &Slot, items: &[Slot]) -> Vec<u16> {
+        let n = int(self.get(n)) as usize;
+        items[..n].iter().map(|s| int(self.get(s)) as u16).collect()
+    }
+}
+
+/// What one scan left, on either side, in the executor's terms.
+#[derive(Debug, PartialEq, Eq)]
+struct Observed {
+    executed: Vec<u16>,
+    unexpected: Vec<u16>,
+    states: Vec<u32>,
+    outputs: Vec<bool>,
+    fault: Option<(i64, i64)>,
+    faults: u32,
+    ignored: u32,
+}
+
+fn fault_code(fault: Option<Fault>) -> Option<(i64, i64)> {
+    fault.map(|f| match f {
+        Fault::Unexpected { event } => (iec::scan::CAUSE_UNEXPECTED, i64::from(event)),
+        Fault::Corrupt => (iec::scan::CAUSE_CORRUPT, -1),
+        other => panic!("{other:?} cannot happen in a replay"),
+    })
+}
+
+fn observe_sim(sim: &Sim) -> Observed {
+    let c = sim.controller();
+    let r = c.record();
+    Observed {
+        executed: r.executed.to_vec(),
+        unexpected: r.unexpected.to_vec(),
+        states: r.states.to_vec(),
+        outputs: r.outputs.to_vec(),
+        fault: fault_code(r.fault),
+        faults: c.counters().faults,
+        ignored: c.counters().ignored,
+    }
+}
+
+fn observe_st(project: &Project, st: &StController) -> Observed {
+    let mut states: Vec<u32> = st.states.iter().map(|s| int(st.get(s)) as u32).collect();
+    for (n, net) in project.nets.iter().enumerate() {
+        let marking: Vec<u32> = st.markings[n]
+            .iter()
+            .map(|s| int(st.get(s)) as u32)
+            .collect();
+        states.extend((0..net.groups()).map(|g| net.pack(g, &marking)));
+    }
+    let fault = st.get(&st.fault).as_bool().expect("FAULT is BOOL").then(|| {
+        let cause = int(st.get(&st.cause));
+        let event = if cause == iec::scan::CAUSE_UNEXPECTED {
+            int(st.get(&st.fault_event))
+        } else {
+            -1
+        };
+        (cause, event)
+    });
+    Observed {
+        executed: st.list(&st.n_events, &st.events),
+        unexpected: st.list(&st.n_unexpected, &st.unexpected),
+        states,
+        outputs: st
+            .outputs
+            .iter()
+            .map(|s| st.get(s).as_bool().expect("outputs are BOOL"))
+            .collect(),
+        fault,
+        faults: int(st.get(&st.faults)) as u32,
+        ignored: int(st.get(&st.ignored)) as u32,
+    }
+}
+
+/// What a lockstep run went through, for the coverage assertions.
+#[derive(Debug, Default)]
+struct Coverage {
+    scans: usize,
+    executed: std::collections::BTreeSet<u16>,
+    faults: u32,
+    resets: usize,
+}
+
+/// Runs `rows` through a fresh host-sim and the exported ST; panics at
+/// the first scan where they differ, naming everything.
+fn lockstep(project: &Project, text: &str, rows: &[InputRow], what: &str) -> Coverage {
+    let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table).expect("sim");
+    sim.retain_trace(false);
+    let mut st = StController::new(project, text);
+    let mut cov = Coverage::default();
+    let mut was_fault = false;
+    for (k, row) in rows.iter().enumerate() {
+        let trace = sim.scan_with(row.time_ms, &row.values).expect("scan").clone();
+        st.scan(row.time_ms, &row.values);
+        let (host, plc) = (observe_sim(&sim), observe_st(project, &st));
+        assert_eq!(
+            host, plc,
+            "{} ({what}): scan {k} at {} ms differs (left host-sim, right ST); host-sim's row: {trace:?}",
+            project.name, row.time_ms
+        );
+        cov.scans += 1;
+        cov.executed.extend(&host.executed);
+        cov.faults = host.faults;
+        if was_fault && host.fault.is_none() {
+            cov.resets += 1;
+        }
+        was_fault = host.fault.is_some();
+    }
+    cov
+}
+
+/// `scans` rows at the project's period whose inputs each toggle with
+/// probability 1/16 per scan (seeded xorshift), and whose clock now and
+/// then jumps ahead, so that timers run out.
+fn blind_inputs(project: &Project, scans: usize, seed: u64) -> Vec<InputRow> {
+    let mut x = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    let mut next = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        x
+    };
+    let mut values = vec![false; project.inputs.len()];
+    let mut time_ms = 0u64;
+    (0..scans)
+        .map(|_| {
+            for v in &mut values {
+                if next() % 16 == 0 {
+                    *v = !*v;
+                }
+            }
+            time_ms += u64::from(project.scan_period_ms)
+                * if next() % 64 == 0 { 1 + next() % 500 } else { 1 };
+            InputRow {
+                time_ms,
+                values: values.clone(),
+            }
+        })
+        .collect()
+}
+
+/// Scans of guided random input per project.
+const RANDOM_SCANS: usize = 10_000;
+
+/// Every project with `[board]` or without: the seeds, the benchmark AGV,
+/// the boiler both ways, the nets.
+const PROJECTS: [&str; 10] = [
+    "models/motivating.plc.toml",
+    "models/press.plc.toml",
+    "models/press7.plc.toml",
+    "models/conveyor.plc.toml",
+    "models/crane.plc.toml",
+    "models/agv.plc.toml",
+    "models/boiler/boiler.plc.toml",
+    "models/boiler/boiler_mono.plc.toml",
+    "models/petri/mixers.plc.toml",
+    "models/petri/cell/cell.plc.toml",
+];
+
+fn random_lockstep(rel: &str, seed: u64) {
+    let project = load(rel);
+    let text = st_text(&project);
+    // Mostly expected events, a noisier run, then inputs toggled blindly
+    // (every input, the reset too, with probability 1/16 per scan), whose
+    // stray edges provoke unexpected events, faults and resets.
+    let mut total = Coverage::default();
+    for (scans, noise) in [(RANDOM_SCANS, 40), (RANDOM_SCANS / 2, 3), (RANDOM_SCANS / 2, 0)] {
+        let rows = if noise == 0 {
+            blind_inputs(&project, scans, seed)
+        } else {
+            guided_inputs(&project, scans, seed, noise).expect("inputs")
+        };
+        let cov = lockstep(&project, &text, &rows, &format!("random, noise {noise}"));
+        assert_eq!(cov.scans, scans);
+        total.scans += cov.scans;
+        total.executed.extend(cov.executed);
+        total.faults += cov.faults;
+        total.resets += cov.resets;
+    }
+    // The runs must have exercised what they compare (the boiler's deeper
+    // sequences are the closed-loop test's; the boiler and the conveyor
+    // expect every input edge in every state, so only a corrupt state
+    // faults them: `a_corrupt_state_faults_to_the_safe_image_until_reset`).
+    assert!(!total.executed.is_empty(), "{rel}: no event executed");
+    if total.faults > 0 && project.reset.is_some() {
+        assert!(total.resets > 0, "{rel}: faults but no reset: {total:?}");
+    }
+    println!(
+        "{rel}: {} scans, {} of {} events, {} faults, {} resets, 0 differences",
+        total.scans,
+        total.executed.len(),
+        project.events.len(),
+        total.faults,
+        total.resets
+    );
+}
+
+macro_rules! random_tests {
+    ($($name:ident: $index:expr, $seed:expr;)*) => {$(
+        #[test]
+        fn $name() {
+            random_lockstep(PROJECTS[$index], $seed);
+        }
+    )*};
+}
+
+random_tests! {
+    motivating_random_inputs_give_the_same_trace: 0, 1;
+    press_random_inputs_give_the_same_trace: 1, 2;
+    press7_random_inputs_give_the_same_trace: 2, 3;
+    conveyor_random_inputs_give_the_same_trace: 3, 4;
+    crane_random_inputs_give_the_same_trace: 4, 5;
+    agv_random_inputs_give_the_same_trace: 5, 6;
+    boiler_random_inputs_give_the_same_trace: 6, 7;
+    boiler_mono_random_inputs_give_the_same_trace: 7, 8;
+    mixers_random_inputs_give_the_same_trace: 8, 9;
+    cell_random_inputs_give_the_same_trace: 9, 10;
+}
+
+#[test]
+fn the_press_cycle_as_recorded_gives_the_same_trace() {
+    let project = load("models/press.plc.toml");
+    let path = root().join("models/press/cycle.inputs.csv");
+    let text = std::fs::read_to_string(&path).expect("inputs");
+    let rows = host_sim::inputs::parse(&text, &path, &project).expect("parses");
+    let cov = lockstep(&project, &st_text(&project), &rows, "cycle.inputs.csv");
+    assert_eq!(cov.scans, rows.len());
+    assert!(!cov.executed.is_empty());
+}
+
+/// The boiler's closed-loop scenarios (all but the controller stall,
+/// whose overrun a PLC's own task watchdog handles): host-sim runs each
+/// with the plant, and its input image per scan is replayed into the ST.
+#[test]
+fn the_boilers_closed_loop_scenarios_give_the_same_trace() {
+    use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Input, IoMap as Boiler};
+    let project = load("models/boiler/boiler.plc.toml");
+    let text = st_text(&project);
+    let io = Boiler::new(&project).expect("boiler signals");
+    let mut total = 0;
+    let (mut executed, mut faults, mut resets) = (std::collections::BTreeSet::new(), 0, 0);
+    for name in scenarios::NAMES.iter().filter(|n| **n != "controller-stall") {
+        let (script, duration) = scenarios::named(name).expect("scenario");
+        let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table).expect("sim");
+        let mut boiler = BoilerPlant::new(BoilerParams::default(), 1);
+        let run = plant::run(&mut sim, &mut boiler, &script, duration).expect("runs");
+        let rows: Vec<InputRow> = run
+            .rows
+            .iter()
+            .map(|r| {
+                let mut values = vec![false; project.inputs.len()];
+                for input in Input::ALL {
+                    values[io.input(input)] = r.inputs.get(input);
+                }
+                InputRow {
+                    time_ms: r.time_ms,
+                    values,
+                }
+            })
+            .collect();
+        let cov = lockstep(&project, &text, &rows, name);
+        assert!(!cov.executed.is_empty(), "{name}: nothing happened");
+        total += cov.scans;
+        executed.extend(cov.executed);
+        faults += cov.faults;
+        resets += cov.resets;
+    }
+    assert!(total >= 10_000, "{total} scans");
+    println!(
+        "boiler scenarios: {total} scans, {} of {} events, {faults} faults, {resets} resets, 0 differences",
+        executed.len(),
+        project.events.len()
+    );
+}
+
+/// The batch cell's two batches in closed loop with its plant.
+#[test]
+fn the_cells_two_batches_in_closed_loop_give_the_same_trace() {
+    use host_sim::cell::{self, CellParams, CellPlant, Operator, Unit, Watch};
+    let project = load("models/petri/cell/cell.plc.toml");
+    let params = CellParams::default();
+    let watch = Watch::of_project(&project, &params).expect("watch");
+    let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table).expect("sim");
+    let mut plant = CellPlant::new(params);
+    let both = Operator::new()
+        .press(1_000, Unit::A, 1_000)
+        .press(1_000, Unit::B, 1_000);
+    let run = cell::run(&mut sim, &mut plant, &both, &watch, 1_500_000).expect("runs");
+    let csv = run.inputs_csv(&project).expect("inputs");
+    let rows = host_sim::inputs::parse(&csv, Path::new("cell.inputs.csv"), &project).expect("parses");
+    let cov = lockstep(&project, &st_text(&project), &rows, "two batches");
+    assert!(cov.scans >= 10_000, "{} scans", cov.scans);
+    assert_eq!(run.batches(Unit::A).len(), 1);
+}
+
+/// The program POU a PLC task runs: located inputs in, the controller
+/// called with the program's own clock (one period per call), located
+/// outputs out; equal to host-sim scanning on its period grid.
+#[test]
+fn the_program_wires_the_controller_to_its_addresses_and_keeps_time() {
+    for rel in ["models/press.plc.toml", "models/crane.plc.toml"] {
+        let project = load(rel);
+        let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
+        let text = iec::st::print(&export);
+        let file = iec_st::parse(&text).expect("parses");
+        let mut program = file.instantiate(&export.names.program).expect("program");
+        let inputs: Vec<Slot> = export
+            .names
+            .inputs
+            .iter()
+            .map(|n| program.slot(n).expect("located input"))
+            .collect();
+        let outputs: Vec<Slot> = export
+            .names
+            .outputs
+            .iter()
+            .map(|n| program.slot(n).expect("located output"))
+            .collect();
+        let period = u64::from(project.scan_period_ms);
+        let rows = guided_inputs(&project, 3_000, 11, 40).expect("inputs");
+        let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table).expect("sim");
+        sim.retain_trace(false);
+        let mut changes = 0;
+        for (k, row) in rows.iter().enumerate() {
+            // The program's clock advances a period per call, so the
+            // inputs are replayed on that grid.
+            let time = k as u64 * period;
+            let host = sim.scan_with(time, &row.values).expect("scan").outputs.clone();
+            for (slot, &v) in inputs.iter().zip(&row.values) {
+                program.force_slot(*slot, Value::Bool(v)).expect("input");
+            }
+            program.call().expect("runs");
+            let plc: Vec<bool> = outputs
+                .iter()
+                .map(|s| program.get_slot(*s).expect("slot").as_bool().expect("BOOL"))
+                .collect();
+            assert_eq!(host, plc, "{rel}: scan {k}");
+            changes += usize::from(k > 0 && host.iter().any(|&o| o));
+        }
+        assert!(changes > 0, "{rel}: no output ever rose");
+    }
+}
+
+/// The comparison itself can fail: the press exported with one
+/// transition of its supervisor redirected differs from host-sim.
+#[test]
+fn a_wrong_transition_in_the_exported_table_is_found() {
+    let project = load("models/press.plc.toml");
+    let text = st_text(&project);
+    // The first row of the first transition array: change its first
+    // defined target to another state.
+    let start = text.find(":= [").expect("a transition array");
+    let row = start + text[start..].find("*) ").expect("a row label") + 3;
+    let end = row + text[row..].find('\n').expect("row end");
+    let values: Vec<&str> = text[row..end].trim_end_matches(',').split(", ").collect();
+    let k = values.iter().position(|v| *v != "-1").expect("a defined target");
+    let mut changed: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+    changed[k] = if values[k] == "0" { "1" } else { "0" }.to_string();
+    let mut row_text = changed.join(", ");
+    if text[row..end].ends_with(',') {
+        row_text.push(',');
+    }
+    let broken = format!("{}{}{}", &text[..row], row_text, &text[end..]);
+    let rows = guided_inputs(&project, 2_000, 2, 40).expect("inputs");
+    let outcome = std::panic::catch_unwind(|| lockstep(&project, &broken, &rows, "mutant"));
+    let message = outcome.expect_err("the mutant must differ");
+    let text = message
+        .downcast_ref::<String>()
+        .cloned()
+        .unwrap_or_default();
+    assert!(text.contains("differs"), "{text}");
+}
+
+/// The fault path of every project's block, which inputs cannot reach in
+/// projects that expect every edge (the boiler, the conveyor): a state
+/// forced out of range is `FAULT_CAUSE` 2 with every output at its safe
+/// level until the reset input rises, which restores the initial states
+/// and the initial output image.
+#[test]
+fn a_corrupt_state_faults_to_the_safe_image_until_reset() {
+    use codegen::project::Drive;
+    for rel in PROJECTS {
+        let project = load(rel);
+        if project.supervisors.is_empty() {
+            continue;
+        }
+        let names = iec::export(&project, &IoMap::sequential(), "t").expect("exports").names;
+        let mut st = StController::new(&project, &st_text(&project));
+        let zeros = vec![false; project.inputs.len()];
+        let rows = guided_inputs(&project, 200, 5, 40).expect("inputs");
+        for row in &rows {
+            st.scan(row.time_ms, &row.values);
+        }
+        let out_of_range = project.supervisors[0].automaton.num_states() as i128;
+        let ty = match st.get(&st.states[0]) {
+            Value::Int { ty, .. } => ty,
+            Value::Bool(_) => panic!("a state is an integer"),
+        };
+        st.fb
+            .force(&names.states[0], Value::int(ty, out_of_range).expect("fits"))
+            .expect("forced");
+        let mut time = rows.last().map_or(0, |r| r.time_ms);
+        for _ in 0..3 {
+            time += 10;
+            st.scan(time, &zeros);
+            let seen = observe_st(&project, &st);
+            assert_eq!(seen.fault, Some((iec::scan::CAUSE_CORRUPT, -1)), "{rel}");
+            let safe: Vec<bool> = project.outputs.iter().map(|o| o.safe).collect();
+            assert_eq!(seen.outputs, safe, "{rel}");
+            assert!(seen.executed.is_empty(), "{rel}");
+        }
+        let Some(reset) = project.reset else {
+            continue;
+        };
+        let mut pressed = zeros.clone();
+        pressed[reset] = true;
+        st.scan(time + 10, &pressed);
+        let seen = observe_st(&project, &st);
+        assert_eq!(seen.fault, None, "{rel}: the reset leaves fault mode");
+        assert!(seen.executed.is_empty(), "{rel}: the reset scan runs no event");
+        let initial: Vec<u32> = project
+            .supervisors
+            .iter()
+            .map(|s| s.automaton.initial().expect("initial").0)
+            .collect();
+        assert_eq!(seen.states[..initial.len()], initial[..], "{rel}");
+        let image: Vec<bool> = project
+            .outputs
+            .iter()
+            .map(|o| match &o.drive {
+                Drive::Actions { initial } => *initial,
+                Drive::States(map) => map
+                    .iter()
+                    .any(|(j, states)| states.iter().any(|s| s.0 == initial[*j])),
+                Drive::Places(map) => map.iter().any(|(n, places)| {
+                    places.iter().any(|&p| project.nets[*n].net.initial()[p] > 0)
+                }),
+            })
+            .collect();
+        assert_eq!(seen.outputs, image, "{rel}: the initial output image");
+    }
+}
