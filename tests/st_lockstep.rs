@@ -115,12 +115,17 @@ impl StController {
 
     fn scan(&mut self, time_ms: u64, raw: &[bool]) {
         self.fb
-            .set_slot(self.now, Value::int(IntType::Udint, i128::from(time_ms as u32)).expect("in range"))
+            .set_slot(
+                self.now,
+                Value::int(IntType::Udint, i128::from(time_ms as u32)).expect("in range"),
+            )
             .expect("NOW_MS");
         for (slot, &v) in self.inputs.iter().zip(raw) {
             self.fb.set_slot(*slot, Value::Bool(v)).expect("input");
         }
-        self.fb.call().expect("the scan runs without a runtime error");
+        self.fb
+            .call()
+            .expect("the scan runs without a runtime error");
     }
 
     fn get(&self, slot: &Slot) -> Value {
@@ -176,15 +181,19 @@ fn observe_st(project: &Project, st: &StController) -> Observed {
             .collect();
         states.extend((0..net.groups()).map(|g| net.pack(g, &marking)));
     }
-    let fault = st.get(&st.fault).as_bool().expect("FAULT is BOOL").then(|| {
-        let cause = int(st.get(&st.cause));
-        let event = if cause == iec::scan::CAUSE_UNEXPECTED {
-            int(st.get(&st.fault_event))
-        } else {
-            -1
-        };
-        (cause, event)
-    });
+    let fault = st
+        .get(&st.fault)
+        .as_bool()
+        .expect("FAULT is BOOL")
+        .then(|| {
+            let cause = int(st.get(&st.cause));
+            let event = if cause == iec::scan::CAUSE_UNEXPECTED {
+                int(st.get(&st.fault_event))
+            } else {
+                -1
+            };
+            (cause, event)
+        });
     Observed {
         executed: st.list(&st.n_events, &st.events),
         unexpected: st.list(&st.n_unexpected, &st.unexpected),
@@ -218,7 +227,10 @@ fn lockstep(project: &Project, text: &str, rows: &[InputRow], what: &str) -> Cov
     let mut cov = Coverage::default();
     let mut was_fault = false;
     for (k, row) in rows.iter().enumerate() {
-        let trace = sim.scan_with(row.time_ms, &row.values).expect("scan").clone();
+        let trace = sim
+            .scan_with(row.time_ms, &row.values)
+            .expect("scan")
+            .clone();
         st.scan(row.time_ms, &row.values);
         let (host, plc) = (observe_sim(&sim), observe_st(project, &st));
         assert_eq!(
@@ -258,7 +270,11 @@ fn blind_inputs(project: &Project, scans: usize, seed: u64) -> Vec<InputRow> {
                 }
             }
             time_ms += u64::from(project.scan_period_ms)
-                * if next() % 64 == 0 { 1 + next() % 500 } else { 1 };
+                * if next() % 64 == 0 {
+                    1 + next() % 500
+                } else {
+                    1
+                };
             InputRow {
                 time_ms,
                 values: values.clone(),
@@ -292,7 +308,11 @@ fn random_lockstep(rel: &str, seed: u64) {
     // (every input, the reset too, with probability 1/16 per scan), whose
     // stray edges provoke unexpected events, faults and resets.
     let mut total = Coverage::default();
-    for (scans, noise) in [(RANDOM_SCANS, 40), (RANDOM_SCANS / 2, 3), (RANDOM_SCANS / 2, 0)] {
+    for (scans, noise) in [
+        (RANDOM_SCANS, 40),
+        (RANDOM_SCANS / 2, 3),
+        (RANDOM_SCANS / 2, 0),
+    ] {
         let rows = if noise == 0 {
             blind_inputs(&project, scans, seed)
         } else {
@@ -367,7 +387,10 @@ fn the_boilers_closed_loop_scenarios_give_the_same_trace() {
     let io = Boiler::new(&project).expect("boiler signals");
     let mut total = 0;
     let (mut executed, mut faults, mut resets) = (std::collections::BTreeSet::new(), 0, 0);
-    for name in scenarios::NAMES.iter().filter(|n| **n != "controller-stall") {
+    for name in scenarios::NAMES
+        .iter()
+        .filter(|n| **n != "controller-stall")
+    {
         let (script, duration) = scenarios::named(name).expect("scenario");
         let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table).expect("sim");
         let mut boiler = BoilerPlant::new(BoilerParams::default(), 1);
@@ -415,7 +438,8 @@ fn the_cells_two_batches_in_closed_loop_give_the_same_trace() {
         .press(1_000, Unit::B, 1_000);
     let run = cell::run(&mut sim, &mut plant, &both, &watch, 1_500_000).expect("runs");
     let csv = run.inputs_csv(&project).expect("inputs");
-    let rows = host_sim::inputs::parse(&csv, Path::new("cell.inputs.csv"), &project).expect("parses");
+    let rows =
+        host_sim::inputs::parse(&csv, Path::new("cell.inputs.csv"), &project).expect("parses");
     let cov = lockstep(&project, &st_text(&project), &rows, "two batches");
     assert!(cov.scans >= 10_000, "{} scans", cov.scans);
     assert_eq!(run.batches(Unit::A).len(), 1);
@@ -428,7 +452,29 @@ fn the_cells_two_batches_in_closed_loop_give_the_same_trace() {
 fn the_program_wires_the_controller_to_its_addresses_and_keeps_time() {
     for rel in ["models/press.plc.toml", "models/crane.plc.toml"] {
         let project = load(rel);
-        let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
+        // The first input left to the PLC tool (`%I*`), the others at
+        // addresses in reverse order.
+        let mut map = String::from("[inputs]\n");
+        for (k, input) in project.inputs.iter().enumerate() {
+            let n = project.inputs.len() - 1 - k;
+            let address = if k == 0 {
+                "%I*".to_owned()
+            } else {
+                format!("%IX{}.{}", n / 8, n % 8)
+            };
+            map.push_str(&format!("\"{}\" = \"{address}\"\n", input.name));
+        }
+        map.push_str("[outputs]\n");
+        for (k, output) in project.outputs.iter().enumerate() {
+            map.push_str(&format!(
+                "\"{}\" = \"%QX{}.{}\"\n",
+                output.name,
+                k / 8,
+                k % 8
+            ));
+        }
+        let io = IoMap::parse(&map, Path::new("io.toml")).expect("a valid map");
+        let export = iec::export(&project, &io, "t").expect("exports");
         let text = iec::st::print(&export);
         let file = iec_st::parse(&text).expect("parses");
         let mut program = file.instantiate(&export.names.program).expect("program");
@@ -436,7 +482,18 @@ fn the_program_wires_the_controller_to_its_addresses_and_keeps_time() {
             .names
             .inputs
             .iter()
-            .map(|n| program.slot(n).expect("located input"))
+            .enumerate()
+            .map(|(k, n)| {
+                let slot = program.slot(n).expect("located input");
+                if k > 0 {
+                    let m = project.inputs.len() - 1 - k;
+                    let at = program
+                        .slot_at(&format!("%IX{}.{}", m / 8, m % 8))
+                        .expect("address");
+                    assert_eq!(at, slot, "{rel}: input {n} at its address");
+                }
+                slot
+            })
             .collect();
         let outputs: Vec<Slot> = export
             .names
@@ -453,7 +510,11 @@ fn the_program_wires_the_controller_to_its_addresses_and_keeps_time() {
             // The program's clock advances a period per call, so the
             // inputs are replayed on that grid.
             let time = k as u64 * period;
-            let host = sim.scan_with(time, &row.values).expect("scan").outputs.clone();
+            let host = sim
+                .scan_with(time, &row.values)
+                .expect("scan")
+                .outputs
+                .clone();
             for (slot, &v) in inputs.iter().zip(&row.values) {
                 program.force_slot(*slot, Value::Bool(v)).expect("input");
             }
@@ -481,7 +542,10 @@ fn a_wrong_transition_in_the_exported_table_is_found() {
     let row = start + text[start..].find("*) ").expect("a row label") + 3;
     let end = row + text[row..].find('\n').expect("row end");
     let values: Vec<&str> = text[row..end].trim_end_matches(',').split(", ").collect();
-    let k = values.iter().position(|v| *v != "-1").expect("a defined target");
+    let k = values
+        .iter()
+        .position(|v| *v != "-1")
+        .expect("a defined target");
     let mut changed: Vec<String> = values.iter().map(|v| v.to_string()).collect();
     changed[k] = if values[k] == "0" { "1" } else { "0" }.to_string();
     let mut row_text = changed.join(", ");
@@ -512,7 +576,9 @@ fn a_corrupt_state_faults_to_the_safe_image_until_reset() {
         if project.supervisors.is_empty() {
             continue;
         }
-        let names = iec::export(&project, &IoMap::sequential(), "t").expect("exports").names;
+        let names = iec::export(&project, &IoMap::sequential(), "t")
+            .expect("exports")
+            .names;
         let mut st = StController::new(&project, &st_text(&project));
         let zeros = vec![false; project.inputs.len()];
         let rows = guided_inputs(&project, 200, 5, 40).expect("inputs");
@@ -525,7 +591,10 @@ fn a_corrupt_state_faults_to_the_safe_image_until_reset() {
             Value::Bool(_) => panic!("a state is an integer"),
         };
         st.fb
-            .force(&names.states[0], Value::int(ty, out_of_range).expect("fits"))
+            .force(
+                &names.states[0],
+                Value::int(ty, out_of_range).expect("fits"),
+            )
             .expect("forced");
         let mut time = rows.last().map_or(0, |r| r.time_ms);
         for _ in 0..3 {
@@ -545,7 +614,10 @@ fn a_corrupt_state_faults_to_the_safe_image_until_reset() {
         st.scan(time + 10, &pressed);
         let seen = observe_st(&project, &st);
         assert_eq!(seen.fault, None, "{rel}: the reset leaves fault mode");
-        assert!(seen.executed.is_empty(), "{rel}: the reset scan runs no event");
+        assert!(
+            seen.executed.is_empty(),
+            "{rel}: the reset scan runs no event"
+        );
         let initial: Vec<u32> = project
             .supervisors
             .iter()
@@ -561,7 +633,9 @@ fn a_corrupt_state_faults_to_the_safe_image_until_reset() {
                     .iter()
                     .any(|(j, states)| states.iter().any(|s| s.0 == initial[*j])),
                 Drive::Places(map) => map.iter().any(|(n, places)| {
-                    places.iter().any(|&p| project.nets[*n].net.initial()[p] > 0)
+                    places
+                        .iter()
+                        .any(|&p| project.nets[*n].net.initial()[p] > 0)
                 }),
             })
             .collect();

@@ -445,10 +445,13 @@ impl Lexer<'_> {
         let area_ok = rest.starts_with(['I', 'Q', 'M']);
         let body = rest.get(1..).unwrap_or("");
         let body = body.strip_prefix(['X', 'B', 'W', 'D', 'L']).unwrap_or(body);
-        let numbers_ok = !body.is_empty()
-            && body
-                .split('.')
-                .all(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit()));
+        // `%I*`, `%Q*`: a location left to the configuration (IEC
+        // 61131-3, partly specified addresses).
+        let numbers_ok = rest.get(1..) == Some("*")
+            || !body.is_empty()
+                && body
+                    .split('.')
+                    .all(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit()));
         if !area_ok || !numbers_ok {
             return Err(self.error(pos, format!("`{text}` is no directly represented variable")));
         }
@@ -597,10 +600,11 @@ mod tests {
     #[test]
     fn addresses_are_one_token() {
         assert_eq!(
-            toks("%ix0.3 %QW12"),
+            toks("%ix0.3 %QW12 %i*"),
             [
                 Tok::Address("%IX0.3".into()),
                 Tok::Address("%QW12".into()),
+                Tok::Address("%I*".into()),
                 Tok::Eof
             ]
         );
