@@ -538,7 +538,13 @@ fn a_wrong_transition_in_the_exported_table_is_found() {
     let text = st_text(&project);
     // The first row of the first transition array: change its first
     // defined target to another state.
-    let start = text.find(":= [").expect("a transition array");
+    let table = &iec::export(&project, &IoMap::sequential(), "t")
+        .expect("exports")
+        .names
+        .tables[0];
+    let start = text
+        .find(&format!("{table} : ARRAY"))
+        .expect("a transition array");
     let row = start + text[start..].find("*) ").expect("a row label") + 3;
     let end = row + text[row..].find('\n').expect("row end");
     let values: Vec<&str> = text[row..end].trim_end_matches(',').split(", ").collect();

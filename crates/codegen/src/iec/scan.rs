@@ -771,14 +771,11 @@ impl Builder<'_> {
         if commands.is_empty() {
             return;
         }
-        let guard = if p.unexpected == Unexpected::Fault {
-            "IF NOT FAULT THEN"
-        } else {
-            "IF TRUE THEN"
-        };
+        // Under the fault policy an unexpected event may have ended the
+        // scan in step 4.
         let guarded = p.unexpected == Unexpected::Fault;
         if guarded {
-            b.open(guard);
+            b.open("IF NOT FAULT THEN");
         }
         if self.uses_done() {
             for &(e, _) in &commands {
