@@ -113,7 +113,7 @@ fn print_var(out: &mut String, var: &Var) {
 
 /// A `CONFIGURATION` running the program in a cyclic task of the scan
 /// period, for tools that compile a whole `.st` file into a PLC
-/// application (OpenPLC's runtime); append it to [`print`]'s text.
+/// application (OpenPLC's runtime); append it to [`print()`]'s text.
 pub fn configuration(export: &Export) -> String {
     let [config, resource, task, instance] = &export.names.configuration;
     format!(
