@@ -530,6 +530,40 @@ fn the_program_wires_the_controller_to_its_addresses_and_keeps_time() {
     }
 }
 
+/// The configuration `codegen st --configuration` appends: one resource
+/// whose cyclic task has the project's scan period and runs the program
+/// POU, checked by iec-st against the POUs of the same file.
+#[test]
+fn the_configuration_runs_the_program_in_a_task_of_the_scan_period() {
+    for rel in ["models/press.plc.toml", "models/petri/cell/cell.plc.toml"] {
+        let project = load(rel);
+        let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
+        let text = iec::st::print(&export) + &iec::st::configuration(&export);
+        let file = iec_st::parse(&text).unwrap_or_else(|e| panic!("{rel}: {e}"));
+        let [configuration] = file.configurations() else {
+            panic!("{rel}: one configuration expected")
+        };
+        let [resource] = &configuration.resources[..] else {
+            panic!("{rel}: one resource expected")
+        };
+        let [task] = &resource.tasks[..] else {
+            panic!("{rel}: one task expected")
+        };
+        assert_eq!(
+            task.interval_ms,
+            Some(u64::from(project.scan_period_ms)),
+            "{rel}"
+        );
+        let [instance] = &resource.programs[..] else {
+            panic!("{rel}: one program instance expected")
+        };
+        assert_eq!(instance.task.as_deref(), Some(task.name.as_str()), "{rel}");
+        assert_eq!(instance.pou, export.names.program, "{rel}");
+        let program = file.instantiate(&instance.pou).expect("the program");
+        assert_eq!(program.pou_name(), export.names.program, "{rel}");
+    }
+}
+
 /// The comparison itself can fail: the press exported with one
 /// transition of its supervisor redirected differs from host-sim.
 #[test]

@@ -265,3 +265,44 @@ pub(crate) enum Stmt {
     Exit(Pos),
     Return,
 }
+
+/// A source file: its POUs and configurations, each in order.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct SourceAst {
+    pub pous: Vec<Pou>,
+    pub configurations: Vec<ConfigurationDecl>,
+}
+
+/// `CONFIGURATION name ... END_CONFIGURATION`.
+#[derive(Clone, Debug)]
+pub(crate) struct ConfigurationDecl {
+    pub name: Ident,
+    pub resources: Vec<ResourceDecl>,
+}
+
+/// `RESOURCE name ON type ... END_RESOURCE`; both `None` for the single
+/// resource of a configuration that declares tasks and programs directly.
+#[derive(Clone, Debug)]
+pub(crate) struct ResourceDecl {
+    pub name: Option<Ident>,
+    pub on: Option<Ident>,
+    pub tasks: Vec<TaskDecl>,
+    pub programs: Vec<ProgramDecl>,
+}
+
+/// `TASK name (INTERVAL := T#..., PRIORITY := n);`
+#[derive(Clone, Debug)]
+pub(crate) struct TaskDecl {
+    pub name: Ident,
+    /// Milliseconds and where the literal is.
+    pub interval: Option<(i64, Pos)>,
+    pub priority: Option<i64>,
+}
+
+/// `PROGRAM instance WITH task : pou;`
+#[derive(Clone, Debug)]
+pub(crate) struct ProgramDecl {
+    pub name: Ident,
+    pub task: Option<Ident>,
+    pub pou: Ident,
+}

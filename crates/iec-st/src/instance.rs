@@ -5,6 +5,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
 use crate::ast::{PouKind, Section};
+use crate::configuration::Configuration;
 use crate::error::{Error, RuntimeError};
 use crate::program::{Pou, Program, VarType, Variable};
 use crate::run::Machine;
@@ -35,6 +36,12 @@ impl SourceFile {
     /// The POUs in declaration order: name and kind.
     pub fn pous(&self) -> impl Iterator<Item = (&str, PouKind)> + '_ {
         self.program.pous.iter().map(|p| (p.name.as_str(), p.kind))
+    }
+
+    /// The file's `CONFIGURATION`s in declaration order, checked against
+    /// its POUs.
+    pub fn configurations(&self) -> &[Configuration] {
+        &self.program.configurations
     }
 
     /// The variables POU `pou` declares, in declaration order (a function's

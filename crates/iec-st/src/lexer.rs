@@ -1,6 +1,7 @@
 //! Tokens of Structured Text: identifiers and keywords (any case), integer
 //! literals (decimal, based, with `_` separators), typed-literal prefixes,
-//! directly represented variables and operators. Comments `(* *)`, `//` and
+//! duration literals (`T#1m30s`), directly represented variables and
+//! operators. Comments `(* *)`, `//` and
 //! pragmas `{ }` are skipped.
 
 use crate::error::{Error, ErrorKind, Pos};
@@ -58,6 +59,16 @@ pub(crate) enum Kw {
     EndType,
     Struct,
     EndStruct,
+    Configuration,
+    EndConfiguration,
+    Resource,
+    EndResource,
+    On,
+    Task,
+    With,
+    Interval,
+    Priority,
+    Single,
 }
 
 const KEYWORDS: &[(&str, Kw)] = &[
@@ -111,6 +122,16 @@ const KEYWORDS: &[(&str, Kw)] = &[
     ("END_TYPE", Kw::EndType),
     ("STRUCT", Kw::Struct),
     ("END_STRUCT", Kw::EndStruct),
+    ("CONFIGURATION", Kw::Configuration),
+    ("END_CONFIGURATION", Kw::EndConfiguration),
+    ("RESOURCE", Kw::Resource),
+    ("END_RESOURCE", Kw::EndResource),
+    ("ON", Kw::On),
+    ("TASK", Kw::Task),
+    ("WITH", Kw::With),
+    ("INTERVAL", Kw::Interval),
+    ("PRIORITY", Kw::Priority),
+    ("SINGLE", Kw::Single),
 ];
 
 impl Kw {
@@ -140,6 +161,8 @@ pub(crate) enum Tok {
     Int(u128),
     /// `NAME#` before a typed literal, name as written.
     TypePrefix(String),
+    /// A duration literal (`T#...`, `TIME#...`) in milliseconds.
+    Time(i64),
     /// A directly represented variable such as `%IX0.3`, upper case.
     Address(String),
     Assign,
@@ -176,6 +199,7 @@ impl Tok {
             Tok::Kw(k) => format!("`{}`", k.text()),
             Tok::Int(v) => format!("literal `{v}`"),
             Tok::TypePrefix(s) => format!("`{s}#`"),
+            Tok::Time(ms) => format!("duration `T#{ms}ms`"),
             Tok::Address(s) => format!("address `{s}`"),
             Tok::Eof => "end of file".to_string(),
             other => format!("`{}`", other.symbol()),
@@ -340,9 +364,11 @@ impl Lexer<'_> {
             ));
         }
         if self.peek(0) == b'#' {
-            const TIME_PREFIXES: [&str; 10] = [
-                "T",
-                "TIME",
+            if ["T", "TIME"].iter().any(|p| p.eq_ignore_ascii_case(text)) {
+                self.bump();
+                return Ok(Tok::Time(self.duration(pos)?));
+            }
+            const OTHER_TIME_PREFIXES: [&str; 8] = [
                 "LT",
                 "LTIME",
                 "D",
@@ -352,11 +378,14 @@ impl Lexer<'_> {
                 "DT",
                 "DATE_AND_TIME",
             ];
-            if TIME_PREFIXES.iter().any(|p| p.eq_ignore_ascii_case(text)) {
+            if OTHER_TIME_PREFIXES
+                .iter()
+                .any(|p| p.eq_ignore_ascii_case(text))
+            {
                 return Err(Error::at(
                     ErrorKind::Unsupported,
                     pos,
-                    format!("`{text}#` duration and date literals are not supported"),
+                    format!("`{text}#` literals (LTIME, dates and times of day) are not supported"),
                 ));
             }
             self.bump();
@@ -430,6 +459,133 @@ impl Lexer<'_> {
         // Digits never span lines, so rewinding keeps the line bookkeeping.
         self.at = start;
         self.digits(10, pos)
+    }
+
+    /// The interval after `T#`: `[+|-]` then components such as `1d`,
+    /// `2h`, `30m`, `15s`, `500ms` (also `us`, `ns`) in strictly
+    /// decreasing units, optionally joined by `_`; the last may have a
+    /// fraction (`1.5s`). IEC 61131-3 3rd edition, duration literals. The
+    /// result is in milliseconds and must be a whole number of them.
+    fn duration(&mut self, pos: Pos) -> Result<i64, Error> {
+        const UNITS_NS: [(&str, i128); 7] = [
+            ("d", 86_400_000_000_000),
+            ("h", 3_600_000_000_000),
+            ("m", 60_000_000_000),
+            ("s", 1_000_000_000),
+            ("ms", 1_000_000),
+            ("us", 1_000),
+            ("ns", 1),
+        ];
+        /// Fraction digits kept exact; more cannot matter at 1 ns.
+        const MAX_FRACTION_DIGITS: u32 = 18;
+        let negative = self.peek(0) == b'-';
+        if matches!(self.peek(0), b'-' | b'+') {
+            self.bump();
+        }
+        let too_large = || Error::at(ErrorKind::Range, pos, "duration literal too large");
+        // Nanoseconds, scaled by 10^digits of the fraction (if any).
+        let mut total_ns: i128 = 0;
+        let mut scale: i128 = 1;
+        let mut smallest_unit = usize::MAX;
+        let mut fraction_seen = false;
+        loop {
+            if !self.peek(0).is_ascii_digit() {
+                return Err(self.error(
+                    pos,
+                    "a duration needs a number with a unit (d, h, m, s, ms, us, ns)",
+                ));
+            }
+            if fraction_seen {
+                return Err(self.error(pos, "only a duration's last component may have a fraction"));
+            }
+            let whole = self.duration_digits(pos)?;
+            let (mut fraction, mut fraction_scale) = (0i128, 1i128);
+            if self.peek(0) == b'.' && self.peek(1).is_ascii_digit() {
+                self.bump();
+                let mut digits = 0;
+                while self.peek(0).is_ascii_digit() {
+                    digits += 1;
+                    if digits > MAX_FRACTION_DIGITS {
+                        return Err(self.error(pos, "too many fraction digits in a duration"));
+                    }
+                    fraction = fraction * 10 + i128::from(self.peek(0) - b'0');
+                    fraction_scale *= 10;
+                    self.bump();
+                }
+                fraction_seen = true;
+            }
+            let start = self.at;
+            while self.peek(0).is_ascii_alphabetic() {
+                self.bump();
+            }
+            let unit = std::str::from_utf8(&self.src[start..self.at])
+                .expect("ASCII")
+                .to_ascii_lowercase();
+            let Some(rank) = UNITS_NS.iter().position(|(u, _)| *u == unit) else {
+                let found = if unit.is_empty() {
+                    "a number without a unit".to_string()
+                } else {
+                    format!("`{unit}`")
+                };
+                return Err(self.error(
+                    pos,
+                    format!("{found} in a duration: the units are d, h, m, s, ms, us, ns"),
+                ));
+            };
+            if smallest_unit != usize::MAX && rank <= smallest_unit {
+                return Err(self.error(
+                    pos,
+                    "a duration's units must go from larger to smaller, each once",
+                ));
+            }
+            smallest_unit = rank;
+            let unit_ns = UNITS_NS[rank].1;
+            total_ns = whole
+                .checked_mul(unit_ns)
+                .and_then(|w| w.checked_mul(fraction_scale))
+                .and_then(|w| w.checked_add(fraction * unit_ns))
+                .and_then(|c| total_ns.checked_mul(fraction_scale)?.checked_add(c))
+                .ok_or_else(too_large)?;
+            scale *= fraction_scale;
+            if self.peek(0) == b'_' && self.peek(1).is_ascii_digit() {
+                self.bump();
+            } else if !self.peek(0).is_ascii_digit() {
+                break;
+            }
+        }
+        if self.peek(0) == b'_' || self.peek(0).is_ascii_alphanumeric() {
+            return Err(self.error(pos, "malformed duration literal"));
+        }
+        let per_ms = scale * 1_000_000;
+        if total_ns % per_ms != 0 {
+            return Err(Error::at(
+                ErrorKind::Unsupported,
+                pos,
+                "a duration finer than a millisecond is not supported",
+            ));
+        }
+        let ms = i64::try_from(total_ns / per_ms).map_err(|_| too_large())?;
+        Ok(if negative { -ms } else { ms })
+    }
+
+    /// A duration component's digits, with single `_` between them.
+    fn duration_digits(&mut self, pos: Pos) -> Result<i128, Error> {
+        let mut value: i128 = 0;
+        loop {
+            value = value
+                .checked_mul(10)
+                .and_then(|v| v.checked_add(i128::from(self.peek(0) - b'0')))
+                .ok_or_else(|| Error::at(ErrorKind::Range, pos, "duration literal too large"))?;
+            self.bump();
+            if self.peek(0) == b'_' {
+                if !self.peek(1).is_ascii_digit() {
+                    return Err(self.error(pos, "misplaced `_` in a duration"));
+                }
+                self.bump();
+            } else if !self.peek(0).is_ascii_digit() {
+                return Ok(value);
+            }
+        }
     }
 
     fn address(&mut self, pos: Pos) -> Result<Tok, Error> {
@@ -608,6 +764,105 @@ mod tests {
                 Tok::Eof
             ]
         );
+    }
+
+    #[test]
+    fn duration_literals_are_exact_milliseconds() {
+        for (src, ms) in [
+            ("T#10ms", 10),
+            ("TIME#1s", 1_000),
+            ("T#1m30s500ms", 90_500),
+            ("t#2h", 7_200_000),
+            ("time#1d_2h_3m_4s_5ms", 93_784_005),
+            ("T#1_000ms", 1_000),
+            ("T#1.5s", 1_500),
+            ("T#0.25m", 15_000),
+            ("T#1h30.5s", 3_630_500),
+            ("T#2000us", 2),
+            ("T#3000000ns", 3),
+            ("T#-14ms", -14),
+            ("T#+7S", 7_000),
+            ("T#0ms", 0),
+        ] {
+            assert_eq!(toks(src), [Tok::Time(ms), Tok::Eof], "{src}");
+        }
+        assert_eq!(
+            toks("(INTERVAL := T#10ms, PRIORITY := 0)"),
+            [
+                Tok::LParen,
+                Tok::Kw(Kw::Interval),
+                Tok::Assign,
+                Tok::Time(10),
+                Tok::Comma,
+                Tok::Kw(Kw::Priority),
+                Tok::Assign,
+                Tok::Int(0),
+                Tok::RParen,
+                Tok::Eof
+            ]
+        );
+    }
+
+    #[test]
+    fn malformed_durations_are_errors_at_the_literal() {
+        for (src, kind, needle) in [
+            ("x := T#10;", ErrorKind::Lexical, "without a unit"),
+            ("x := T#10min;", ErrorKind::Lexical, "`min`"),
+            ("x := T#;", ErrorKind::Lexical, "needs a number"),
+            ("x := T#1s1m;", ErrorKind::Lexical, "larger to smaller"),
+            ("x := T#1s2s;", ErrorKind::Lexical, "larger to smaller"),
+            ("x := T#1.5m30s;", ErrorKind::Lexical, "last component"),
+            ("x := T#1s_;", ErrorKind::Lexical, "malformed"),
+            ("x := T#1__0ms;", ErrorKind::Lexical, "misplaced `_`"),
+            ("x := T#1_ms;", ErrorKind::Lexical, "misplaced `_`"),
+            (
+                "x := T#1500us;",
+                ErrorKind::Unsupported,
+                "finer than a millisecond",
+            ),
+            (
+                "x := T#1.0005s;",
+                ErrorKind::Unsupported,
+                "finer than a millisecond",
+            ),
+            (
+                "x := T#999999999999999999999999999d;",
+                ErrorKind::Range,
+                "too large",
+            ),
+            ("x := LTIME#1s;", ErrorKind::Unsupported, "LTIME"),
+            (
+                "x := TOD#12:00:00;",
+                ErrorKind::Unsupported,
+                "not supported",
+            ),
+        ] {
+            let err = tokenize(src).unwrap_err();
+            assert_eq!(err.kind(), Some(kind), "{src}: {err}");
+            let Error::Source { pos, .. } = &err else {
+                unreachable!()
+            };
+            assert_eq!((pos.line, pos.column), (1, 6), "{src}");
+            assert!(err.to_string().contains(needle), "{src}: {err}");
+        }
+    }
+
+    #[test]
+    fn configuration_words_are_reserved() {
+        for word in [
+            "CONFIGURATION",
+            "end_configuration",
+            "Resource",
+            "END_RESOURCE",
+            "on",
+            "TASK",
+            "with",
+            "INTERVAL",
+            "PRIORITY",
+            "SINGLE",
+        ] {
+            assert!(matches!(toks(word)[0], Tok::Kw(_)), "{word}");
+        }
     }
 
     #[test]

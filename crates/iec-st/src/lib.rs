@@ -11,7 +11,10 @@
 //! modulo the type's width like a PLC's.
 //!
 //! [`parse`] lexes, parses and compiles every POU, resolving names to slots,
-//! so a [`Instance::call`] only interprets resolved code.
+//! so a [`Instance::call`] only interprets resolved code. A `CONFIGURATION`
+//! (resources, cyclic tasks, program instances) is checked against the
+//! POUs and listed by [`SourceFile::configurations`]; the host runs the
+//! program at its task's interval.
 //!
 //! ```
 //! let file = iec_st::parse(
@@ -34,6 +37,7 @@
 mod ast;
 mod code;
 mod compile;
+mod configuration;
 mod error;
 mod instance;
 mod lexer;
@@ -44,6 +48,7 @@ mod types;
 mod value;
 
 pub use ast::{PouKind, Section};
+pub use configuration::{Configuration, ProgramInstance, Resource, Task};
 pub use error::{Error, ErrorKind, Fault, Pos, RuntimeError};
 pub use instance::{Instance, Slot, SourceFile, DEFAULT_ITERATION_LIMIT};
 pub use program::{VarType, Variable};
@@ -53,7 +58,7 @@ pub use value::Value;
 /// Parses and checks a source file of POUs; the error, if any, carries the
 /// line and column.
 pub fn parse(source: &str) -> Result<SourceFile, Error> {
-    let pous = parser::parse_pous(source)?;
-    let program = compile::compile(&pous)?;
+    let file = parser::parse_file(source)?;
+    let program = compile::compile(&file)?;
     Ok(SourceFile::new(program))
 }

@@ -8,15 +8,21 @@ use crate::ast::*;
 use crate::error::{Error, ErrorKind, Pos};
 use crate::lexer::{tokenize, Kw, Tok, Token};
 
-/// Parses a whole source file into its POUs.
-pub(crate) fn parse_pous(source: &str) -> Result<Vec<Pou>> {
+mod configuration;
+
+/// Parses a whole source file into its POUs and configurations.
+pub(crate) fn parse_file(source: &str) -> Result<SourceAst> {
     let tokens = tokenize(source)?;
     let mut parser = Parser { tokens, at: 0 };
-    let mut pous = Vec::new();
+    let mut file = SourceAst::default();
     while parser.peek() != &Tok::Eof {
-        pous.push(parser.pou()?);
+        if parser.peek() == &Tok::Kw(Kw::Configuration) {
+            file.configurations.push(parser.configuration()?);
+        } else {
+            file.pous.push(parser.pou()?);
+        }
     }
-    Ok(pous)
+    Ok(file)
 }
 
 struct Parser {
@@ -104,7 +110,11 @@ impl Parser {
             Tok::Kw(Kw::Function) => (PouKind::Function, Kw::EndFunction),
             Tok::Kw(Kw::Type) => return Err(self.unsupported("`TYPE` (user-defined types)")),
             Tok::Kw(Kw::VarGlobal) => return Err(self.unsupported("`VAR_GLOBAL`")),
-            _ => return Err(self.unexpected("`PROGRAM`, `FUNCTION_BLOCK` or `FUNCTION`")),
+            _ => {
+                return Err(
+                    self.unexpected("`PROGRAM`, `FUNCTION_BLOCK`, `FUNCTION` or `CONFIGURATION`")
+                )
+            }
         };
         self.next();
         let name = self.ident()?;
@@ -564,6 +574,11 @@ impl Parser {
                 self.next();
                 Ok(Expr::Bool(false, pos))
             }
+            Tok::Time(_) => Err(Error::at(
+                ErrorKind::Unsupported,
+                pos,
+                "duration literals (TIME values) are supported only as a task's INTERVAL",
+            )),
             Tok::TypePrefix(text) => {
                 self.next();
                 let ty = Ident { text, pos };
@@ -603,6 +618,10 @@ impl Parser {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn parse_pous(source: &str) -> Result<Vec<Pou>> {
+        parse_file(source).map(|file| file.pous)
+    }
 
     /// The expression in Lisp-like notation, to assert its shape.
     fn show(e: &Expr) -> String {

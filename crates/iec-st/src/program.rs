@@ -5,6 +5,7 @@ use rustc_hash::FxHashMap;
 
 use crate::ast::{PouKind, Section};
 use crate::code::Block;
+use crate::configuration::Configuration;
 use crate::types::Type;
 
 /// The shape of a declared variable.
@@ -88,4 +89,6 @@ pub(crate) struct Program {
     pub index: FxHashMap<String, usize>,
     /// Cells before the top instance's frame: the functions' frames.
     pub functions_size: usize,
+    /// The checked `CONFIGURATION`s, in order.
+    pub configurations: Vec<Configuration>,
 }

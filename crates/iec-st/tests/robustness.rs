@@ -84,6 +84,18 @@ const WORDS: &[&str] = &[
     "UNTIL",
     "fb",
     "f",
+    "CONFIGURATION",
+    "END_CONFIGURATION",
+    "RESOURCE",
+    "END_RESOURCE",
+    "ON",
+    "TASK",
+    "WITH",
+    "INTERVAL",
+    "PRIORITY",
+    "T#10ms",
+    "T#1.5",
+    "t#1m_",
 ];
 
 proptest! {

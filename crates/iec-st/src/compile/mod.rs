@@ -3,6 +3,7 @@
 
 mod access;
 mod call;
+mod configuration;
 mod expr;
 mod layout;
 mod stmt;
@@ -66,8 +67,9 @@ fn check_not_reserved(name: &ast::Ident) -> Result<(), Error> {
     Ok(())
 }
 
-/// Compiles all POUs of a file.
-pub(crate) fn compile(asts: &[ast::Pou]) -> Result<Program, Error> {
+/// Compiles all POUs of a file, then checks its configurations.
+pub(crate) fn compile(file: &ast::SourceAst) -> Result<Program, Error> {
+    let asts = &file.pous[..];
     let mut index = FxHashMap::default();
     for (id, pou) in asts.iter().enumerate() {
         check_not_reserved(&pou.name)?;
@@ -107,6 +109,7 @@ pub(crate) fn compile(asts: &[ast::Pou]) -> Result<Program, Error> {
         calls.push(cx.calls);
     }
     check_no_recursion(asts, &calls)?;
+    let configurations = configuration::check(&file.configurations, asts, &index)?;
     let pous = pous
         .into_iter()
         .zip(bodies)
@@ -119,6 +122,7 @@ pub(crate) fn compile(asts: &[ast::Pou]) -> Result<Program, Error> {
         pous,
         index,
         functions_size,
+        configurations,
     })
 }
 
