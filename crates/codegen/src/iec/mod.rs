@@ -65,6 +65,8 @@ pub struct Export {
     pub regenerate: String,
     /// The project's name.
     pub project: String,
+    /// The scan period: the interval of the PLC task running the program.
+    pub scan_period_ms: u32,
 }
 
 impl Export {
@@ -106,15 +108,23 @@ pub fn export(project: &Project, io: &IoMap, regenerate: &str) -> Result<Export>
         renamed: namer.changed,
         regenerate: regenerate.to_owned(),
         project: project.name.clone(),
+        scan_period_ms: project.scan_period_ms,
     })
 }
 
 /// Free text made safe inside an ST comment and an XML CDATA section:
-/// no comment delimiters, no `]]>`, no line breaks or control characters.
+/// no comment delimiters, no `]]>`, no line breaks or control characters,
+/// and no U+FFFE or U+FFFF (characters XML 1.0 does not allow anywhere).
 pub fn comment_text(text: &str) -> String {
     let flat: String = text
         .chars()
-        .map(|c| if c.is_control() { ' ' } else { c })
+        .map(|c| {
+            if c.is_control() || c == '\u{FFFE}' || c == '\u{FFFF}' {
+                ' '
+            } else {
+                c
+            }
+        })
         .collect();
     flat.replace("(*", "( *")
         .replace("*)", "* )")
