@@ -70,7 +70,7 @@ pub struct Export {
     pub regenerate: String,
     /// The project's name.
     pub project: String,
-    /// The scan period, the task's interval.
+    /// The scan period: the interval of the PLC task running the program.
     pub scan_period_ms: u32,
 }
 
@@ -126,12 +126,13 @@ pub fn export(project: &Project, io: &IoMap, regenerate: &str) -> Result<Export>
 
 /// Free text made safe inside an ST comment and an XML CDATA section:
 /// no comment delimiters, no `]]>`, line breaks and control characters as
-/// spaces, bidirectional overrides and isolates (which could make a
+/// spaces, no U+FFFE or U+FFFF (characters XML 1.0 does not allow
+/// anywhere), bidirectional overrides and isolates (which could make a
 /// reader see other code than the PLC compiles) written as `<U+202E>`.
 pub fn comment_text(text: &str) -> String {
     let mut flat = String::with_capacity(text.len());
     for c in text.chars() {
-        if c.is_control() {
+        if c.is_control() || c == '\u{FFFE}' || c == '\u{FFFF}' {
             flat.push(' ');
         } else if matches!(c, '\u{061c}' | '\u{200e}' | '\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
         {
