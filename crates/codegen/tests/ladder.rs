@@ -750,3 +750,48 @@ fn a_project_with_a_petri_net_is_refused() {
     assert_eq!(location.line, p.nets[0].line, "{err}");
     assert!(message.contains("net `mixers`"), "{err}");
 }
+
+/// `codegen plcopen --ladder`'s document: the controller, the program and
+/// the ladder function block side by side in one project, the ladder's
+/// rungs as rendered alone.
+#[test]
+fn the_ladder_joins_the_exported_project_as_a_third_pou() {
+    use codegen::iec::{self, IoMap};
+    let p = load("motivating.plc.toml");
+    let export = iec::export(&p, &IoMap::sequential(), "t").expect("exports");
+    let ladder = ladder::render(&p, DEFAULT_RUNG_LIMIT).expect("renders");
+    let xml = iec::plcopen::print_with(&export, std::slice::from_ref(&ladder.pou_xml));
+    let doc = roxmltree::Document::parse(&xml).expect("well-formed");
+    let pous: Vec<&str> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("pou"))
+        .map(|n| attr(n, "name"))
+        .collect();
+    assert_eq!(
+        pous,
+        [
+            export.names.controller.as_str(),
+            export.names.program.as_str(),
+            ladder.name.as_str()
+        ]
+    );
+    let count = |doc: &roxmltree::Document, tag: &str| {
+        doc.descendants()
+            .filter(|n| n.has_tag_name("pou") && attr(*n, "name") == ladder.name)
+            .flat_map(|pou| pou.descendants())
+            .filter(|n| n.has_tag_name(tag))
+            .count()
+    };
+    let alone = wrapped(&ladder, "motivating.joined.xml");
+    let alone = roxmltree::Document::parse(&alone).expect("well-formed");
+    for tag in [
+        "leftPowerRail",
+        "contact",
+        "coil",
+        "rightPowerRail",
+        "connection",
+    ] {
+        assert_eq!(count(&doc, tag), count(&alone, tag), "{tag}");
+        assert!(count(&doc, tag) > 0, "{tag}");
+    }
+}

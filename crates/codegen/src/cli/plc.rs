@@ -24,6 +24,13 @@ pub struct PlcArgs {
     /// compiles such a file as it is).
     #[arg(long)]
     configuration: bool,
+    /// `codegen plcopen`: add the ladder (LD) rendering of the
+    /// supervisors as a further function block (docs/ladder.md).
+    #[arg(long)]
+    ladder: bool,
+    /// The most rungs `--ladder` may write; a larger ladder is refused.
+    #[arg(long, default_value_t = iec::ladder::DEFAULT_RUNG_LIMIT)]
+    max_rungs: usize,
     /// Print the sizes (lines, constant array bytes, POUs) instead of the
     /// file.
     #[arg(long)]
@@ -49,6 +56,12 @@ struct Stats {
 }
 
 pub fn run(args: &PlcArgs, flavour: Flavour, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+    if args.ladder && flavour == Flavour::St {
+        return Err(Error::Incompatible(
+            "--ladder is for `codegen plcopen`: ladder diagrams are graphical, PLCopen XML holds them"
+                .into(),
+        ));
+    }
     if args.configuration && flavour == Flavour::PlcOpen {
         return Err(Error::Incompatible(
             "--configuration is for `codegen st`: PLCopen XML always holds its configuration and task"
@@ -76,12 +89,19 @@ pub fn run(args: &PlcArgs, flavour: Flavour, json: bool, out: &mut Out) -> Resul
     if let Some(path) = &args.io {
         regenerate.push_str(&format!(" --io {}", path.display()));
     }
+    if args.ladder {
+        regenerate.push_str(" --ladder");
+    }
     let export = iec::export(&project, &io, &regenerate)?;
     let text = match flavour {
         Flavour::St if args.configuration => {
             iec::st::print(&export) + &iec::st::configuration(&export)
         }
         Flavour::St => iec::st::print(&export),
+        Flavour::PlcOpen if args.ladder => {
+            let ladder = iec::ladder::render(&project, args.max_rungs)?;
+            iec::plcopen::print_with(&export, &[ladder.pou_xml])
+        }
         Flavour::PlcOpen => iec::plcopen::print(&export),
     };
     if args.stats {
