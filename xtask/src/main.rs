@@ -9,6 +9,8 @@
 //!   budgets, ratios to a `match` baseline).
 //! - `size [MODEL…]`: flash and static RAM of the board firmware.
 //! - `deps`: no build a new user starts with needs libclang (bindgen).
+//! - `iec [--all]`: the Structured Text and PLCopen XML exports of every
+//!   seed project parsed by blark and validated against the TC6 schema.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -16,6 +18,7 @@ use std::process::{Command, ExitCode};
 mod bench;
 mod budgets;
 mod deps;
+mod iec;
 mod qemu;
 mod size;
 mod sysdeps;
@@ -28,6 +31,7 @@ fn main() -> ExitCode {
         Some("qemu") => qemu::run_task(&args[1..]),
         Some("size") => size::run_task(&args[1..]),
         Some("deps") => deps::run_task(&args[1..]),
+        Some("iec") => iec::run_task(&args[1..]),
         _ => {
             eprintln!(
                 "usage: cargo xtask <task>\n\
@@ -36,7 +40,8 @@ fn main() -> ExitCode {
                  bench-faudes [--runs N] [MODEL…]  compose + supcon timings and memory vs libFAUDES\n  \
                  qemu [PROJECT] [SCENARIO]  replay in QEMU: zero mismatches, instructions per scan, budgets\n  \
                  size [MODEL…]              flash and static RAM of the board firmware, budgets\n  \
-                 deps                       the README's commands and the firmware build without libclang (cargo tree)"
+                 deps                       the README's commands and the firmware build without libclang (cargo tree)\n  \
+                 iec [--all]                ST and PLCopen XML of every seed: blark parse, TC6 schema (--all: the largest ST too)"
             );
             Err("no task given".into())
         }
@@ -189,6 +194,8 @@ fn ci() -> Result {
         "--",
         "--ignored",
     ]))?;
+    // The IEC 61131-3 export, checked by tools written by others.
+    iec::run_task(&[])?;
     // The boiler's randomized campaign: 1000 runs of ten simulated minutes,
     // every scan checked by the safety invariants.
     run(cargo().args([
