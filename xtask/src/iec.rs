@@ -3,7 +3,8 @@
 //!
 //! Every seed project, the boiler (modular and monolithic) and the
 //! hostile-names fixture are exported with `codegen st` and `codegen
-//! plcopen` into `target/iec/`; then `scripts/iec_check.py`, in a Python
+//! plcopen` (and `--ladder` where the ladder is within its rung limit)
+//! into `target/iec/`; then `scripts/iec_check.py`, in a Python
 //! virtual environment under `target/iec/venv` with pinned packages,
 //! parses every `.st` file with blark, validates every `.xml` file
 //! against the PLCopen TC6 XML v2.01 schema with xmlschema, and parses
@@ -42,6 +43,18 @@ pub const XSD_SHA256: &str = "db546a6d1847fee06268fa29baf9f643c8bdd75b3ad083eb9e
 /// `.st` files larger than this are not parsed by blark in CI (see the
 /// module's doc): the boiler's 245 kB are, the agv's 700 kB are not.
 pub const MAX_ST_BYTES: u64 = 300_000;
+
+/// Projects (file stems) also exported with `codegen plcopen --ladder`,
+/// as `<name>.ladder.xml`: those whose supervisors make at most the
+/// default rung limit (docs/ladder.md); the others are refused.
+const LADDER: &[&str] = &[
+    "conveyor",
+    "crane",
+    "hostile",
+    "motivating",
+    "press",
+    "press7",
+];
 
 /// The projects exported, relative to the workspace root, besides every
 /// `models/*.plc.toml`.
@@ -106,13 +119,18 @@ fn export_all(dir: &Path) -> Result<Vec<PathBuf>> {
             .and_then(|n| n.to_str())
             .and_then(|n| n.strip_suffix(".plc.toml"))
             .ok_or_else(|| format!("{}: not a .plc.toml", project.display()))?;
-        for (verb, ext) in [("st", "st"), ("plcopen", "xml")] {
+        let mut outputs = vec![("st", None, "st"), ("plcopen", None, "xml")];
+        if LADDER.contains(&name) {
+            outputs.push(("plcopen", Some("--ladder"), "ladder.xml"));
+        }
+        for (verb, flag, ext) in outputs {
             let out = dir.join(format!("{name}.{ext}"));
             if files.contains(&out) {
                 return Err(format!("two projects named {name}"));
             }
             run(Command::new(&codegen)
                 .arg(verb)
+                .args(flag)
                 .arg(project)
                 .arg("-o")
                 .arg(&out)

@@ -223,13 +223,17 @@ fn assert_matches(xml: &str, export: &Export) {
     }
 
     let configurations = el(el(project, "instances"), "configurations");
+    let [configuration, resource, task, instance] = &export.names.configuration;
     let configs = elements(configurations);
     assert_eq!(configs.len(), 1);
+    assert_eq!(attr(configs[0], "name"), configuration);
     let resources = elements(configs[0]);
     assert_eq!(resources.len(), 1);
+    assert_eq!(attr(resources[0], "name"), resource);
     let tasks = elements(resources[0]);
     assert_eq!(tasks.len(), 1);
     assert!(tasks[0].has_tag_name((NAMESPACE, "task")));
+    assert_eq!(attr(tasks[0], "name"), task);
     assert_eq!(
         attr(tasks[0], "interval"),
         format!("T#{}ms", export.scan_period_ms)
@@ -237,6 +241,7 @@ fn assert_matches(xml: &str, export: &Export) {
     let instances = elements(tasks[0]);
     assert_eq!(instances.len(), 1);
     assert!(instances[0].has_tag_name((NAMESPACE, "pouInstance")));
+    assert_eq!(attr(instances[0], "name"), instance);
     assert_eq!(attr(instances[0], "typeName"), export.names.program);
 }
 

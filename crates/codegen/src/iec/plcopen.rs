@@ -34,15 +34,6 @@ pub const XHTML: &str = "http://www.w3.org/1999/xhtml";
 /// project twice gives identical files (the schema requires the
 /// attribute; the time a file was made is not part of its content).
 pub const CREATION_DATE_TIME: &str = "2000-01-01T00:00:00";
-/// The configuration's name.
-pub const CONFIGURATION: &str = "plc_config";
-/// The resource's name.
-pub const RESOURCE: &str = "plc_resource";
-/// The cyclic task's name.
-pub const TASK: &str = "scan_task";
-/// The name of the program's instance in the task.
-pub const INSTANCE: &str = "main_instance";
-
 /// The whole export as a PLCopen XML project.
 pub fn print(export: &Export) -> String {
     print_with(export, &[])
@@ -264,29 +255,31 @@ fn formatted_text(w: &mut Xml, tag: &str, text: &str) -> io::Result<()> {
 }
 
 /// One configuration with one resource whose cyclic task, every scan
-/// period, runs an instance of the program.
+/// period, runs an instance of the program (the names of
+/// [`Names::configuration`](super::Names::configuration), as in ST).
 fn instances(w: &mut Xml, export: &Export) -> io::Result<()> {
     let program = export.names.program.as_str();
+    let [configuration, resource, task, instance] = &export.names.configuration;
     let interval = format!("T#{}ms", export.scan_period_ms);
     w.create_element("instances").write_inner_content(|w| {
         w.create_element("configurations")
             .write_inner_content(|w| {
                 w.create_element("configuration")
-                    .with_attribute(("name", CONFIGURATION))
+                    .with_attribute(("name", configuration.as_str()))
                     .write_inner_content(|w| {
                         w.create_element("resource")
-                            .with_attribute(("name", RESOURCE))
+                            .with_attribute(("name", resource.as_str()))
                             .write_inner_content(|w| {
                                 w.create_element("task")
                                     .with_attributes([
-                                        ("name", TASK),
+                                        ("name", task.as_str()),
                                         ("interval", interval.as_str()),
                                         ("priority", "0"),
                                     ])
                                     .write_inner_content(|w| {
                                         w.create_element("pouInstance")
                                             .with_attributes([
-                                                ("name", INSTANCE),
+                                                ("name", instance.as_str()),
                                                 ("typeName", program),
                                             ])
                                             .write_empty()?;
