@@ -299,11 +299,7 @@ fn execution_order(p: &Project) -> Vec<usize> {
 }
 
 fn local(p: &Project, j: usize, e: usize) -> Option<codegen::EventId> {
-    p.supervisors[j]
-        .local_events
-        .iter()
-        .find(|&&(g, _)| g == e)
-        .map(|&(_, id)| id)
+    p.supervisors[j].local(e).map(|(_, id)| id)
 }
 
 /// Whether every supervisor that has `e` defines it in `states`.

@@ -466,7 +466,7 @@ impl Builder<'_> {
             let mut unparks = Vec::new();
             for j in 0..self.project.supervisors.len() {
                 let sup = &self.project.supervisors[j];
-                let Some(&(_, id)) = sup.local_events.iter().find(|&&(g, _)| g == e) else {
+                let Some((_, id)) = sup.local(e) else {
                     continue;
                 };
                 let a = &sup.automaton;
@@ -604,7 +604,7 @@ impl Builder<'_> {
             let mut parts = Vec::new();
             let mut never = false;
             for (j, sup) in self.project.supervisors.iter().enumerate() {
-                let Some(&(_, id)) = sup.local_events.iter().find(|&&(g, _)| g == e) else {
+                let Some((_, id)) = sup.local(e) else {
                     continue;
                 };
                 let a = &sup.automaton;

@@ -86,6 +86,15 @@ fn bool_lit(b: bool) -> String {
     if b { "TRUE" } else { "FALSE" }.into()
 }
 
+/// The type of a state variable: at least `INT` (a PLC's usual word, as
+/// monitors show it), wider when the states need it.
+fn state_var_type(states: usize) -> Type {
+    match Type::signed_for(0, states as i64 - 1) {
+        Type::Sint => Type::Int,
+        t => t,
+    }
+}
+
 /// The element type of supervisor tables: states and −1.
 fn state_type(states: usize) -> Type {
     Type::signed_for(-1, states as i64)
@@ -174,7 +183,7 @@ impl Builder<'_> {
             outputs.push(
                 Var::new(
                     &n.states[j],
-                    Type::signed_for(0, a.num_states() as i64 - 1).max_int(),
+                    state_var_type(a.num_states()),
                     format!(
                         "state of supervisor '{}' ({} states)",
                         comment_text(&sup.name),
@@ -470,25 +479,42 @@ impl Builder<'_> {
         format!("T_RUN[{t}] AND NOW_MS - T_DL[{t}] < {HALF}")
     }
 
+    /// The automata having event `e`: (supervisor, its column for `e`).
+    fn columns(&self, e: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.project
+            .supervisors
+            .iter()
+            .enumerate()
+            .filter_map(move |(j, sup)| sup.local(e).map(|(k, _)| (j, k)))
+    }
+
+    /// The net transitions that are event `e`: (net, transition).
+    fn transitions(&self, e: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.project
+            .nets
+            .iter()
+            .enumerate()
+            .flat_map(move |(n, net)| {
+                (0..net.events.len())
+                    .filter(move |&t| net.events[t] == e)
+                    .map(move |t| (n, t))
+            })
+    }
+
     /// Whether every supervisor and net having event `e` lets it occur.
     fn feasible(&self, e: usize) -> String {
-        let p = self.project;
-        let mut terms = Vec::new();
-        for (j, sup) in p.supervisors.iter().enumerate() {
-            for (k, &(g, _)) in sup.local_events.iter().enumerate() {
-                if g == e {
-                    terms.push(format!(
-                        "{}[{}, {k}] >= 0",
-                        self.names.tables[j], self.names.states[j]
-                    ));
-                }
-            }
-        }
-        for (n, net) in p.nets.iter().enumerate() {
-            for (t, _) in net.events.iter().enumerate().filter(|(_, &g)| g == e) {
-                for &(place, w) in &net.net.transitions()[t].input {
-                    terms.push(format!("{}[{place}] >= {w}", self.names.nets[n]));
-                }
+        let mut terms: Vec<String> = self
+            .columns(e)
+            .map(|(j, k)| {
+                format!(
+                    "{}[{}, {k}] >= 0",
+                    self.names.tables[j], self.names.states[j]
+                )
+            })
+            .collect();
+        for (n, t) in self.transitions(e) {
+            for &(place, w) in &self.project.nets[n].net.transitions()[t].input {
+                terms.push(format!("{}[{place}] >= {w}", self.names.nets[n]));
             }
         }
         if terms.is_empty() {
@@ -503,36 +529,28 @@ impl Builder<'_> {
     fn execute(&self, body: &mut Body, e: usize) {
         let p = self.project;
         let n = self.names;
-        for (j, sup) in p.supervisors.iter().enumerate() {
-            for (k, &(g, _)) in sup.local_events.iter().enumerate() {
-                if g == e {
-                    body.line(format!(
-                        "{s} := {d}[{s}, {k}];",
-                        s = n.states[j],
-                        d = n.tables[j]
-                    ));
-                }
-            }
+        for (j, k) in self.columns(e) {
+            body.line(format!(
+                "{s} := {d}[{s}, {k}];",
+                s = n.states[j],
+                d = n.tables[j]
+            ));
         }
-        for (k, net) in p.nets.iter().enumerate() {
-            for (t, _) in net.events.iter().enumerate().filter(|(_, &g)| g == e) {
-                let tr = &net.net.transitions()[t];
-                let mut change = vec![0i64; net.net.places().len()];
-                for &(place, w) in &tr.input {
-                    change[place] -= i64::from(w);
-                }
-                for &(place, w) in &tr.output {
-                    change[place] += i64::from(w);
-                }
-                for (place, &d) in change.iter().enumerate().filter(|(_, &d)| d != 0) {
-                    let sign = if d < 0 { '-' } else { '+' };
-                    body.line(format!(
-                        "{m}[{place}] := {m}[{place}] {sign} {}; (* {} *)",
-                        d.abs(),
-                        comment_text(&net.net.places()[place].id),
-                        m = n.nets[k],
-                    ));
-                }
+        for (k, t) in self.transitions(e) {
+            let net = &p.nets[k].net;
+            for (place, d) in net
+                .change(t)
+                .into_iter()
+                .enumerate()
+                .filter(|&(_, d)| d != 0)
+            {
+                let sign = if d < 0 { '-' } else { '+' };
+                body.line(format!(
+                    "{m}[{place}] := {m}[{place}] {sign} {}; (* {} *)",
+                    d.abs(),
+                    comment_text(&net.places()[place].id),
+                    m = n.nets[k],
+                ));
             }
         }
         for action in &p.events[e].actions {
@@ -870,20 +888,6 @@ fn or_terms(terms: Vec<String>) -> String {
         "FALSE".into()
     } else {
         terms.join(" OR ")
-    }
-}
-
-trait MaxInt {
-    fn max_int(self) -> Type;
-}
-
-impl MaxInt for Type {
-    /// State variables are at least `INT` (a PLC's usual word).
-    fn max_int(self) -> Type {
-        match self {
-            Type::Sint => Type::Int,
-            t => t,
-        }
     }
 }
 

@@ -384,6 +384,16 @@ pub struct Supervisor {
     pub max_logic_effort: u64,
 }
 
+impl Supervisor {
+    /// Global event `e`'s column in this supervisor (its position among
+    /// the local events) and the automaton's id for it; `None` when `e` is
+    /// not in its alphabet.
+    pub fn local(&self, e: usize) -> Option<(usize, EventId)> {
+        let k = self.local_events.iter().position(|&(g, _)| g == e)?;
+        Some((k, self.local_events[k].1))
+    }
+}
+
 /// A warning of validation (the project is still usable).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Warning {
@@ -620,12 +630,11 @@ impl Project {
     /// state vector) lets event `e` occur.
     pub fn event_feasible(&self, e: usize, states: &[u32]) -> bool {
         let automata = self.supervisors.iter().enumerate().all(|(j, sup)| {
-            sup.local_events.iter().all(|&(g, id)| {
-                g != e
-                    || states.get(j).is_some_and(|&x| {
-                        (x as usize) < sup.automaton.num_states()
-                            && sup.automaton.successor(StateId(x), id).is_some()
-                    })
+            sup.local(e).is_none_or(|(_, id)| {
+                states.get(j).is_some_and(|&x| {
+                    (x as usize) < sup.automaton.num_states()
+                        && sup.automaton.successor(StateId(x), id).is_some()
+                })
             })
         });
         automata

@@ -105,16 +105,26 @@ impl PetriNet {
     /// The incidence matrix `D = Post − Pre`: `D[p][t]` is the change of
     /// place `p`'s tokens when transition `t` fires.
     pub fn incidence(&self) -> Vec<Vec<i64>> {
-        let mut d = vec![vec![0i64; self.transitions.len()]; self.places.len()];
-        for (t, tr) in self.transitions.iter().enumerate() {
-            for &(p, w) in &tr.input {
-                d[p][t] -= i64::from(w);
-            }
-            for &(p, w) in &tr.output {
-                d[p][t] += i64::from(w);
-            }
+        let columns: Vec<Vec<i64>> = (0..self.transitions.len())
+            .map(|t| self.change(t))
+            .collect();
+        (0..self.places.len())
+            .map(|p| columns.iter().map(|column| column[p]).collect())
+            .collect()
+    }
+
+    /// Column `t` of the incidence matrix: the change of every place's
+    /// tokens when transition `t` fires (`post − pre`).
+    pub fn change(&self, t: usize) -> Vec<i64> {
+        let mut change = vec![0i64; self.places.len()];
+        let tr = &self.transitions[t];
+        for &(p, w) in &tr.input {
+            change[p] -= i64::from(w);
         }
-        d
+        for &(p, w) in &tr.output {
+            change[p] += i64::from(w);
+        }
+        change
     }
 
     /// Whether transition `t` may fire in marking `m`: every input place
