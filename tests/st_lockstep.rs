@@ -14,22 +14,17 @@
 //! two-batch closed loop. The program POU (the one a PLC task runs) is
 //! run too, on its located inputs with its own clock.
 
+#[path = "common/lockstep.rs"]
+mod lockstep;
+
 use codegen::iec::{self, IoMap};
-use codegen::project::{self, Project};
-use executor::Fault;
+use codegen::project::Project;
 use host_sim::inputs::InputRow;
 use host_sim::random_inputs::guided_inputs;
 use host_sim::Sim;
 use iec_st::{Instance, IntType, Slot, Value};
-use std::path::{Path, PathBuf};
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-fn load(rel: &str) -> Project {
-    project::load(&root().join(rel)).unwrap_or_else(|e| panic!("{rel}: {e}"))
-}
+use lockstep::{blind_inputs, compare, load, pack_states, root, Coverage, Observed, PROJECTS};
+use std::path::Path;
 
 /// The exported ST text of `project` (default addresses).
 fn st_text(project: &Project) -> String {
@@ -138,49 +133,14 @@ impl StController {
     }
 }
 
-/// What one scan left, on either side, in the executor's terms.
-#[derive(Debug, PartialEq, Eq)]
-struct Observed {
-    executed: Vec<u16>,
-    unexpected: Vec<u16>,
-    states: Vec<u32>,
-    outputs: Vec<bool>,
-    fault: Option<(i64, i64)>,
-    faults: u32,
-    ignored: u32,
-}
-
-fn fault_code(fault: Option<Fault>) -> Option<(i64, i64)> {
-    fault.map(|f| match f {
-        Fault::Unexpected { event } => (iec::scan::CAUSE_UNEXPECTED, i64::from(event)),
-        Fault::Corrupt => (iec::scan::CAUSE_CORRUPT, -1),
-        other => panic!("{other:?} cannot happen in a replay"),
-    })
-}
-
-fn observe_sim(sim: &Sim) -> Observed {
-    let c = sim.controller();
-    let r = c.record();
-    Observed {
-        executed: r.executed.to_vec(),
-        unexpected: r.unexpected.to_vec(),
-        states: r.states.to_vec(),
-        outputs: r.outputs.to_vec(),
-        fault: fault_code(r.fault),
-        faults: c.counters().faults,
-        ignored: c.counters().ignored,
-    }
-}
-
 fn observe_st(project: &Project, st: &StController) -> Observed {
-    let mut states: Vec<u32> = st.states.iter().map(|s| int(st.get(s)) as u32).collect();
-    for (n, net) in project.nets.iter().enumerate() {
-        let marking: Vec<u32> = st.markings[n]
-            .iter()
-            .map(|s| int(st.get(s)) as u32)
-            .collect();
-        states.extend((0..net.groups()).map(|g| net.pack(g, &marking)));
-    }
+    let automata: Vec<u32> = st.states.iter().map(|s| int(st.get(s)) as u32).collect();
+    let markings: Vec<Vec<u32>> = st
+        .markings
+        .iter()
+        .map(|m| m.iter().map(|s| int(st.get(s)) as u32).collect())
+        .collect();
+    let states = pack_states(project, &automata, &markings);
     let fault = st
         .get(&st.fault)
         .as_bool()
@@ -209,97 +169,18 @@ fn observe_st(project: &Project, st: &StController) -> Observed {
     }
 }
 
-/// What a lockstep run went through, for the coverage assertions.
-#[derive(Debug, Default)]
-struct Coverage {
-    scans: usize,
-    executed: std::collections::BTreeSet<u16>,
-    faults: u32,
-    resets: usize,
-}
-
 /// Runs `rows` through a fresh host-sim and the exported ST; panics at
 /// the first scan where they differ, naming everything.
 fn lockstep(project: &Project, text: &str, rows: &[InputRow], what: &str) -> Coverage {
-    let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table).expect("sim");
-    sim.retain_trace(false);
     let mut st = StController::new(project, text);
-    let mut cov = Coverage::default();
-    let mut was_fault = false;
-    for (k, row) in rows.iter().enumerate() {
-        let trace = sim
-            .scan_with(row.time_ms, &row.values)
-            .expect("scan")
-            .clone();
+    compare(project, rows, what, |_, row| {
         st.scan(row.time_ms, &row.values);
-        let (host, plc) = (observe_sim(&sim), observe_st(project, &st));
-        assert_eq!(
-            host, plc,
-            "{} ({what}): scan {k} at {} ms differs (left host-sim, right ST); host-sim's row: {trace:?}",
-            project.name, row.time_ms
-        );
-        cov.scans += 1;
-        cov.executed.extend(&host.executed);
-        cov.faults = host.faults;
-        if was_fault && host.fault.is_none() {
-            cov.resets += 1;
-        }
-        was_fault = host.fault.is_some();
-    }
-    cov
-}
-
-/// `scans` rows at the project's period whose inputs each toggle with
-/// probability 1/16 per scan (seeded xorshift), and whose clock now and
-/// then jumps ahead, so that timers run out.
-fn blind_inputs(project: &Project, scans: usize, seed: u64) -> Vec<InputRow> {
-    let mut x = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    let mut next = move || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        x
-    };
-    let mut values = vec![false; project.inputs.len()];
-    let mut time_ms = 0u64;
-    (0..scans)
-        .map(|_| {
-            for v in &mut values {
-                if next() % 16 == 0 {
-                    *v = !*v;
-                }
-            }
-            time_ms += u64::from(project.scan_period_ms)
-                * if next() % 64 == 0 {
-                    1 + next() % 500
-                } else {
-                    1
-                };
-            InputRow {
-                time_ms,
-                values: values.clone(),
-            }
-        })
-        .collect()
+        observe_st(project, &st)
+    })
 }
 
 /// Scans of guided random input per project.
 const RANDOM_SCANS: usize = 10_000;
-
-/// Every project with `[board]` or without: the seeds, the benchmark AGV,
-/// the boiler both ways, the nets.
-const PROJECTS: [&str; 10] = [
-    "models/motivating.plc.toml",
-    "models/press.plc.toml",
-    "models/press7.plc.toml",
-    "models/conveyor.plc.toml",
-    "models/crane.plc.toml",
-    "models/agv.plc.toml",
-    "models/boiler/boiler.plc.toml",
-    "models/boiler/boiler_mono.plc.toml",
-    "models/petri/mixers.plc.toml",
-    "models/petri/cell/cell.plc.toml",
-];
 
 fn random_lockstep(rel: &str, seed: u64) {
     let project = load(rel);
@@ -314,33 +195,20 @@ fn random_lockstep(rel: &str, seed: u64) {
         (RANDOM_SCANS / 2, 0),
     ] {
         let rows = if noise == 0 {
-            blind_inputs(&project, scans, seed)
+            blind_inputs(&project, scans, seed, 0)
         } else {
             guided_inputs(&project, scans, seed, noise).expect("inputs")
         };
         let cov = lockstep(&project, &text, &rows, &format!("random, noise {noise}"));
         assert_eq!(cov.scans, scans);
-        total.scans += cov.scans;
-        total.executed.extend(cov.executed);
-        total.faults += cov.faults;
-        total.resets += cov.resets;
+        total.add(cov);
     }
     // The runs must have exercised what they compare (the boiler's deeper
     // sequences are the closed-loop test's; the boiler and the conveyor
     // expect every input edge in every state, so only a corrupt state
     // faults them: `a_corrupt_state_faults_to_the_safe_image_until_reset`).
-    assert!(!total.executed.is_empty(), "{rel}: no event executed");
-    if total.faults > 0 && project.reset.is_some() {
-        assert!(total.resets > 0, "{rel}: faults but no reset: {total:?}");
-    }
-    println!(
-        "{rel}: {} scans, {} of {} events, {} faults, {} resets, 0 differences",
-        total.scans,
-        total.executed.len(),
-        project.events.len(),
-        total.faults,
-        total.resets
-    );
+    total.assert_exercised(&project, rel);
+    println!("{rel}: {}, 0 differences", total.summary(&project));
 }
 
 macro_rules! random_tests {
@@ -363,6 +231,7 @@ random_tests! {
     boiler_mono_random_inputs_give_the_same_trace: 7, 8;
     mixers_random_inputs_give_the_same_trace: 8, 9;
     cell_random_inputs_give_the_same_trace: 9, 10;
+    iec_names_random_inputs_give_the_same_trace: 10, 11;
 }
 
 #[test]
@@ -381,34 +250,11 @@ fn the_press_cycle_as_recorded_gives_the_same_trace() {
 /// with the plant, and its input image per scan is replayed into the ST.
 #[test]
 fn the_boilers_closed_loop_scenarios_give_the_same_trace() {
-    use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Input, IoMap as Boiler};
     let project = load("models/boiler/boiler.plc.toml");
     let text = st_text(&project);
-    let io = Boiler::new(&project).expect("boiler signals");
     let mut total = 0;
     let (mut executed, mut faults, mut resets) = (std::collections::BTreeSet::new(), 0, 0);
-    for name in scenarios::NAMES
-        .iter()
-        .filter(|n| **n != "controller-stall")
-    {
-        let (script, duration) = scenarios::named(name).expect("scenario");
-        let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table).expect("sim");
-        let mut boiler = BoilerPlant::new(BoilerParams::default(), 1);
-        let run = plant::run(&mut sim, &mut boiler, &script, duration).expect("runs");
-        let rows: Vec<InputRow> = run
-            .rows
-            .iter()
-            .map(|r| {
-                let mut values = vec![false; project.inputs.len()];
-                for input in Input::ALL {
-                    values[io.input(input)] = r.inputs.get(input);
-                }
-                InputRow {
-                    time_ms: r.time_ms,
-                    values,
-                }
-            })
-            .collect();
+    for (name, rows) in lockstep::boiler_scenarios(&project) {
         let cov = lockstep(&project, &text, &rows, name);
         assert!(!cov.executed.is_empty(), "{name}: nothing happened");
         total += cov.scans;
@@ -570,36 +416,14 @@ fn the_configuration_runs_the_program_in_a_task_of_the_scan_period() {
 fn a_wrong_transition_in_the_exported_table_is_found() {
     let project = load("models/press.plc.toml");
     let text = st_text(&project);
-    // The first row of the first transition array: change its first
-    // defined target to another state.
     let table = &iec::export(&project, &IoMap::sequential(), "t")
         .expect("exports")
         .names
         .tables[0];
-    let start = text
-        .find(&format!("{table} : ARRAY"))
-        .expect("a transition array");
-    let row = start + text[start..].find("*) ").expect("a row label") + 3;
-    let end = row + text[row..].find('\n').expect("row end");
-    let values: Vec<&str> = text[row..end].trim_end_matches(',').split(", ").collect();
-    let k = values
-        .iter()
-        .position(|v| *v != "-1")
-        .expect("a defined target");
-    let mut changed: Vec<String> = values.iter().map(|v| v.to_string()).collect();
-    changed[k] = if values[k] == "0" { "1" } else { "0" }.to_string();
-    let mut row_text = changed.join(", ");
-    if text[row..end].ends_with(',') {
-        row_text.push(',');
-    }
-    let broken = format!("{}{}{}", &text[..row], row_text, &text[end..]);
+    let broken = lockstep::mutant(&text, table);
     let rows = guided_inputs(&project, 2_000, 2, 40).expect("inputs");
     let outcome = std::panic::catch_unwind(|| lockstep(&project, &broken, &rows, "mutant"));
-    let message = outcome.expect_err("the mutant must differ");
-    let text = message
-        .downcast_ref::<String>()
-        .cloned()
-        .unwrap_or_default();
+    let text = lockstep::panic_text(outcome.expect_err("the mutant must differ"));
     assert!(text.contains("differs"), "{text}");
 }
 

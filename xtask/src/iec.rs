@@ -64,6 +64,7 @@ const PROJECTS: &[&str] = &[
     "models/petri/mixers.plc.toml",
     "models/petri/cell/cell.plc.toml",
     "tests/fixtures/hostile/hostile.plc.toml",
+    "tests/fixtures/iec_names/iec_names.plc.toml",
 ];
 
 pub fn run_task(args: &[String]) -> Result {

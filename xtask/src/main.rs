@@ -11,6 +11,8 @@
 //! - `deps`: no build a new user starts with needs libclang (bindgen).
 //! - `iec [--all]`: the Structured Text and PLCopen XML exports of every
 //!   seed project parsed by blark and validated against the TC6 schema.
+//! - `matiec`: the same exports compiled by matiec (OpenPLC's and
+//!   Beremiz's IEC compiler) and gcc, run in lockstep with host-sim.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -19,6 +21,7 @@ mod bench;
 mod budgets;
 mod deps;
 mod iec;
+mod matiec;
 mod qemu;
 mod size;
 mod sysdeps;
@@ -32,6 +35,7 @@ fn main() -> ExitCode {
         Some("size") => size::run_task(&args[1..]),
         Some("deps") => deps::run_task(&args[1..]),
         Some("iec") => iec::run_task(&args[1..]),
+        Some("matiec") => matiec::run_task(&args[1..]),
         _ => {
             eprintln!(
                 "usage: cargo xtask <task>\n\
@@ -41,7 +45,8 @@ fn main() -> ExitCode {
                  qemu [PROJECT] [SCENARIO]  replay in QEMU: zero mismatches, instructions per scan, budgets\n  \
                  size [MODEL…]              flash and static RAM of the board firmware, budgets\n  \
                  deps                       the README's commands and the firmware build without libclang (cargo tree)\n  \
-                 iec [--all]                ST and PLCopen XML of every seed: blark parse, TC6 schema (--all: the largest ST too)"
+                 iec [--all]                ST and PLCopen XML of every seed: blark parse, TC6 schema (--all: the largest ST too)\n  \
+                 matiec                     ST and PLCopen XML of every seed compiled by matiec and gcc, run in lockstep with host-sim"
             );
             Err("no task given".into())
         }
@@ -194,8 +199,11 @@ fn ci() -> Result {
         "--",
         "--ignored",
     ]))?;
-    // The IEC 61131-3 export, checked by tools written by others.
+    // The IEC 61131-3 export, checked by tools written by others: parsed
+    // by blark, validated against the TC6 schema, compiled by matiec and
+    // run.
     iec::run_task(&[])?;
+    matiec::run_task(&[])?;
     // The boiler's randomized campaign: 1000 runs of ten simulated minutes,
     // every scan checked by the safety invariants.
     run(cargo().args([

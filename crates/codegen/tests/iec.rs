@@ -257,40 +257,175 @@ fn default_addresses_count_bits_then_bytes() {
     }
 }
 
+/// The elements of constant array `name` of the controller, in order.
+fn array_values(export: &iec::Export, name: &str) -> (Vec<(i64, i64)>, Vec<i64>) {
+    use codegen::iec::pou::{Init, Type};
+    let var = export.pous[0]
+        .vars(Section::Constant)
+        .find(|v| v.name == name)
+        .unwrap_or_else(|| panic!("no array {name}"));
+    let Type::Array { dims, .. } = &var.ty else {
+        panic!("{name} is not an array")
+    };
+    let Some(Init::Rows(rows)) = &var.init else {
+        panic!("{name} has no rows")
+    };
+    let values = rows
+        .iter()
+        .flat_map(|(_, row)| row.iter().map(|v| v.parse::<i64>().expect("a number")))
+        .collect();
+    (dims.clone(), values)
+}
+
 #[test]
 fn the_transition_arrays_are_the_supervisors_transition_functions() {
-    use codegen::iec::pou::{Init, Type};
     use codegen::StateId;
-    for rel in ["models/crane.plc.toml", "models/boiler/boiler.plc.toml"] {
+    let mut layouts = (0, 0);
+    for rel in [
+        "models/crane.plc.toml",
+        "models/boiler/boiler.plc.toml",
+        "models/agv.plc.toml",
+    ] {
         let project = load(rel);
         let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
         for (j, sup) in project.supervisors.iter().enumerate() {
-            let var = export.pous[0]
-                .vars(Section::Constant)
-                .find(|v| v.name == export.names.tables[j])
-                .expect("a transition array");
-            let Type::Array { dims, .. } = &var.ty else {
-                panic!("not an array")
-            };
             let a = &sup.automaton;
-            assert_eq!(dims[0], (0, a.num_states() as i64 - 1));
-            assert_eq!(dims[1], (0, sup.local_events.len() as i64 - 1));
-            let Some(Init::Rows(rows)) = &var.init else {
-                panic!("no rows")
+            let n = a.num_states();
+            let cols = sup.local_events.len();
+            // The target of (state, column) as the export stores it.
+            let target: Box<dyn Fn(usize, usize) -> i64> = match &export.names.sparse[j] {
+                None => {
+                    layouts.0 += 1;
+                    let (dims, values) = array_values(&export, &export.names.tables[j]);
+                    assert_eq!(dims, [(0, n as i64 - 1), (0, cols as i64 - 1)]);
+                    assert_eq!(values.len(), n * cols);
+                    Box::new(move |s, k| values[s * cols + k])
+                }
+                Some(t) => {
+                    layouts.1 += 1;
+                    assert!(iec::scan::is_sparse(&project, j));
+                    let (_, rows) = array_values(&export, &t.rows);
+                    let (_, columns) = array_values(&export, &t.columns);
+                    let (_, targets) = array_values(&export, &t.targets);
+                    assert_eq!(rows.len(), n + 1);
+                    assert_eq!(columns.len(), targets.len());
+                    assert_eq!(rows[n] as usize + 1, columns.len(), "one −1 at the end");
+                    assert_eq!(
+                        (columns[rows[n] as usize], targets[rows[n] as usize]),
+                        (-1, -1)
+                    );
+                    Box::new(move |s, k| {
+                        let entries = rows[s] as usize..rows[s + 1] as usize;
+                        let hits: Vec<i64> = entries
+                            .filter(|&i| columns[i] == k as i64)
+                            .map(|i| targets[i])
+                            .collect();
+                        assert!(hits.len() <= 1, "state {s} column {k} twice");
+                        hits.first().copied().unwrap_or(-1)
+                    })
+                }
             };
-            for (s, (_, row)) in rows.iter().enumerate() {
+            for s in 0..n {
                 for (k, &(_, id)) in sup.local_events.iter().enumerate() {
                     let expected = a
                         .successor(StateId(s as u32), id)
                         .map_or(-1, |t| i64::from(t.0));
-                    assert_eq!(
-                        row[k].parse::<i64>().unwrap(),
-                        expected,
-                        "{rel} {} {s} {k}",
-                        sup.name
-                    );
+                    assert_eq!(target(s, k), expected, "{rel} {} {s} {k}", sup.name);
                 }
             }
         }
     }
+    assert!(layouts.0 > 0 && layouts.1 > 0, "both layouts: {layouts:?}");
+}
+
+/// The range of an integer type of the export, `None` for others.
+fn range(ty: &codegen::iec::pou::Type) -> Option<(i64, i64)> {
+    use codegen::iec::pou::Type;
+    match ty {
+        Type::Sint => Some((i8::MIN.into(), i8::MAX.into())),
+        Type::Int => Some((i16::MIN.into(), i16::MAX.into())),
+        Type::Dint => Some((i32::MIN.into(), i32::MAX.into())),
+        Type::Udint => Some((0, u32::MAX.into())),
+        Type::Array { elem, .. } => range(elem),
+        Type::Bool | Type::Instance(_) => None,
+    }
+}
+
+/// Every initial value and constant of `export` within its declared type
+/// (a 2nd-edition compiler such as matiec converts nothing implicitly).
+fn assert_values_fit(export: &iec::Export, what: &str) -> usize {
+    use codegen::iec::pou::Init;
+    let mut checked = 0;
+    for pou in &export.pous {
+        for var in pou.blocks.iter().flat_map(|b| &b.vars) {
+            let (Some((lo, hi)), Some(init)) = (range(&var.ty), &var.init) else {
+                continue;
+            };
+            let values: Vec<&String> = match init {
+                Init::Value(v) => vec![v],
+                Init::Rows(rows) => rows.iter().flat_map(|(_, r)| r).collect(),
+            };
+            for v in values {
+                let n: i64 = v
+                    .parse()
+                    .unwrap_or_else(|_| panic!("{what}: {} = {v}", var.name));
+                assert!(
+                    (lo..=hi).contains(&n),
+                    "{what}: {} : {} := {n} is outside its type",
+                    var.name,
+                    var.ty.iec()
+                );
+                checked += 1;
+            }
+        }
+    }
+    checked
+}
+
+#[test]
+fn every_constant_fits_its_declared_type() {
+    for rel in [
+        "models/press.plc.toml",
+        "models/agv.plc.toml",
+        "models/boiler/boiler_mono.plc.toml",
+        "models/petri/cell/cell.plc.toml",
+        "tests/fixtures/iec_names/iec_names.plc.toml",
+    ] {
+        let project = load(rel);
+        let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
+        assert!(
+            assert_values_fit(&export, rel) > 0,
+            "{rel}: nothing checked"
+        );
+    }
+    // 40,000 tokens: the marking array is DINT.
+    let project = load("tests/fixtures/iec_names/iec_names.plc.toml");
+    let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
+    let marking = export.pous[0]
+        .vars(Section::Output)
+        .find(|v| v.name == export.names.nets[0])
+        .expect("the marking");
+    assert!(
+        marking.ty.iec().ends_with("OF DINT"),
+        "{}",
+        marking.ty.iec()
+    );
+    // More inputs than an INT counts: their index constants are DINT.
+    let mut text = String::from("[plc]\nname = \"wide\"\n\n[inputs]\n");
+    for i in 0..32_770 {
+        text.push_str(&format!("i{i} = {{}}\n"));
+    }
+    text.push_str(
+        "\n[outputs]\nlamp = {}\n\n[events]\ngo = { controllable = true, set = [\"lamp\"] }\n\
+         done = { rising = \"i32769\" }\n\n[[supervisor]]\nname = \"machine\"\nfile = \"machine.toml\"\n",
+    );
+    let path = root().join("tests/fixtures/hostile/wide.plc.toml");
+    let project = project::from_str(&text, &path).expect("a valid project");
+    let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
+    let last = export.pous[0]
+        .vars(Section::Constant)
+        .find(|v| v.name == "IN_i32769")
+        .expect("the last input's index");
+    assert_eq!(last.ty.iec(), "DINT");
+    assert!(assert_values_fit(&export, "32,770 inputs") > 32_770);
 }

@@ -263,6 +263,12 @@ struct Names {
     enables: Vec<Option<String>>,
 }
 
+/// The name of `project`'s ladder function block, which [`super::export`]
+/// keeps free of every other POU and variable of the project.
+pub fn pou_name(project: &Project) -> String {
+    format!("{}_ladder", identifier(&project.name))
+}
+
 /// `project`'s supervisors as a ladder function block; refuses a project
 /// with Petri nets, and one whose ladder would have more than `limit`
 /// rungs.
@@ -277,7 +283,7 @@ pub fn render(project: &Project, limit: usize) -> Result<Ladder> {
         ));
     }
     let mut namer = Namer::new();
-    let name = format!("{}_ladder", identifier(&project.name));
+    let name = pou_name(project);
     namer.reserve(&name);
     let init = namer.name("", "INIT");
     let names = Names {

@@ -50,10 +50,29 @@ pub struct Names {
     pub events: Vec<String>,
     /// Each automaton supervisor's state variable (`S_…`).
     pub states: Vec<String>,
-    /// Each automaton supervisor's transition array (`D_…`).
+    /// Each automaton supervisor's transition array (`D_…`), when it is
+    /// laid out dense.
     pub tables: Vec<String>,
+    /// Each automaton supervisor's sparse table, when it is laid out
+    /// sparse ([`scan::is_sparse`]).
+    pub sparse: Vec<Option<SparseNames>>,
     /// Each net's marking array (`M_…`).
     pub nets: Vec<String>,
+}
+
+/// The identifiers of a supervisor whose transitions are exported as a
+/// sparse table: the transitions of state `s` are entries
+/// `rows[s] .. rows[s + 1] - 1` of `columns` (local event) and `targets`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SparseNames {
+    /// Row starts, one per state and a final one (`DR_…`).
+    pub rows: String,
+    /// The local event of each transition, then −1 (`DE_…`).
+    pub columns: String,
+    /// The target state of each transition, then −1 (`DT_…`).
+    pub targets: String,
+    /// The target the last lookup found, −1 for none (`NX_…`).
+    pub next: String,
 }
 
 /// A project ready to print.
@@ -104,9 +123,13 @@ pub fn export(project: &Project, io: &IoMap, regenerate: &str) -> Result<Export>
         pous.name("", "scan_task"),
         pous.name("", "main"),
     ];
+    // The LD rendering's POU (`plcopen --ladder`) joins the same project:
+    // no POU or variable may take its name.
+    let ladder = pous.name("", &ladder::pou_name(project));
     let mut namer = Namer::new();
     namer.reserve(&controller);
     namer.reserve(&program);
+    namer.reserve(&ladder);
     let mut names = scan::names(project, &mut namer, &PROGRAM_IDS);
     names.controller = controller;
     names.program = program;

@@ -12,17 +12,19 @@
 //!    prefix `x_`;
 //! 3. a result equal, ignoring case, to a reserved word of IEC 61131-3
 //!    (keywords, elementary types, standard functions and function
-//!    blocks) or to a name already given in the namespace gets the first
-//!    free suffix `_2`, `_3`, ….
+//!    blocks, in any typed form such as `ADD_INT` or `SINT_TO_INT`, and
+//!    the library blocks matiec loads such as `PID`) or to a name already
+//!    given in the namespace gets the first free suffix `_2`, `_3`, ….
 //!
 //! Step 3 makes the mapping collision-free by construction; the exporter
 //! lists every name it changed in the header of the file.
 
 use std::collections::HashSet;
 
-/// Reserved words of IEC 61131-3 (3rd edition): keywords, elementary
-/// data types, standard functions and standard function blocks, upper
-/// case.
+/// Reserved words of IEC 61131-3 (3rd edition) besides the elementary
+/// types ([`ELEMENTARY_TYPES`]): keywords, standard functions and
+/// standard function blocks, upper case; and the words matiec (OpenPLC,
+/// Beremiz) refuses as variables besides them.
 const RESERVED: &[&str] = &[
     // Keywords.
     "ACTION",
@@ -115,6 +117,15 @@ const RESERVED: &[&str] = &[
     "WHILE",
     "END_WHILE",
     "WITH",
+    "CONTINUE",
+    "JMP",
+    "FROM",
+    "AND_THEN",
+    "OR_ELSE",
+    "VAR_INST",
+    "VAR_STAT",
+    "UNION",
+    "END_UNION",
     "AND",
     "OR",
     "XOR",
@@ -147,38 +158,7 @@ const RESERVED: &[&str] = &[
     "REFERENCE",
     "SIZEOF",
     "ADR",
-    // Elementary data types.
-    "BOOL",
-    "SINT",
-    "INT",
-    "DINT",
-    "LINT",
-    "USINT",
-    "UINT",
-    "UDINT",
-    "ULINT",
-    "REAL",
-    "LREAL",
-    "TIME",
-    "LTIME",
-    "DATE",
-    "LDATE",
-    "TIME_OF_DAY",
-    "TOD",
-    "LTIME_OF_DAY",
-    "LTOD",
-    "DATE_AND_TIME",
-    "DT",
-    "LDATE_AND_TIME",
-    "LDT",
-    "STRING",
-    "WSTRING",
-    "CHAR",
-    "WCHAR",
-    "BYTE",
-    "WORD",
-    "DWORD",
-    "LWORD",
+    // Duration and time literal prefixes (`T#5s`, `D#2024-01-01`).
     "T",
     "D",
     "LT",
@@ -237,7 +217,111 @@ const RESERVED: &[&str] = &[
     "TP",
     "TON",
     "TOF",
+    // Time arithmetic (2nd edition names, which matiec keeps).
+    "ADD_TIME",
+    "ADD_TOD_TIME",
+    "ADD_DT_TIME",
+    "SUB_TIME",
+    "SUB_DATE_DATE",
+    "SUB_TOD_TIME",
+    "SUB_TOD_TOD",
+    "SUB_DT_TIME",
+    "SUB_DT_DT",
+    "MULTIME",
+    "DIVTIME",
+    "CONCAT_DATE_TOD",
+    "CONCAT_DAT_TOD",
+    // Function blocks of the library every matiec (OpenPLC, Beremiz)
+    // compilation loads.
+    "PID",
+    "RAMP",
+    "RTC",
+    "SEMA",
+    "INTEGRAL",
+    "DERIVATIVE",
+    "HYSTERESIS",
 ];
+
+/// The elementary data types of IEC 61131-3 (3rd edition), reserved
+/// themselves and the words typed overloads and conversions are spelled
+/// with (`ADD_INT`, `MUX_INT_BOOL`, `SINT_TO_INT`,
+/// `DATE_AND_TIME_TO_TIME_OF_DAY`).
+const ELEMENTARY_TYPES: &[&str] = &[
+    "BOOL",
+    "SINT",
+    "INT",
+    "DINT",
+    "LINT",
+    "USINT",
+    "UINT",
+    "UDINT",
+    "ULINT",
+    "REAL",
+    "LREAL",
+    "TIME",
+    "LTIME",
+    "DATE",
+    "LDATE",
+    "TIME_OF_DAY",
+    "TOD",
+    "LTIME_OF_DAY",
+    "LTOD",
+    "DATE_AND_TIME",
+    "DT",
+    "LDATE_AND_TIME",
+    "LDT",
+    "STRING",
+    "WSTRING",
+    "CHAR",
+    "WCHAR",
+    "BYTE",
+    "WORD",
+    "DWORD",
+    "LWORD",
+];
+
+/// Whether `s` (upper case) is one or more of [`ELEMENTARY_TYPES`] or
+/// `BCD` (the BCD forms of conversions, `UINT_TO_BCD_WORD`) joined by
+/// `_`.
+fn is_type_sequence(s: &str) -> bool {
+    ELEMENTARY_TYPES
+        .iter()
+        .chain(&["BCD"])
+        .any(|t| match s.strip_prefix(t) {
+            Some("") => true,
+            Some(rest) => rest
+                .strip_prefix('_')
+                .is_some_and(|rest| !rest.is_empty() && is_type_sequence(rest)),
+            None => false,
+        })
+}
+
+/// Whether `upper` names a typed overload of a standard function or
+/// function block (`ADD_INT`, `MUX_INT_BOOL`, `CTU_DINT`, `TRUNC_INT`),
+/// or a conversion (`SINT_TO_INT`, `TO_INT`, `BYTE_BCD_TO_UINT`): names a
+/// PLC compiler knows as functions even where the standard lists only
+/// the generic one (matiec refuses every one of them as a variable).
+fn is_typed_function(upper: &str) -> bool {
+    if let Some(to) = upper.strip_prefix("TO_") {
+        if is_type_sequence(to) {
+            return true;
+        }
+    }
+    let mut from = 0;
+    while let Some(k) = upper[from..].find("_TO_") {
+        let (a, b) = (&upper[..from + k], &upper[from + k + 4..]);
+        if is_type_sequence(a) && is_type_sequence(b) {
+            return true;
+        }
+        from += k + 1;
+    }
+    RESERVED.iter().any(|f| {
+        upper
+            .strip_prefix(f)
+            .and_then(|rest| rest.strip_prefix('_'))
+            .is_some_and(is_type_sequence)
+    })
+}
 
 /// One namespace of IEC identifiers: names given so far, and the
 /// changes made.
@@ -268,10 +352,14 @@ pub fn identifier(name: &str) -> String {
     out
 }
 
-/// Whether `id` (any case) is a reserved word of IEC 61131-3.
+/// Whether `id` (any case) is a reserved word of IEC 61131-3, a
+/// standard function or function block in any typed form, or a
+/// conversion function.
 pub fn is_reserved(id: &str) -> bool {
     let upper = id.to_ascii_uppercase();
     RESERVED.contains(&upper.as_str())
+        || ELEMENTARY_TYPES.contains(&upper.as_str())
+        || is_typed_function(&upper)
 }
 
 impl Namer {
@@ -353,6 +441,50 @@ mod tests {
         assert_eq!(n.name("EV_", "go"), "EV_go");
         assert_eq!(n.name("EV_", "_go"), "EV_go_2");
         assert_eq!(n.changed.len(), 7, "{:?}", n.changed);
+    }
+
+    /// Every word here is refused as a variable name by matiec (OpenPLC's
+    /// and Beremiz's compiler, measured) or by blark (3rd edition).
+    #[test]
+    fn compiler_keywords_and_typed_functions_are_reserved() {
+        for word in [
+            "continue",
+            "jmp",
+            "and_then",
+            "or_else",
+            "var_inst",
+            "var_stat",
+            "union",
+            "end_union",
+            "from",
+            "add_int",
+            "mux_dint_bool",
+            "sint_to_int",
+            "date_and_time_to_time_of_day",
+            "byte_bcd_to_uint",
+            "uint_to_bcd_word",
+            "udint_to_bcd",
+            "bcd_to_usint",
+            "to_int",
+            "ctu_dint",
+            "trunc_int",
+            "sub_dt_dt",
+            "divtime_real",
+            "pid",
+            "hysteresis",
+        ] {
+            assert!(is_reserved(word), "{word}");
+        }
+        for word in [
+            "int_to",
+            "add_x",
+            "valve_to_tank",
+            "x_to_int",
+            "integral2",
+            "tod_",
+        ] {
+            assert!(!is_reserved(word), "{word}");
+        }
     }
 
     #[test]

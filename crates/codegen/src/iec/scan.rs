@@ -4,16 +4,27 @@
 //! Signals, timers, events and supervisors become arrays indexed by
 //! named constants (`FILT[IN_start]`, `T_RUN[TM_runon]`, `EVENTS[n] :=
 //! EV_go`), each automaton a state variable `S_<name>` and a constant
-//! transition array `D_<name>[state, local event]` (−1: no transition),
-//! each Petri net a marking array `M_<name>[place]`. Steps are written in
-//! the order of the specification, each event as its own block, so a
-//! reader can follow one event from its occurrence to its actions.
+//! transition array `D_<name>[state, local event]` (−1: no transition)
+//! or, where that is smaller ([`is_sparse`]), a sparse table (row starts
+//! `DR_<name>`, local events `DE_<name>`, targets `DT_<name>`) searched
+//! into `NX_<name>`; each Petri net a marking array `M_<name>[place]`.
+//! Steps are written in the order of the specification, each event as
+//! its own block, so a reader can follow one event from its occurrence
+//! to its actions.
+//!
+//! The text is meant for every IEC compiler, the strictest included
+//! (matiec, the 2nd-edition compiler of OpenPLC and Beremiz): every
+//! assignment is between variables of one type (no implicit widening),
+//! every constant fits its declared type (`DINT` where a count can pass
+//! `INT`), no statement or branch is empty, and no `FOR` loop runs once
+//! (a one-trip loop is written out; matiec of October 2024 runs
+//! `FOR i := 1 TO 1` zero times).
 
 use super::names::Namer;
 use super::pou::{Init, Pou, PouKind, Section, Type, Var, VarBlock};
-use super::{comment_text, Names};
+use super::{comment_text, Names, SparseNames};
 use crate::automaton::StateId;
-use crate::project::{Action, Drive, Event, Project, Trigger, Unexpected};
+use crate::project::{Action, Drive, Event, Project, Supervisor, Trigger, Unexpected};
 
 /// Fault cause numbers of the `FAULT_CAUSE` output.
 pub const CAUSE_UNEXPECTED: i64 = 1;
@@ -29,12 +40,29 @@ const HALF: &str = "UDINT#16#80000000";
 struct Body {
     lines: Vec<String>,
     depth: usize,
+    /// Statements written (comments and blank lines aside).
+    statements: usize,
 }
 
 impl Body {
+    /// A body nested one level in `outer`.
+    fn nested(outer: &Body) -> Body {
+        Body {
+            depth: outer.depth + 1,
+            ..Body::default()
+        }
+    }
     fn line(&mut self, text: impl AsRef<str>) {
+        self.statements += 1;
+        self.comment(text);
+    }
+    fn comment(&mut self, text: impl AsRef<str>) {
         self.lines
             .push(format!("{}{}", "    ".repeat(self.depth), text.as_ref()));
+    }
+    fn append(&mut self, inner: Body) {
+        self.statements += inner.statements;
+        self.lines.extend(inner.lines);
     }
     fn open(&mut self, text: impl AsRef<str>) {
         self.line(text);
@@ -57,7 +85,11 @@ impl Body {
 /// The controller function block of `project` with the identifiers of
 /// `names`.
 pub fn controller(project: &Project, names: &Names) -> Pou {
-    let b = Builder { project, names };
+    let b = Builder {
+        project,
+        names,
+        position: position_type(project),
+    };
     Pou {
         name: names.controller.clone(),
         kind: PouKind::FunctionBlock,
@@ -80,24 +112,121 @@ pub fn controller(project: &Project, names: &Names) -> Pou {
 struct Builder<'a> {
     project: &'a Project,
     names: &'a Names,
+    /// The type of sparse tables' row starts and of `J`.
+    position: Type,
 }
 
 fn bool_lit(b: bool) -> String {
     if b { "TRUE" } else { "FALSE" }.into()
 }
 
-/// The type of a state variable: at least `INT` (a PLC's usual word, as
-/// monitors show it), wider when the states need it.
-fn state_var_type(states: usize) -> Type {
-    match Type::signed_for(0, states as i64 - 1) {
+/// The type of indices and counts up to `max`: `INT`, a PLC's usual
+/// word, or `DINT` past it.
+fn index_type(max: usize) -> Type {
+    if max <= i16::MAX as usize {
+        Type::Int
+    } else {
+        Type::Dint
+    }
+}
+
+/// The type of a supervisor's state variable and of its table entries:
+/// its states and −1 (one type, so that `S := D[S, k]` needs no
+/// conversion).
+fn state_type(states: usize) -> Type {
+    Type::signed_for(-1, states as i64)
+}
+
+/// The element type of a net's marking array: at least `INT`, wide
+/// enough for every bound, initial marking and arc weight.
+fn marking_type(net: &crate::project::Net) -> Type {
+    let arcs = net
+        .net
+        .transitions()
+        .iter()
+        .flat_map(|t| t.input.iter().chain(&t.output).map(|&(_, w)| i64::from(w)));
+    let largest = net
+        .bounds
+        .iter()
+        .chain(net.net.initial())
+        .map(|&m| i64::from(m))
+        .chain(arcs)
+        .max()
+        .unwrap_or(0);
+    match Type::signed_for(0, largest) {
         Type::Sint => Type::Int,
         t => t,
     }
 }
 
-/// The element type of supervisor tables: states and −1.
-fn state_type(states: usize) -> Type {
-    Type::signed_for(-1, states as i64)
+/// A supervisor's transition function as the export sees it.
+struct Shape {
+    states: usize,
+    columns: usize,
+    transitions: usize,
+}
+
+impl Shape {
+    fn of(sup: &Supervisor) -> Shape {
+        let a = &sup.automaton;
+        let transitions = (0..a.num_states() as u32)
+            .map(|s| {
+                sup.local_events
+                    .iter()
+                    .filter(|&&(_, id)| a.successor(StateId(s), id).is_some())
+                    .count()
+            })
+            .sum();
+        Shape {
+            states: a.num_states(),
+            columns: sup.local_events.len(),
+            transitions,
+        }
+    }
+
+    fn dense_bytes(&self) -> usize {
+        self.states * self.columns * state_type(self.states).bytes()
+    }
+
+    /// Row starts, then events and targets each with their −1.
+    fn sparse_bytes(&self, position: &Type) -> usize {
+        (self.states + 1) * position.bytes()
+            + (self.transitions + 1)
+                * (Type::signed_for(-1, self.columns as i64).bytes()
+                    + state_type(self.states).bytes())
+    }
+}
+
+/// The type of sparse tables' row starts and of their search index `J`:
+/// one for the project, wide enough for its largest supervisor.
+fn position_type(project: &Project) -> Type {
+    index_type(
+        project
+            .supervisors
+            .iter()
+            .map(|s| Shape::of(s).transitions)
+            .max()
+            .unwrap_or(0),
+    )
+}
+
+/// Dense arrays up to this many bytes stay dense whatever a sparse table
+/// would save: a few hundred bytes, and the array reads as the
+/// supervisor's table (every seed).
+const ALWAYS_DENSE: usize = 1024;
+
+/// Whether supervisor `j` of `project` is exported as a sparse table
+/// (row starts, events, targets) rather than a dense `[state, event]`
+/// array: when that takes at most two thirds of the dense array's bytes.
+/// A sparse table costs a search per lookup and its code, so a table
+/// that saves less stays dense (the boiler's seven, half their entries
+/// defined, would save at most a fifth), as do arrays of at most
+/// [`ALWAYS_DENSE`] bytes; the AGV's saves four fifths, the monolithic
+/// boiler's two fifths.
+pub fn is_sparse(project: &Project, j: usize) -> bool {
+    let shape = Shape::of(&project.supervisors[j]);
+    shape.dense_bytes() > ALWAYS_DENSE
+        && 3 * shape.sparse_bytes(&position_type(project)) <= 2 * shape.dense_bytes()
 }
 
 impl Builder<'_> {
@@ -132,8 +261,8 @@ impl Builder<'_> {
                 ),
             ));
         }
-        let event_ty = Type::Int;
         let ne = p.events.len().max(1);
+        let event_ty = index_type(ne);
         let nu = p.events.iter().filter(|e| !e.controllable).count().max(1);
         outputs.extend([
             Var::new(
@@ -158,7 +287,7 @@ impl Builder<'_> {
                 Type::Udint,
                 "unexpected events ignored since power-on",
             ),
-            Var::new("N_EVENTS", Type::Int, "events executed in this scan"),
+            Var::new("N_EVENTS", event_ty.clone(), "events executed in this scan"),
             Var::new(
                 "EVENTS",
                 Type::Array {
@@ -167,12 +296,16 @@ impl Builder<'_> {
                 },
                 "the events executed in this scan, in order (EV_ constants)",
             ),
-            Var::new("N_UNEXPECTED", Type::Int, "unexpected events in this scan"),
+            Var::new(
+                "N_UNEXPECTED",
+                event_ty.clone(),
+                "unexpected events in this scan",
+            ),
             Var::new(
                 "UNEXPECTED",
                 Type::Array {
                     dims: vec![(1, nu as i64)],
-                    elem: Box::new(event_ty),
+                    elem: Box::new(event_ty.clone()),
                 },
                 "the unexpected events of this scan, in order",
             ),
@@ -183,7 +316,7 @@ impl Builder<'_> {
             outputs.push(
                 Var::new(
                     &n.states[j],
-                    state_var_type(a.num_states()),
+                    state_type(a.num_states()),
                     format!(
                         "state of supervisor '{}' ({} states)",
                         comment_text(&sup.name),
@@ -198,7 +331,7 @@ impl Builder<'_> {
             outputs.push(
                 Var::new(
                     &n.nets[k],
-                    Type::array(places.len(), Type::Int),
+                    Type::array(places.len(), marking_type(net)),
                     format!(
                         "marking of net '{}': tokens per place",
                         comment_text(&net.name)
@@ -275,15 +408,51 @@ impl Builder<'_> {
                 "commands executed in this scan",
             ));
         }
-        locals.push(Var::new("I", Type::Int, "loop index"));
-        locals.push(Var::new("CMD", Type::Int, "commands chosen in this scan"));
+        locals.push(Var::new(
+            "I",
+            index_type(self.ni().max(p.timers.len())),
+            "loop index",
+        ));
+        if self.commands().count() > 0 && self.command_limit() > 1 {
+            locals.push(Var::new(
+                "CMD",
+                event_ty.clone(),
+                "commands chosen in this scan",
+            ));
+        }
+        if self.names.sparse.iter().any(Option::is_some) {
+            locals.push(Var::new(
+                "J",
+                self.position.clone(),
+                "position in a sparse table",
+            ));
+            if self.chosen_flag() {
+                locals.push(Var::new(
+                    "CHOSEN",
+                    Type::Bool,
+                    "a command was executed in this round",
+                ));
+            }
+        }
+        for (j, sup) in p.supervisors.iter().enumerate() {
+            if let Some(sparse) = &self.names.sparse[j] {
+                locals.push(Var::new(
+                    &sparse.next,
+                    state_type(sup.automaton.num_states()),
+                    format!(
+                        "supervisor '{}': target of the last lookup, -1 none",
+                        comment_text(&sup.name)
+                    ),
+                ));
+            }
+        }
 
         let mut constants = Vec::new();
         for (i, input) in p.inputs.iter().enumerate() {
             constants.push(
                 Var::new(
                     &n.input_index[i],
-                    Type::Int,
+                    index_type(self.ni()),
                     format!("input '{}'", comment_text(&input.name)),
                 )
                 .init(Init::Value(i.to_string())),
@@ -294,7 +463,7 @@ impl Builder<'_> {
                 constants.push(
                     Var::new(
                         &n.output_index[o],
-                        Type::Int,
+                        index_type(p.outputs.len()),
                         format!("output '{}'", comment_text(&output.name)),
                     )
                     .init(Init::Value(o.to_string())),
@@ -305,7 +474,7 @@ impl Builder<'_> {
             constants.push(
                 Var::new(
                     &n.timers[t],
-                    Type::Int,
+                    index_type(p.timers.len()),
                     format!(
                         "timer '{}', {} ms",
                         comment_text(&timer.name),
@@ -319,7 +488,7 @@ impl Builder<'_> {
             constants.push(
                 Var::new(
                     &n.events[e],
-                    Type::Int,
+                    event_ty.clone(),
                     format!(
                         "event '{}', {}",
                         comment_text(&event.name),
@@ -350,7 +519,10 @@ impl Builder<'_> {
             );
         }
         for (j, sup) in p.supervisors.iter().enumerate() {
-            constants.push(self.table(j, sup));
+            match &self.names.sparse[j] {
+                Some(sparse) => constants.extend(self.sparse_table(sparse, sup)),
+                None => constants.push(self.table(j, sup)),
+            }
         }
 
         let mut blocks = vec![
@@ -395,13 +567,7 @@ impl Builder<'_> {
                             .map_or("-1".to_owned(), |t| t.0.to_string())
                     })
                     .collect();
-                let name = a.state_name(StateId(s));
-                let label = if name == s.to_string() {
-                    name.into_owned()
-                } else {
-                    format!("{s}: {}", comment_text(&name))
-                };
-                (label, targets)
+                (state_label(a, s), targets)
             })
             .collect();
         Var::new(
@@ -420,6 +586,116 @@ impl Builder<'_> {
             ),
         )
         .init(Init::Rows(rows))
+    }
+
+    /// Supervisor `sup`'s transitions as a sparse table: row starts, then
+    /// the local event and the target of each transition (state by state,
+    /// events in column order), each list ending in −1 so that a search
+    /// past a row's last entry stays inside the arrays.
+    fn sparse_table(&self, names: &SparseNames, sup: &Supervisor) -> [Var; 3] {
+        let a = &sup.automaton;
+        let mut starts = vec!["0".to_owned()];
+        let (mut columns, mut targets) = (Vec::new(), Vec::new());
+        let mut count = 0usize;
+        for s in 0..a.num_states() as u32 {
+            let (mut cols, mut tos) = (Vec::new(), Vec::new());
+            for (k, &(_, id)) in sup.local_events.iter().enumerate() {
+                if let Some(t) = a.successor(StateId(s), id) {
+                    cols.push(k.to_string());
+                    tos.push(t.0.to_string());
+                }
+            }
+            count += cols.len();
+            starts.push(count.to_string());
+            if !cols.is_empty() {
+                // The state's name once, on its targets.
+                columns.push((s.to_string(), cols));
+                targets.push((state_label(a, s), tos));
+            }
+        }
+        columns.push(("end".into(), vec!["-1".into()]));
+        targets.push(("end".into(), vec!["-1".into()]));
+        // Row starts sixteen to a line, labelled with their first state.
+        let starts: Vec<(String, Vec<String>)> = starts
+            .chunks(16)
+            .enumerate()
+            .map(|(k, chunk)| (format!("{}..", 16 * k), chunk.to_vec()))
+            .collect();
+        let n = a.num_states();
+        let event_list: Vec<String> = sup
+            .local_events
+            .iter()
+            .map(|&(g, _)| comment_text(&self.project.events[g].name))
+            .collect();
+        let who = comment_text(&sup.name);
+        [
+            Var::new(
+                &names.rows,
+                Type::array(n + 1, self.position.clone()),
+                format!(
+                    "supervisor '{who}': the transitions of state s are entries {r}[s] to {r}[s + 1] - 1 of {} and {}",
+                    names.columns,
+                    names.targets,
+                    r = names.rows
+                ),
+            )
+            .init(Init::Rows(starts)),
+            Var::new(
+                &names.columns,
+                Type::array(count + 1, Type::signed_for(-1, sup.local_events.len() as i64)),
+                format!(
+                    "supervisor '{who}': local event of each transition, then -1; events {}",
+                    event_list.join(", ")
+                ),
+            )
+            .init(Init::Rows(columns)),
+            Var::new(
+                &names.targets,
+                Type::array(count + 1, state_type(n)),
+                format!("supervisor '{who}': target state of each transition, then -1"),
+            )
+            .init(Init::Rows(targets)),
+        ]
+    }
+
+    /// Whether the controllable phase needs the `CHOSEN` flag: some
+    /// command looks its target up in a sparse table, which takes
+    /// statements that an `ELSIF` chain has no room for.
+    fn chosen_flag(&self) -> bool {
+        self.commands()
+            .any(|(e, _)| self.columns(e).any(|(j, _)| self.names.sparse[j].is_some()))
+    }
+
+    /// The number of commands the controllable phase may execute per scan.
+    fn command_limit(&self) -> usize {
+        let commands = self.commands().count();
+        match self.project.max_commands_per_scan {
+            0 => commands,
+            n => usize::from(n).min(commands),
+        }
+    }
+
+    /// Statements finding event `e`'s target in every sparse table having
+    /// it, into its `NX_` variable (−1: none).
+    fn lookups(&self, b: &mut Body, e: usize) {
+        for (j, k) in self.columns(e) {
+            let Some(t) = &self.names.sparse[j] else {
+                continue;
+            };
+            let s = &self.names.states[j];
+            b.line(format!("J := {}[{s}];", t.rows));
+            b.open(format!(
+                "WHILE J < {}[{s} + 1] AND {}[J] <> {k} DO",
+                t.rows, t.columns
+            ));
+            b.line("J := J + 1;");
+            b.close("END_WHILE;");
+            b.open(format!("IF J < {}[{s} + 1] THEN", t.rows));
+            b.line(format!("{} := {}[J];", t.next, t.targets));
+            b.mid("ELSE");
+            b.line(format!("{} := -1;", t.next));
+            b.close("END_IF;");
+        }
     }
 
     fn debounced(&self) -> bool {
@@ -505,11 +781,12 @@ impl Builder<'_> {
     fn feasible(&self, e: usize) -> String {
         let mut terms: Vec<String> = self
             .columns(e)
-            .map(|(j, k)| {
-                format!(
+            .map(|(j, k)| match &self.names.sparse[j] {
+                Some(t) => format!("{} >= 0", t.next),
+                None => format!(
                     "{}[{}, {k}] >= 0",
                     self.names.tables[j], self.names.states[j]
-                )
+                ),
             })
             .collect();
         for (n, t) in self.transitions(e) {
@@ -530,11 +807,14 @@ impl Builder<'_> {
         let p = self.project;
         let n = self.names;
         for (j, k) in self.columns(e) {
-            body.line(format!(
-                "{s} := {d}[{s}, {k}];",
-                s = n.states[j],
-                d = n.tables[j]
-            ));
+            match &n.sparse[j] {
+                Some(t) => body.line(format!("{} := {};", n.states[j], t.next)),
+                None => body.line(format!(
+                    "{s} := {d}[{s}, {k}];",
+                    s = n.states[j],
+                    d = n.tables[j]
+                )),
+            }
         }
         for (k, t) in self.transitions(e) {
             let net = &p.nets[k].net;
@@ -585,9 +865,7 @@ impl Builder<'_> {
             }
         }
         if !p.timers.is_empty() {
-            body.open(format!("FOR I := 0 TO {} DO", p.timers.len() - 1));
-            body.line("T_RUN[I] := FALSE;");
-            body.close("END_FOR;");
+            for_each(body, p.timers.len(), |b| b.line("T_RUN[I] := FALSE;"));
         }
         for (o, output) in p.outputs.iter().enumerate() {
             if let Drive::Actions { initial } = output.drive {
@@ -609,23 +887,37 @@ impl Builder<'_> {
         b.blank();
         self.integrity(&mut b);
         b.blank();
-        b.line("(* 2. Fault mode: the scan ends here, on a reset with the initial state. *)");
-        b.open("IF FAULT THEN");
+        let mut scan = Body::nested(&b);
+        self.occurrences(&mut scan);
+        scan.blank();
+        self.uncontrollable(&mut scan);
+        scan.blank();
+        self.controllable(&mut scan);
         match self.project.reset {
             Some(r) => {
+                b.comment(
+                    "(* 2. Fault mode: the scan ends here, on a reset with the initial state. *)",
+                );
+                b.open("IF FAULT THEN");
                 b.open(format!("IF {} AND NOT {} THEN", self.filt(r), self.prev(r)));
                 self.initialise(&mut b);
                 b.close("END_IF;");
+                if scan.statements > 0 {
+                    b.mid("ELSE");
+                    b.append(scan);
+                }
+                b.close("END_IF;");
             }
-            None => b.line("; (* no reset input: fault mode until power-off *)"),
+            None => {
+                b.comment("(* 2. Fault mode: the scan ends here (no reset input: fault mode until");
+                b.comment("   power-off). *)");
+                if scan.statements > 0 {
+                    b.open("IF NOT FAULT THEN");
+                    b.append(scan);
+                    b.close("END_IF;");
+                }
+            }
         }
-        b.mid("ELSE");
-        self.occurrences(&mut b);
-        b.blank();
-        self.uncontrollable(&mut b);
-        b.blank();
-        self.controllable(&mut b);
-        b.close("END_IF;");
         b.blank();
         self.outputs(&mut b);
         b.lines
@@ -636,7 +928,7 @@ impl Builder<'_> {
         b.line("N_EVENTS := 0;");
         b.line("N_UNEXPECTED := 0;");
         b.blank();
-        b.line("(* 1. Sample: raw image, debounce, the last scan's filtered image. *)");
+        b.comment("(* 1. Sample: raw image, debounce, the last scan's filtered image. *)");
         for i in 0..p.inputs.len() {
             b.line(format!(
                 "RAW[{}] := {};",
@@ -647,32 +939,33 @@ impl Builder<'_> {
             b.line("FIRST := FALSE;");
             return;
         }
-        let last = p.inputs.len() - 1;
+        let inputs = p.inputs.len();
         b.open("IF FIRST THEN");
         b.line("FIRST := FALSE;");
-        b.open(format!("FOR I := 0 TO {last} DO"));
-        b.line("FILT[I] := RAW[I];");
-        b.line("PREV[I] := RAW[I];");
-        b.close("END_FOR;");
+        for_each(b, inputs, |b| {
+            b.line("FILT[I] := RAW[I];");
+            b.line("PREV[I] := RAW[I];");
+        });
         b.mid("ELSE");
-        b.open(format!("FOR I := 0 TO {last} DO"));
-        b.line("PREV[I] := FILT[I];");
-        if self.debounced() {
-            b.open("IF DEBOUNCE[I] < 2 THEN");
-            b.line("FILT[I] := RAW[I];");
-            b.mid("ELSIF RAW[I] <> FILT[I] THEN");
-            b.line("DEB[I] := DEB[I] + 1;");
-            b.open("IF DEB[I] >= DEBOUNCE[I] THEN");
-            b.line("FILT[I] := RAW[I];");
-            b.line("DEB[I] := 0;");
-            b.close("END_IF;");
-            b.mid("ELSE");
-            b.line("DEB[I] := 0;");
-            b.close("END_IF;");
-        } else {
-            b.line("FILT[I] := RAW[I];");
-        }
-        b.close("END_FOR;");
+        let debounced = self.debounced();
+        for_each(b, inputs, |b| {
+            b.line("PREV[I] := FILT[I];");
+            if debounced {
+                b.open("IF DEBOUNCE[I] < 2 THEN");
+                b.line("FILT[I] := RAW[I];");
+                b.mid("ELSIF RAW[I] <> FILT[I] THEN");
+                b.line("DEB[I] := DEB[I] + 1;");
+                b.open("IF DEB[I] >= DEBOUNCE[I] THEN");
+                b.line("FILT[I] := RAW[I];");
+                b.line("DEB[I] := 0;");
+                b.close("END_IF;");
+                b.mid("ELSE");
+                b.line("DEB[I] := 0;");
+                b.close("END_IF;");
+            } else {
+                b.line("FILT[I] := RAW[I];");
+            }
+        });
         b.close("END_IF;");
     }
 
@@ -681,7 +974,7 @@ impl Builder<'_> {
         if p.supervisors.is_empty() {
             return;
         }
-        b.line("(* 2. Integrity: a state out of range can only be corrupt memory. *)");
+        b.comment("(* 2. Integrity: a state out of range can only be corrupt memory. *)");
         let terms: Vec<String> = p
             .supervisors
             .iter()
@@ -703,8 +996,8 @@ impl Builder<'_> {
 
     fn occurrences(&self, b: &mut Body) {
         let p = self.project;
-        b.line("(* 3. Occurrences: edges of the filtered image, timers run out; then every");
-        b.line("   timer run out stops. *)");
+        b.comment("(* 3. Occurrences: edges of the filtered image, timers run out; then every");
+        b.comment("   timer run out stops. *)");
         for (e, event) in p.events.iter().enumerate() {
             let source = match &event.trigger {
                 Trigger::Command => continue,
@@ -727,19 +1020,20 @@ impl Builder<'_> {
             b.line(format!("OCC[{}] := {source}{cond};", self.names.events[e]));
         }
         if !p.timers.is_empty() {
-            b.open(format!("FOR I := 0 TO {} DO", p.timers.len() - 1));
-            b.open(format!("IF {} THEN", self.due("I")));
-            b.line("T_RUN[I] := FALSE;");
-            b.close("END_IF;");
-            b.close("END_FOR;");
+            let due = self.due("I");
+            for_each(b, p.timers.len(), |b| {
+                b.open(format!("IF {due} THEN"));
+                b.line("T_RUN[I] := FALSE;");
+                b.close("END_IF;");
+            });
         }
     }
 
     fn uncontrollable(&self, b: &mut Body) {
         let p = self.project;
         let fault = p.unexpected == Unexpected::Fault;
-        b.line("(* 4. Uncontrollable phase, in declaration order: execute an event every");
-        b.line(if fault {
+        b.comment("(* 4. Uncontrollable phase, in declaration order: execute an event every");
+        b.comment(if fault {
             "   supervisor having it allows, else fault mode. *)"
         } else {
             "   supervisor having it allows, else ignore and count it. *)"
@@ -754,6 +1048,7 @@ impl Builder<'_> {
             } else {
                 format!("IF OCC[{ev}] THEN")
             });
+            self.lookups(b, e);
             b.open(format!("IF {} THEN", self.feasible(e)));
             self.execute(b, e);
             b.mid("ELSE");
@@ -775,13 +1070,10 @@ impl Builder<'_> {
     fn controllable(&self, b: &mut Body) {
         let p = self.project;
         let commands: Vec<(usize, &Event)> = self.commands().collect();
-        b.line("(* 5. Controllable phase: the first command in declaration order that every");
-        b.line("   supervisor having it allows and, if it has a request input, is requested;");
-        let limit = match p.max_commands_per_scan {
-            0 => commands.len(),
-            n => usize::from(n).min(commands.len()),
-        };
-        b.line(format!(
+        b.comment("(* 5. Controllable phase: the first command in declaration order that every");
+        b.comment("   supervisor having it allows and, if it has a request input, is requested;");
+        let limit = self.command_limit();
+        b.comment(format!(
             "   at most {} per scan{}. *)",
             limit,
             if self.uses_done() { ", each once" } else { "" }
@@ -800,16 +1092,50 @@ impl Builder<'_> {
                 b.line(format!("DONE[{}] := FALSE;", self.names.events[e]));
             }
         }
-        b.open(format!("FOR CMD := 1 TO {limit} DO"));
+        // One command needs no loop (and a one-trip loop is what some
+        // compilers get wrong).
+        let looped = limit > 1;
+        if looped {
+            b.open(format!("FOR CMD := 1 TO {limit} DO"));
+        }
+        if self.chosen_flag() {
+            self.first_command_by_flag(b, &commands, looped);
+        } else {
+            self.first_command_by_chain(b, &commands, looped);
+        }
+        if looped {
+            b.close("END_FOR;");
+        }
+        if guarded {
+            b.close("END_IF;");
+        }
+    }
+
+    /// What must hold, besides feasibility, for command `e` to be
+    /// chosen: not done yet in this scan, requested.
+    fn wanted(&self, e: usize, event: &Event) -> Vec<String> {
+        let mut terms = Vec::new();
+        if self.uses_done() {
+            terms.push(format!("NOT DONE[{}]", self.names.events[e]));
+        }
+        if let Some(r) = event.request {
+            terms.push(self.filt(r));
+        }
+        terms
+    }
+
+    fn executed(&self, b: &mut Body, e: usize) {
+        self.execute(b, e);
+        if self.uses_done() {
+            b.line(format!("DONE[{}] := TRUE;", self.names.events[e]));
+        }
+    }
+
+    /// The first feasible command as one `IF … ELSIF …` chain (every
+    /// supervisor a dense array, so feasibility is an expression).
+    fn first_command_by_chain(&self, b: &mut Body, commands: &[(usize, &Event)], looped: bool) {
         for (k, &(e, event)) in commands.iter().enumerate() {
-            let ev = &self.names.events[e];
-            let mut terms = Vec::new();
-            if self.uses_done() {
-                terms.push(format!("NOT DONE[{ev}]"));
-            }
-            if let Some(r) = event.request {
-                terms.push(self.filt(r));
-            }
+            let mut terms = self.wanted(e, event);
             let feasible = self.feasible(e);
             if feasible != "TRUE" || terms.is_empty() {
                 terms.push(feasible);
@@ -825,16 +1151,38 @@ impl Builder<'_> {
             } else {
                 b.mid(head);
             }
-            self.execute(b, e);
-            if self.uses_done() {
-                b.line(format!("DONE[{ev}] := TRUE;"));
-            }
+            self.executed(b, e);
         }
-        b.mid("ELSE");
-        b.line("EXIT;");
+        if looped {
+            b.mid("ELSE");
+            b.line("EXIT;");
+        }
         b.close("END_IF;");
-        b.close("END_FOR;");
-        if guarded {
+    }
+
+    /// The first feasible command, each tried in turn while `CHOSEN` is
+    /// false: a command whose supervisors include a sparse table looks
+    /// its targets up first.
+    fn first_command_by_flag(&self, b: &mut Body, commands: &[(usize, &Event)], looped: bool) {
+        b.line("CHOSEN := FALSE;");
+        for &(e, event) in commands {
+            let mut terms = vec!["NOT CHOSEN".to_owned()];
+            terms.extend(self.wanted(e, event));
+            b.open(format!(
+                "IF {} THEN (* {} *)",
+                terms.join(" AND "),
+                comment_text(&event.name)
+            ));
+            self.lookups(b, e);
+            b.open(format!("IF {} THEN", self.feasible(e)));
+            self.executed(b, e);
+            b.line("CHOSEN := TRUE;");
+            b.close("END_IF;");
+            b.close("END_IF;");
+        }
+        if looped {
+            b.open("IF NOT CHOSEN THEN");
+            b.line("EXIT;");
             b.close("END_IF;");
         }
     }
@@ -842,7 +1190,9 @@ impl Builder<'_> {
     fn outputs(&self, b: &mut Body) {
         let p = self.project;
         let n = self.names;
-        b.line("(* 6. Outputs: safe levels in fault mode, else latched levels and state maps. *)");
+        b.comment(
+            "(* 6. Outputs: safe levels in fault mode, else latched levels and state maps. *)",
+        );
         if p.outputs.is_empty() {
             return;
         }
@@ -883,6 +1233,37 @@ impl Builder<'_> {
     }
 }
 
+/// The longest state name a table row is labelled with: longer ones are
+/// composite states of large products (850 characters a state in the
+/// monolithic boiler), which would make up most of the file; their rows
+/// carry the state number, the state's position in the supervisor.
+const MAX_LABEL: usize = 80;
+
+/// The comment labelling state `s`'s row: its number, and its name
+/// when that differs and is at most [`MAX_LABEL`] characters.
+fn state_label(a: &crate::automaton::Automaton, s: u32) -> String {
+    let name = a.state_name(StateId(s));
+    if name == s.to_string() || name.chars().count() > MAX_LABEL {
+        s.to_string()
+    } else {
+        format!("{s}: {}", comment_text(&name))
+    }
+}
+
+/// `body` for `I` from 0 to `count - 1`: a `FOR` loop, or for one
+/// element `I := 0;` and the body (a one-trip loop is what matiec of
+/// October 2024 runs zero times).
+fn for_each(b: &mut Body, count: usize, body: impl FnOnce(&mut Body)) {
+    if count == 1 {
+        b.line("I := 0;");
+        body(b);
+    } else {
+        b.open(format!("FOR I := 0 TO {} DO", count - 1));
+        body(b);
+        b.close("END_FOR;");
+    }
+}
+
 fn or_terms(terms: Vec<String>) -> String {
     if terms.is_empty() {
         "FALSE".into()
@@ -918,6 +1299,8 @@ pub fn names(project: &Project, namer: &mut Namer, program_ids: &[&str]) -> Name
         "DONE",
         "I",
         "CMD",
+        "J",
+        "CHOSEN",
     ]
     .iter()
     .chain(program_ids)
@@ -964,6 +1347,19 @@ pub fn names(project: &Project, namer: &mut Namer, program_ids: &[&str]) -> Name
         .iter()
         .map(|s| namer.name("D_", &s.name))
         .collect();
+    let sparse = project
+        .supervisors
+        .iter()
+        .enumerate()
+        .map(|(j, s)| {
+            is_sparse(project, j).then(|| SparseNames {
+                rows: namer.name("DR_", &s.name),
+                columns: namer.name("DE_", &s.name),
+                targets: namer.name("DT_", &s.name),
+                next: namer.name("NX_", &s.name),
+            })
+        })
+        .collect();
     let nets = project
         .nets
         .iter()
@@ -981,6 +1377,7 @@ pub fn names(project: &Project, namer: &mut Namer, program_ids: &[&str]) -> Name
         events,
         states,
         tables,
+        sparse,
         nets,
     }
 }
