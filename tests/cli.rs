@@ -352,6 +352,59 @@ fn malformed_input_is_reported_with_file_and_line_and_exit_2() {
     );
 }
 
+/// Every file `codegen` reads from a path it is given is refused when it
+/// is no regular file, naming the path and the kind of file, instead of
+/// being read until memory runs out (`/dev/zero`) or blocking (a FIFO).
+#[cfg(unix)]
+#[test]
+fn every_file_argument_must_be_a_regular_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let press = model("models/press.plc.toml").display().to_string();
+    let mixers = model("models/petri/mixers.toml").display().to_string();
+    let out = dir.path().join("out").display().to_string();
+    // (file name, kind in the message, arguments around the path)
+    type Case = (&'static str, &'static str, Vec<String>, Vec<String>);
+    let s = |v: &[&str]| v.iter().map(|a| a.to_string()).collect::<Vec<_>>();
+    let cases: Vec<Case> = vec![
+        (
+            "map.io.toml",
+            "I/O map",
+            s(&["st", &press, "--io"]),
+            s(&["-o", &out]),
+        ),
+        (
+            "map.io.toml",
+            "I/O map",
+            s(&["plcopen", &press, "--io"]),
+            s(&["-o", &out]),
+        ),
+        ("p.plc.toml", "project file", s(&["gen"]), vec![]),
+        ("p.plc.toml", "project file", s(&["st"]), vec![]),
+        ("p.plc.toml", "project file", s(&["wiring"]), vec![]),
+        ("m.gen", "model file", s(&["info"]), vec![]),
+        ("n.pnml", "model file", s(&["petri", "info"]), vec![]),
+        (
+            "c.toml",
+            "model file",
+            s(&["petri", "synth", &mixers, "--constraints"]),
+            s(&["-o", &out]),
+        ),
+    ];
+    for (k, (name, kind, before, after)) in cases.into_iter().enumerate() {
+        for path in e2e::not_regular_files(&dir.path().join(k.to_string()), name) {
+            let path = path.display().to_string();
+            let run = run_codegen(before.iter().chain([&path]).chain(&after));
+            assert_eq!(run.code, 2, "{before:?} {path}: {}", run.stderr);
+            let expected = format!("{path}: not a regular file (the {kind} must be a file");
+            assert!(
+                run.stderr.contains(&expected),
+                "{before:?}: expected {expected}\ngot {}",
+                run.stderr
+            );
+        }
+    }
+}
+
 #[test]
 fn nothing_but_results_reaches_a_pipe() {
     // The progress spinner stays off when stderr is not a terminal.
