@@ -352,6 +352,59 @@ fn malformed_input_is_reported_with_file_and_line_and_exit_2() {
     );
 }
 
+/// Every file `codegen` reads from a path it is given is refused when it
+/// is no regular file, naming the path and the kind of file, instead of
+/// being read until memory runs out (`/dev/zero`) or blocking (a FIFO).
+#[cfg(unix)]
+#[test]
+fn every_file_argument_must_be_a_regular_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let press = model("models/press.plc.toml").display().to_string();
+    let mixers = model("models/petri/mixers.toml").display().to_string();
+    let out = dir.path().join("out").display().to_string();
+    // (file name, kind in the message, arguments around the path)
+    type Case = (&'static str, &'static str, Vec<String>, Vec<String>);
+    let s = |v: &[&str]| v.iter().map(|a| a.to_string()).collect::<Vec<_>>();
+    let cases: Vec<Case> = vec![
+        (
+            "map.io.toml",
+            "I/O map",
+            s(&["st", &press, "--io"]),
+            s(&["-o", &out]),
+        ),
+        (
+            "map.io.toml",
+            "I/O map",
+            s(&["plcopen", &press, "--io"]),
+            s(&["-o", &out]),
+        ),
+        ("p.plc.toml", "project file", s(&["gen"]), vec![]),
+        ("p.plc.toml", "project file", s(&["st"]), vec![]),
+        ("p.plc.toml", "project file", s(&["wiring"]), vec![]),
+        ("m.gen", "model file", s(&["info"]), vec![]),
+        ("n.pnml", "model file", s(&["petri", "info"]), vec![]),
+        (
+            "c.toml",
+            "model file",
+            s(&["petri", "synth", &mixers, "--constraints"]),
+            s(&["-o", &out]),
+        ),
+    ];
+    for (k, (name, kind, before, after)) in cases.into_iter().enumerate() {
+        for path in e2e::not_regular_files(&dir.path().join(k.to_string()), name) {
+            let path = path.display().to_string();
+            let run = run_codegen(before.iter().chain([&path]).chain(&after));
+            assert_eq!(run.code, 2, "{before:?} {path}: {}", run.stderr);
+            let expected = format!("{path}: not a regular file (the {kind} must be a file");
+            assert!(
+                run.stderr.contains(&expected),
+                "{before:?}: expected {expected}\ngot {}",
+                run.stderr
+            );
+        }
+    }
+}
+
 #[test]
 fn nothing_but_results_reaches_a_pipe() {
     // The progress spinner stays off when stderr is not a terminal.
@@ -1018,7 +1071,7 @@ fn petri_reach_writes_the_graph_and_convert_keeps_the_net() {
     assert_eq!(run.code, 2);
     assert!(
         run.stderr
-            .contains("bad.toml:2:16: missing field `controllable`"),
+            .contains("bad.toml:2:16: transition `t` does not say whether it is controllable"),
         "{}",
         run.stderr
     );
@@ -1209,4 +1262,151 @@ fn gen_stats_show_a_net_group_with_its_markings_and_no_naive_table() {
         "-".to_owned(),
     ];
     assert_eq!(columns[1..], expected, "{row}");
+}
+
+/// The mixers' PNML as another editor writes it: no tool-specific
+/// elements of ours, so no word on controllability.
+fn foreign_mixers(dir: &Path) -> String {
+    let pnml = std::fs::read_to_string(model("models/petri/mixers.pnml")).unwrap();
+    let foreign: String = pnml
+        .lines()
+        .filter(|l| !l.contains("<toolspecific tool=\"codegen\""))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    write(dir, "foreign.pnml", &foreign)
+}
+
+#[test]
+fn petri_verbs_take_the_controllability_a_foreign_net_does_not_state() {
+    let dir = tempfile::tempdir().unwrap();
+    let net = foreign_mixers(dir.path());
+    let out = dir.path().join("out.pnml").display().to_string();
+    let reach = dir.path().join("r.toml").display().to_string();
+    let constraints = model("models/petri/mixers.constraints.toml")
+        .display()
+        .to_string();
+    // Without a statement every verb refuses, saying how to give one.
+    for args in [
+        vec!["petri", "info", &net],
+        vec!["petri", "reach", &net, "-o", &reach],
+        vec![
+            "petri",
+            "synth",
+            &net,
+            "--constraints",
+            &constraints,
+            "-o",
+            &out,
+        ],
+        vec!["petri", "convert", &net, &out],
+    ] {
+        let run = run_codegen(&args);
+        assert_eq!(run.code, 2, "{args:?}");
+        assert!(
+            run.stderr.contains(
+                "foreign.pnml:3:3: none of the net's 8 transitions says whether it is controllable"
+            ) && run.stderr.contains("give --uncontrollable T1,T2,"),
+            "{args:?}: {}",
+            run.stderr
+        );
+    }
+    // Stated on the command line.
+    let (code, info) = run_json([
+        "petri",
+        "info",
+        &net,
+        "--uncontrollable",
+        "t2, t6",
+        "--unobservable",
+        "t4",
+    ]);
+    // Exit 1: the plant alone is not safe (both mixers on the supply).
+    assert_eq!(code, 1, "{info}");
+    let flags: Vec<(String, bool, bool)> = info["transitions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| {
+            (
+                t["id"].as_str().unwrap().to_owned(),
+                t["controllable"].as_bool().unwrap(),
+                t["observable"].as_bool().unwrap(),
+            )
+        })
+        .collect();
+    for (id, controllable, observable) in &flags {
+        assert_eq!(*controllable, id != "t2" && id != "t6", "{id}");
+        assert_eq!(*observable, id != "t4", "{id}");
+    }
+    // An id that is no transition is named.
+    let run = run_codegen(["petri", "info", &net, "--uncontrollable", "t2,ma1"]);
+    assert_eq!(run.code, 2);
+    assert!(
+        run.stderr
+            .contains("--uncontrollable names `ma1`, which is a place, not a transition, of"),
+        "{}",
+        run.stderr
+    );
+    // A control file, located.
+    let control = write(
+        dir.path(),
+        "c.toml",
+        "uncontrollable = []\nunobservable = [\"t99\"]\n",
+    );
+    let run = run_codegen(["petri", "info", &net, "--control", &control]);
+    assert_eq!(run.code, 2);
+    assert!(
+        run.stderr.contains("c.toml:2:17: `unobservable` in"),
+        "{}",
+        run.stderr
+    );
+    assert!(
+        run.stderr.contains("names `t99`, which is no transition"),
+        "{}",
+        run.stderr
+    );
+    // Converted, the net carries the statement; a later one must agree.
+    let run = run_codegen(["petri", "convert", &net, &out, "--uncontrollable", ""]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let (code, info) = run_json(["petri", "info", &out]);
+    assert_eq!(code, 1, "{info}");
+    assert!(info["transitions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|t| t["controllable"] == true));
+    let run = run_codegen(["petri", "info", &out, "--uncontrollable", "t3"]);
+    assert_eq!(run.code, 2);
+    assert!(
+        run.stderr.contains(
+            "transition `t3` is controllable in this file, but --uncontrollable lists it"
+        ),
+        "{}",
+        run.stderr
+    );
+    // Synthesis with the statement.
+    let run = run_codegen([
+        "petri",
+        "synth",
+        &net,
+        "--constraints",
+        &constraints,
+        "-o",
+        &out,
+        "--uncontrollable",
+        "",
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    // Not both ways.
+    let run = run_codegen([
+        "petri",
+        "info",
+        &net,
+        "--control",
+        &control,
+        "--uncontrollable",
+        "",
+    ]);
+    assert_eq!(run.code, 2);
+    assert!(run.stderr.contains("cannot be used with"), "{}", run.stderr);
 }

@@ -961,3 +961,98 @@ proptest! {
         let _ = project::from_str(&text, &fixture(name));
     }
 }
+
+/// The mixers' project with its net as another editor writes it: the same
+/// PNML without our tool-specific elements, and `entry` added to the
+/// `[[net]]` entry; the directory, the project's path and its text.
+fn foreign_mixers(entry: &str) -> (tempfile::TempDir, std::path::PathBuf, String) {
+    let models = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../models/petri");
+    let dir = tempfile::tempdir().unwrap();
+    let pnml = std::fs::read_to_string(models.join("mixers.pnml")).unwrap();
+    let mut foreign = String::new();
+    for line in pnml.lines() {
+        if !line.contains("<toolspecific tool=\"codegen\"") {
+            foreign.push_str(line);
+            foreign.push('\n');
+        }
+    }
+    assert!(!foreign.contains("controllable"));
+    std::fs::write(dir.path().join("foreign.pnml"), foreign).unwrap();
+    std::fs::copy(
+        models.join("mixers.constraints.toml"),
+        dir.path().join("mixers.constraints.toml"),
+    )
+    .unwrap();
+    let text = std::fs::read_to_string(models.join("mixers.plc.toml"))
+        .unwrap()
+        .replace(
+            "file = \"mixers.toml\"\n",
+            &format!("file = \"foreign.pnml\"\n{entry}"),
+        );
+    let path = dir.path().join("mixers.plc.toml");
+    std::fs::write(&path, &text).unwrap();
+    (dir, path, text)
+}
+
+#[test]
+fn a_net_from_another_editor_needs_its_controllability_in_the_net_entry() {
+    let line =
+        |text: &str, needle: &str| text.lines().position(|l| l.contains(needle)).unwrap() + 1;
+    let (_dir, path, text) = foreign_mixers("");
+    let err = project::load(&path).unwrap_err().to_string();
+    let net_line = line(&text, "[[net]]");
+    assert!(
+        err.contains("none of the net's 8 transitions says whether it is controllable")
+            && err.ends_with(&format!(
+                "add `uncontrollable = [\"T1\", …]` (the others are controllable; [] for none) or `control = \"FILE\"` to the [[net]] at {}:{net_line}:1",
+                path.display()
+            )),
+        "{err}"
+    );
+
+    // Every transition controllable, as the project's events say.
+    let (_dir, path, _) = foreign_mixers("uncontrollable = []\n");
+    let p = project::load(&path).unwrap();
+    assert_eq!(p.nets.len(), 1);
+
+    // A name that is no transition, at its line.
+    let (_dir, path, text) = foreign_mixers("uncontrollable = [\n  \"t9\",\n]\n");
+    let err = project::load(&path).unwrap_err().to_string();
+    assert!(
+        err.starts_with(&format!(
+            "{}:{}:3: `uncontrollable` in",
+            path.display(),
+            line(&text, "\"t9\"")
+        )) && err.contains("names `t9`, which is no transition of"),
+        "{err}"
+    );
+
+    // A transition stated uncontrollable meets the project's events,
+    // which say controllable: validation refuses it at the event.
+    let (_dir, path, text) = foreign_mixers("uncontrollable = \"t2\"\n");
+    let err = project::load(&path).unwrap_err().to_string();
+    assert!(
+        err.starts_with(&format!("{}:{}:", path.display(), line(&text, "t2 = {"))),
+        "{err}"
+    );
+
+    // A control file, and never both ways.
+    let (dir, path, _) = foreign_mixers("control = \"mixers.control.toml\"\n");
+    std::fs::write(
+        dir.path().join("mixers.control.toml"),
+        "uncontrollable = []\n",
+    )
+    .unwrap();
+    project::load(&path).unwrap();
+    let (dir, path, text) = foreign_mixers("control = \"c.toml\"\nunobservable = []\n");
+    std::fs::write(dir.path().join("c.toml"), "uncontrollable = []\n").unwrap();
+    let err = project::load(&path).unwrap_err().to_string();
+    assert!(
+        err.starts_with(&format!(
+            "{}:{}:",
+            path.display(),
+            line(&text, "unobservable = []")
+        )) && err.contains("not both ways"),
+        "{err}"
+    );
+}

@@ -11,6 +11,8 @@
 //!   incidence matrix and reachability graph as an automaton.
 //! - [`dot`]: Graphviz output.
 //! - [`error`]: errors located by file, line and column.
+//! - [`files`]: reading the files a user names: regular files only, each
+//!   kind within its size limit.
 //!
 //! The crate knows nothing of PLCs, code generation or the executor: the
 //! `codegen` crate builds on it.
@@ -39,6 +41,7 @@
 pub mod automaton;
 pub mod dot;
 pub mod error;
+pub mod files;
 pub mod formats;
 pub mod ops;
 pub mod petri;

@@ -1,10 +1,77 @@
 //! `inputs.csv` (docs/formats.md, "inputs.csv"): a header `scan,time_ms,<inputs…>`, then a
 //! row per scan with consecutive scan numbers, non-decreasing times and
 //! 0/1 input values.
+//!
+//! Files are read one record at a time ([`InputRows`]), so a replay runs in
+//! constant memory: a file is a regular file of at most [`INPUTS_FILE`]'s
+//! size ([`open`]), and a record (a line, or several when a quoted field
+//! holds line breaks) of at most [`MAX_RECORD_BYTES`], refused at its line
+//! beyond that rather than read until memory runs out.
 
+use codegen::des::files::{self, Bounded, FileKind};
 use codegen::project::Project;
-use std::io::{BufRead, BufReader, Read};
+use std::cell::Cell;
+use std::io::{self, BufRead, BufReader, Read};
 use std::path::Path;
+use std::rc::Rc;
+
+/// Inputs files as [`codegen::des::files`] reads them: a regular file of at
+/// most 64 GiB (about three billion scans of a project with eight inputs;
+/// it is streamed, so the limit bounds the time a run takes, not its
+/// memory).
+pub const INPUTS_FILE: FileKind = FileKind::new("inputs file", 64 << 30);
+
+/// The longest record of an inputs file: 16 MiB, room for a header naming
+/// 65,535 inputs (the executor's limit) of 200 bytes each.
+pub const MAX_RECORD_BYTES: u64 = 16 << 20;
+
+/// Opens the inputs file at `path` for [`InputRows`] ([`INPUTS_FILE`]'s
+/// rules: a regular file, not a device or FIFO, within the size limit).
+pub fn open(path: &Path) -> Result<Bounded<std::fs::File>, String> {
+    files::open(path, INPUTS_FILE).map_err(|e| e.to_string())
+}
+
+/// The reader under the CSV parser: it refuses to deliver more than
+/// `allowed` bytes in all, which [`InputRows`] moves forward after every
+/// record, so that one record (or field) longer than the limit is an error
+/// instead of a buffer that grows until memory runs out.
+struct RecordLimit<R> {
+    inner: R,
+    /// Bytes delivered so far.
+    delivered: u64,
+    /// Bytes that may be delivered in all, set from the parser's position.
+    allowed: Rc<Cell<u64>>,
+}
+
+impl<R: Read> Read for RecordLimit<R> {
+    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        let room = self.allowed.get().saturating_sub(self.delivered);
+        if room == 0 && !buf.is_empty() {
+            return Err(io::Error::new(io::ErrorKind::InvalidData, RecordTooLong));
+        }
+        let room = usize::try_from(room).unwrap_or(usize::MAX).min(buf.len());
+        let n = self.inner.read(&mut buf[..room])?;
+        self.delivered += n as u64;
+        Ok(n)
+    }
+}
+
+/// The error [`RecordLimit`] gives, to tell it from the file's own errors.
+#[derive(Debug)]
+struct RecordTooLong;
+
+impl std::fmt::Display for RecordTooLong {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "a record longer than {} MiB", MAX_RECORD_BYTES >> 20)
+    }
+}
+
+impl std::error::Error for RecordTooLong {}
+
+/// The parser reads ahead by at most its buffer (8 KiB): with this much
+/// room a record within the limit never makes [`RecordLimit`] refuse, and
+/// one beyond it is refused after its end by its length.
+const READ_AHEAD: u64 = 64 << 10;
 
 /// One scan of input.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -36,7 +103,11 @@ pub fn parse(text: &str, file: &Path, project: &Project) -> Result<Vec<InputRow>
 /// The rows of an inputs file read one at a time, so that a replay runs in
 /// constant memory however long the file ([`parse`] collects them).
 pub struct InputRows<R: Read> {
-    records: csv::StringRecordsIntoIter<BufReader<R>>,
+    reader: csv::Reader<RecordLimit<BufReader<R>>>,
+    /// What the reader may deliver, moved forward after each record.
+    allowed: Rc<Cell<u64>>,
+    /// The longest record allowed (a parameter for tests).
+    max_record: u64,
     file: String,
     /// For each column after `scan,time_ms`: its name and the input it feeds.
     columns: Vec<(String, usize)>,
@@ -50,6 +121,16 @@ impl<R: Read> InputRows<R> {
     /// Reads and checks the header of `reader` (the file `file`) against
     /// `project`'s inputs.
     pub fn new(reader: R, file: &Path, project: &Project) -> Result<Self, InputsError> {
+        Self::with_record_limit(reader, file, project, MAX_RECORD_BYTES)
+    }
+
+    /// [`InputRows::new`] with records of at most `max_record` bytes.
+    pub fn with_record_limit(
+        reader: R,
+        file: &Path,
+        project: &Project,
+        max_record: u64,
+    ) -> Result<Self, InputsError> {
         let file = file.display().to_string();
         let err = |line: usize, message: String| InputsError {
             file: file.clone(),
@@ -66,24 +147,35 @@ impl<R: Read> InputRows<R> {
         if bom {
             reader.consume(3);
         }
-        let mut records = csv::ReaderBuilder::new()
+        let allowed = Rc::new(Cell::new(max_record.saturating_add(READ_AHEAD)));
+        let reader = csv::ReaderBuilder::new()
             .has_headers(false)
             .flexible(true)
             .trim(csv::Trim::All)
-            .from_reader(reader)
-            .into_records();
-        let header = loop {
-            match records.next() {
-                None => {
-                    return Err(err(
-                        1,
-                        "empty file: expected the header `scan,time_ms,<inputs…>`".into(),
-                    ))
-                }
-                Some(Err(e)) => return Err(err(line_of_error(&e), format!("not CSV: {e}"))),
-                Some(Ok(r)) if is_blank(&r) => continue,
-                Some(Ok(r)) => break r,
+            .from_reader(RecordLimit {
+                inner: reader,
+                delivered: 0,
+                allowed: allowed.clone(),
+            });
+        let mut rows = InputRows {
+            reader,
+            allowed,
+            max_record,
+            file: file.clone(),
+            columns: Vec::new(),
+            inputs: project.inputs.len(),
+            scans: 0,
+            last_time: 0,
+            failed: false,
+        };
+        let header = match rows.record()? {
+            None => {
+                return Err(err(
+                    1,
+                    "empty file: expected the header `scan,time_ms,<inputs…>`".into(),
+                ))
             }
+            Some(r) => r,
         };
         let hline = line_of(&header);
         let names: Vec<&str> = header.iter().collect();
@@ -118,15 +210,57 @@ impl<R: Read> InputRows<R> {
                 format!("no column for input `{}`", missing.1.name),
             ));
         }
-        Ok(InputRows {
-            records,
-            file,
-            columns,
-            inputs: project.inputs.len(),
-            scans: 0,
-            last_time: 0,
-            failed: false,
-        })
+        rows.columns = columns;
+        Ok(rows)
+    }
+
+    /// The next record that is not blank, `None` at the end of the file;
+    /// a record longer than the limit is an error at its line.
+    fn record(&mut self) -> Result<Option<csv::StringRecord>, InputsError> {
+        let mut record = csv::StringRecord::new();
+        loop {
+            let start = self.reader.position().byte();
+            match self.reader.read_record(&mut record) {
+                Ok(false) => return Ok(None),
+                Ok(true) => {}
+                Err(e) => {
+                    // The line the parser had reached: within the record.
+                    let line = self.reader.position().line() as usize;
+                    return Err(match e.kind() {
+                        csv::ErrorKind::Io(io)
+                            if io
+                                .get_ref()
+                                .is_some_and(|inner| inner.is::<RecordTooLong>()) =>
+                        {
+                            self.too_long(line)
+                        }
+                        csv::ErrorKind::Io(io) => self.err(line, format!("cannot read: {io}")),
+                        _ => self.err(line_of_error(&e), format!("not CSV: {e}")),
+                    });
+                }
+            }
+            let end = self.reader.position().byte();
+            if end - start > self.max_record {
+                return Err(self.too_long(line_of(&record)));
+            }
+            self.allowed.set(
+                end.saturating_add(self.max_record)
+                    .saturating_add(READ_AHEAD),
+            );
+            if !is_blank(&record) {
+                return Ok(Some(record));
+            }
+        }
+    }
+
+    fn too_long(&self, line: usize) -> InputsError {
+        self.err(
+            line,
+            format!(
+                "a record longer than {}: an inputs file has one short line per scan",
+                FileKind::new("", self.max_record).limit()
+            ),
+        )
     }
 
     fn err(&self, line: usize, message: String) -> InputsError {
@@ -199,12 +333,10 @@ impl<R: Read> Iterator for InputRows<R> {
         if self.failed {
             return None;
         }
-        let result = loop {
-            match self.records.next()? {
-                Err(e) => break Err(self.err(line_of_error(&e), format!("not CSV: {e}"))),
-                Ok(r) if is_blank(&r) => continue,
-                Ok(r) => break self.row(&r),
-            }
+        let result = match self.record() {
+            Ok(None) => return None,
+            Ok(Some(r)) => self.row(&r),
+            Err(e) => Err(e),
         };
         self.failed = result.is_err();
         Some(result)
@@ -252,4 +384,64 @@ pub fn to_csv(project: &Project, rows: &[InputRow]) -> String {
         out.push('\n');
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::PathBuf;
+
+    fn press() -> Project {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../models/press.plc.toml");
+        codegen::project::load(&path).unwrap()
+    }
+
+    const HEADER: &str = "scan,time_ms,auto_pb,stop_pb,reset_pb,part,top_ls,bottom_ls\n";
+
+    fn rows(text: &str, limit: u64) -> Result<Vec<InputRow>, InputsError> {
+        InputRows::with_record_limit(text.as_bytes(), Path::new("in.csv"), &press(), limit)?
+            .collect()
+    }
+
+    #[test]
+    fn an_endless_first_line_is_refused_at_line_1_without_reading_it_all() {
+        let project = press();
+        let err = InputRows::new(io::repeat(b'a'), Path::new("zero"), &project)
+            .err()
+            .unwrap();
+        assert_eq!(
+            err.to_string(),
+            "zero:1: a record longer than 16 MiB: an inputs file has one short line per scan"
+        );
+    }
+
+    #[test]
+    fn a_record_beyond_the_limit_is_refused_at_its_line_whatever_its_shape() {
+        let row = "0,0,0,0,0,0,1,0\n";
+        assert_eq!(rows(&format!("{HEADER}{row}"), 64).unwrap().len(), 1);
+        // One long field, far beyond the parser's read-ahead.
+        let long = format!("{HEADER}{row}1,10,{},0,0,0,1,0\n", "1".repeat(1 << 20));
+        let err = rows(&long, 64).unwrap_err().to_string();
+        assert_eq!(
+            err,
+            "in.csv:3: a record longer than 64 bytes: an inputs file has one short line per scan"
+        );
+        // Just beyond the limit, within the read-ahead: refused by length.
+        let spaces = format!("{HEADER}{row}1,10,{}0,0,0,0,1,0\n", " ".repeat(60));
+        assert!(rows(&spaces, 64)
+            .unwrap_err()
+            .to_string()
+            .starts_with("in.csv:3: a record longer than 64 bytes"));
+        // A quoted field of many short lines is one record.
+        let quoted = format!("{HEADER}\"{}\",0,0,0,0,0,1,0\n", "1\n".repeat(1000));
+        assert!(rows(&quoted, 64)
+            .unwrap_err()
+            .to_string()
+            .starts_with("in.csv:2: a record longer"));
+        // Records within the limit read however many there are.
+        let many: String = (0..2000)
+            .map(|k| format!("{k},{k},0,0,0,0,1,0\n"))
+            .collect();
+        assert_eq!(rows(&format!("{HEADER}{many}"), 64).unwrap().len(), 2000);
+    }
 }

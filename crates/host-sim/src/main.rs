@@ -211,8 +211,7 @@ fn run(cli: Cli) -> Result<(), String> {
             let totals = match &inputs_path {
                 Some(path) => {
                     let open = || {
-                        let file = std::fs::File::open(path)
-                            .map_err(|e| format!("{}: {e}", path.display()))?;
+                        let file = inputs::open(path)?;
                         inputs::InputRows::new(file, path, sim.project()).map_err(|e| e.to_string())
                     };
                     // A first pass counts (and checks) the rows: the

@@ -56,7 +56,7 @@ pub fn stream(
     out: &Path,
     vcd: Option<&Path>,
 ) -> Result<Totals, String> {
-    let file = std::fs::File::open(inputs).map_err(|e| format!("{}: {e}", inputs.display()))?;
+    let file = crate::inputs::open(inputs)?;
     let project = sim.project().clone();
     let rows = InputRows::new(file, inputs, &project).map_err(|e| e.to_string())?;
     let mut trace_file = Partial::create(out)?;

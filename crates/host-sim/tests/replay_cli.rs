@@ -173,3 +173,83 @@ fn boiler_main_job_prints_a_timeline_and_writes_waveforms() {
     assert_eq!(unknown.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&unknown.stderr).contains("unknown scenario `nope`"));
 }
+
+/// Paths in `dir` that are no regular files: `/dev/zero` (read, it never
+/// ends) and a FIFO when `mkfifo` is there (read, it blocks; a thread
+/// opens it for writing and closes it, so that a wrong read sees an empty
+/// file instead of hanging the test).
+#[cfg(unix)]
+fn not_regular_files(dir: &Path) -> Vec<PathBuf> {
+    let mut paths = vec![PathBuf::from("/dev/zero")];
+    let fifo = dir.join("fifo.csv");
+    if Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        let writer = fifo.clone();
+        std::thread::spawn(move || {
+            let _ = std::fs::OpenOptions::new().write(true).open(writer);
+        });
+        paths.push(fifo);
+    }
+    paths
+}
+
+#[cfg(unix)]
+#[test]
+fn inputs_and_projects_must_be_regular_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t.csv");
+    for path in not_regular_files(dir.path()) {
+        let shown = path.display().to_string();
+        let record = |project: &Path, inputs: &Path| {
+            Command::new(env!("CARGO_BIN_EXE_host-sim"))
+                .arg("record")
+                .arg(project)
+                .arg("--inputs")
+                .arg(inputs)
+                .arg("--out")
+                .arg(dir.path().join("s.bin"))
+                .output()
+                .unwrap()
+        };
+        let press = repo("models/press.plc.toml");
+        let cycle = repo("models/press/cycle.inputs.csv");
+        for (result, kind) in [
+            (replay(&path, &out, &[]), "inputs file"),
+            (record(&press, &path), "inputs file"),
+            (record(&path, &cycle), "project file"),
+        ] {
+            assert_eq!(result.status.code(), Some(2));
+            let stderr = String::from_utf8_lossy(&result.stderr);
+            let expected = format!("{shown}: not a regular file (the {kind} must be a file");
+            assert!(
+                stderr.contains(&expected),
+                "expected {expected}\ngot {stderr}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_field_beyond_the_record_limit_is_an_error_at_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let inputs = dir.path().join("long.csv");
+    let mut text = std::fs::read_to_string(repo("models/press/cycle.inputs.csv")).unwrap();
+    // 17 MiB of one field, one more than the limit allows.
+    text.push_str(&format!("999,999999,{}\n", "1".repeat(17 << 20)));
+    std::fs::write(&inputs, text).unwrap();
+    let result = replay(&inputs, &dir.path().join("t.csv"), &[]);
+    assert_eq!(result.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    let lines = std::fs::read_to_string(repo("models/press/cycle.inputs.csv"))
+        .unwrap()
+        .lines()
+        .count();
+    let expected = format!("long.csv:{}: a record longer than 16 MiB", lines + 1);
+    assert!(
+        stderr.contains(&expected),
+        "expected {expected}\ngot {stderr}"
+    );
+}

@@ -11,6 +11,7 @@ mod dot;
 mod gen;
 mod info;
 mod key;
+mod net_control;
 mod output;
 mod petri;
 mod plc;

@@ -10,7 +10,12 @@
 //!   synthesis, one control place per constraint, and the closed loop's
 //!   properties; exit 1 when the closed loop can deadlock.
 //! - `petri convert NET OUT`: between PNML and the native TOML.
+//!
+//! Every verb takes `--uncontrollable`, `--unobservable` or `--control`
+//! for a net whose file does not say which transitions a supervisor can
+//! prevent or see ([`super::net_control`]).
 
+use super::net_control::ControlArgs;
 use super::output::{outln, Out};
 use super::Outcome;
 use codegen::des::petri::compare::Comparison;
@@ -32,6 +37,8 @@ pub enum PetriCommand {
         /// Explore at most this many markings.
         #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES)]
         max_states: usize,
+        #[command(flatten)]
+        control: ControlArgs,
     },
     /// The reachability graph as an automaton (one event per transition,
     /// the initial marking marked).
@@ -44,6 +51,8 @@ pub enum PetriCommand {
         /// Explore at most this many markings.
         #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES)]
         max_states: usize,
+        #[command(flatten)]
+        control: ControlArgs,
     },
     /// Place-invariant synthesis: one control place per constraint
     /// `L·m ≤ b` (D_c = −L·D_p, m_c0 = b − L·m_p0), the controlled net
@@ -66,6 +75,8 @@ pub enum PetriCommand {
         /// uncontrollable transitions) instead of refusing it.
         #[arg(long)]
         transform: bool,
+        #[command(flatten)]
+        control: ControlArgs,
     },
     /// Convert a net between PNML and the native TOML (by extension).
     Convert {
@@ -73,6 +84,8 @@ pub enum PetriCommand {
         input: PathBuf,
         /// The file to write.
         output: PathBuf,
+        #[command(flatten)]
+        control: ControlArgs,
     },
 }
 
@@ -122,16 +135,21 @@ struct TransitionInfo {
 /// Runs a `petri` command.
 pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome, Error> {
     match command {
-        PetriCommand::Info { net, max_states } => {
-            let net = petri::read_file(net)?;
+        PetriCommand::Info {
+            net,
+            max_states,
+            control,
+        } => {
+            let net = control.read_net(net)?;
             info(&net, *max_states, json, out)
         }
         PetriCommand::Reach {
             net,
             output,
             max_states,
+            control,
         } => {
-            let net = petri::read_file(net)?;
+            let net = control.read_net(net)?;
             let r = reach::reachability(&net, *max_states)?;
             let component = formats::Component {
                 kind: formats::Kind::Plant,
@@ -164,8 +182,9 @@ pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome,
             output,
             max_states,
             transform,
+            control,
         } => {
-            let plant = petri::read_file(net)?;
+            let plant = control.read_net(net)?;
             let cs = petri::constraints::read_file(constraints, &plant)?;
             let enforced = petri::admissible::enforced(&plant, &cs, *transform)?;
             let s = petri::synth::synthesize(&plant, &enforced)?;
@@ -174,8 +193,12 @@ pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome,
             petri::write_file(output, &s.net)?;
             synth_report(&plant, &cs, &enforced, &s, &r, &cmp, output, json, out)
         }
-        PetriCommand::Convert { input, output } => {
-            let net = petri::read_file(input)?;
+        PetriCommand::Convert {
+            input,
+            output,
+            control,
+        } => {
+            let net = control.read_net(input)?;
             petri::write_file(output, &net)?;
             if json {
                 out.json(&serde_json::json!({ "output": output.display().to_string() }));

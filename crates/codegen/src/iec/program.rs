@@ -43,15 +43,20 @@ struct RawMap {
     outputs: BTreeMap<String, Spanned<String>>,
 }
 
+/// I/O map files as [`des::files`] reads them: a regular file of at most
+/// 4 MiB (an address for each of 65,535 inputs and outputs takes about
+/// 2 MiB).
+pub const IO_MAP_FILE: des::files::FileKind = des::files::FileKind::new("I/O map", 4 << 20);
+
 impl IoMap {
     /// The default addresses (no file).
     pub fn sequential() -> IoMap {
         IoMap::default()
     }
 
-    /// Reads an I/O map file.
+    /// Reads an I/O map file ([`IO_MAP_FILE`]).
     pub fn load(path: &Path) -> Result<IoMap> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let text = des::files::read_text(path, IO_MAP_FILE)?;
         IoMap::parse(&text, path)
     }
 

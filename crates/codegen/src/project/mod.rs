@@ -20,13 +20,18 @@ pub mod validate;
 
 pub use model::*;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use std::path::Path;
 
-/// Reads and validates the project file at `path`; model paths in it are
-/// relative to its directory.
+/// Project files as [`des::files`] reads them: a regular file of at most
+/// 16 MiB (the largest project the executor's 16-bit indices allow, 65,535
+/// events with their bindings, takes a few MiB).
+pub const PROJECT_FILE: des::files::FileKind = des::files::FileKind::new("project file", 16 << 20);
+
+/// Reads and validates the project file at `path` ([`PROJECT_FILE`]);
+/// model paths in it are relative to its directory.
 pub fn load(path: &Path) -> Result<Project> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let text = des::files::read_text(path, PROJECT_FILE)?;
     from_str(&text, path)
 }
 

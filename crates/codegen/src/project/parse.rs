@@ -240,6 +240,16 @@ pub(crate) struct RawNet {
     pub constraints: Option<Name>,
     #[serde(default)]
     pub transform: Option<Spanned<bool>>,
+    /// The uncontrollable transitions, for a net file that does not say
+    /// (every other transition is then controllable).
+    #[serde(default)]
+    pub uncontrollable: Option<Spanned<Names>>,
+    /// The unobservable transitions (every other one is then observable).
+    #[serde(default)]
+    pub unobservable: Option<Spanned<Names>>,
+    /// A control file stating both instead.
+    #[serde(default)]
+    pub control: Option<Name>,
     /// The most markings the reachability analysis may reach (default
     /// [`des::petri::reach::DEFAULT_MAX_STATES`]).
     #[serde(default)]

@@ -192,7 +192,8 @@ impl Loader<'_> {
         let r = raw.get_ref();
         let file = &r.file;
         let path = self.dir.join(file.get_ref());
-        let plant = self.read_net(&path, &file.span())?;
+        let control = self.net_control(raw)?;
+        let plant = self.read_net(&path, &file.span(), &control)?;
         let (net, source, control_places) = match &r.constraints {
             None => {
                 if let Some(t) = &r.transform {
@@ -250,11 +251,60 @@ impl Loader<'_> {
         })
     }
 
-    /// Reads a net file named at `span` (`.toml` or `.pnml`).
-    fn read_net(&mut self, file: &Path, span: &Range<usize>) -> Result<des::petri::PetriNet> {
+    /// Reads a net file named at `span` (`.toml` or `.pnml`), with what
+    /// its `[[net]]` entry states about its transitions.
+    fn read_net(
+        &mut self,
+        file: &Path,
+        span: &Range<usize>,
+        control: &des::petri::control::Control,
+    ) -> Result<des::petri::PetriNet> {
         self.check_printable(file, span, None)?;
         self.depend_on(file);
-        des::petri::read_file(file).map_err(|e| self.located_io(e, span, "net", ".toml or .pnml"))
+        des::petri::read_file_with(file, control)
+            .map_err(|e| self.located_io(e, span, "net", ".toml or .pnml"))
+    }
+
+    /// What a `[[net]]` entry states about its net's transitions:
+    /// `uncontrollable` and `unobservable` lists, or a `control` file.
+    fn net_control(&mut self, raw: &Spanned<RawNet>) -> Result<des::petri::control::Control> {
+        use des::petri::control::{self, Control, Listed};
+        let r = raw.get_ref();
+        let hint = format!(
+            "add `uncontrollable = [\"T1\", …]` (the others are controllable; [] for none) \
+             or `control = \"FILE\"` to the [[net]] at {}",
+            self.project.location(&raw.span())
+        );
+        if let Some(c) = &r.control {
+            if let Some(list) = r.uncontrollable.as_ref().or(r.unobservable.as_ref()) {
+                return Err(self.error(
+                    &list.span(),
+                    "`control` names a file that states this: give `uncontrollable` and `unobservable` there, not both ways",
+                ));
+            }
+            let path = self.dir.join(c.get_ref());
+            self.check_printable(&path, &c.span(), None)?;
+            self.depend_on(&path);
+            return control::read_file(&path, hint)
+                .map_err(|e| self.located_io(e, &c.span(), "control", ".toml"));
+        }
+        let list = |key: &str, field: &Option<Spanned<super::parse::Names>>| {
+            field.as_ref().map(|f| Listed {
+                source: format!("`{key}` in {}", self.project.path().display()),
+                ids: names(Some(f))
+                    .into_iter()
+                    .map(|n| {
+                        let at = self.project.location(&n.span());
+                        (n.into_inner(), Some(at))
+                    })
+                    .collect(),
+            })
+        };
+        Ok(Control {
+            uncontrollable: list("uncontrollable", &r.uncontrollable),
+            unobservable: list("unobservable", &r.unobservable),
+            hint,
+        })
     }
 
     /// An I/O or format error of a file named at `span`, located there;

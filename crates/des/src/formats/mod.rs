@@ -132,27 +132,11 @@ pub fn read_file(path: &Path) -> Result<Vec<Component>> {
     read_str(&text, format, path)
 }
 
-/// The text of the model file at `path`: a regular file of at most
-/// [`MAX_MODEL_BYTES`], UTF-8 or else read as ISO-8859-1.
+/// The text of the model file at `path` ([`MODEL_FILE`]'s rules: a
+/// regular file of at most [`MAX_MODEL_BYTES`]), UTF-8 or else read as
+/// ISO-8859-1. Nets and constraints files are read the same way.
 pub(crate) fn read_model_text(path: &Path) -> Result<String> {
-    // A device or a FIFO could be read forever; a file larger than any
-    // model is a mistake rather than a model.
-    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
-    if !meta.is_file() {
-        return Err(Error::Incompatible(format!(
-            "{}: not a regular file (a model must be a file, not a device, FIFO or directory)",
-            path.display()
-        )));
-    }
-    if meta.len() > MAX_MODEL_BYTES {
-        return Err(Error::Incompatible(format!(
-            "{}: {} bytes, more than the {} MiB a model file may have",
-            path.display(),
-            meta.len(),
-            MAX_MODEL_BYTES >> 20
-        )));
-    }
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let bytes = crate::files::read_bytes(path, MODEL_FILE)?;
     // libFAUDES writes ISO-8859-1; accept it by mapping bytes to chars
     // when the file is not UTF-8 (names stay intact for ASCII input).
     Ok(match String::from_utf8(bytes) {
@@ -164,6 +148,11 @@ pub(crate) fn read_model_text(path: &Path) -> Result<String> {
 /// The largest model file [`read_file`] reads (256 MiB: the largest
 /// benchmark results, phil10's 459,250 transitions, take 12 MiB as `.gen`).
 pub const MAX_MODEL_BYTES: u64 = 256 << 20;
+
+/// Model files (automata, nets, constraints) as [`crate::files`] reads
+/// them.
+pub const MODEL_FILE: crate::files::FileKind =
+    crate::files::FileKind::new("model file", MAX_MODEL_BYTES);
 
 /// Reads the file at `path`, which must hold exactly one automaton.
 pub fn read_automaton(path: &Path) -> Result<Automaton> {

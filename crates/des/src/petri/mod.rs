@@ -8,7 +8,10 @@
 //!   transitions, zero weights and repeated arcs, each at its location.
 //! - [`toml`]: the native form; [`pnml`]: PNML, the P/T-net type of
 //!   ISO/IEC 15909-2, as Petri-net editors write it. [`read_file`] and
-//!   [`write_file`] pick the format by extension (`.toml`, `.pnml`).
+//!   [`write_file`] pick the format by extension (`.toml`, `.pnml`);
+//!   [`control`]: which transitions are uncontrollable or unobservable,
+//!   stated beside the file for nets whose file does not say
+//!   ([`read_file_with`]).
 //! - [`invariants`]: minimal place and transition semiflows (Farkas).
 //! - [`constraints`] and [`synth`]: linear marking constraints `L·m ≤ b`
 //!   and place-invariant synthesis, one control place per constraint;
@@ -23,6 +26,7 @@
 pub mod admissible;
 pub mod compare;
 pub mod constraints;
+pub mod control;
 pub mod invariants;
 pub mod pnml;
 pub mod reach;
@@ -341,32 +345,56 @@ impl NetFormat {
 
 /// Reads the net in the file at `path` (format by extension; the same
 /// limits as model files: a regular file of at most
-/// [`crate::formats::MAX_MODEL_BYTES`]).
+/// [`crate::formats::MAX_MODEL_BYTES`]). Every transition must state its
+/// controllability in the file.
 pub fn read_file(path: &Path) -> Result<PetriNet> {
+    read_file_with(path, &control::Control::default())
+}
+
+/// Reads the net in the file at `path` as [`read_file`] does, with the
+/// controllability and observability of its transitions stated in
+/// `control` ([`control`]'s rules).
+pub fn read_file_with(path: &Path, control: &control::Control) -> Result<PetriNet> {
     let format = NetFormat::from_path(path)?;
     let text = crate::formats::read_model_text(path)?;
-    read_str(&text, format, path)
+    read_str_with(&text, format, path, control)
 }
 
 /// Parses `text` as a net in `format`; `origin` names the file in errors.
 pub fn read_str(text: &str, format: NetFormat, origin: &Path) -> Result<PetriNet> {
+    read_str_with(text, format, origin, &control::Control::default())
+}
+
+/// Parses `text` as a net in `format` with `control` ([`read_file_with`]).
+pub fn read_str_with(
+    text: &str,
+    format: NetFormat,
+    origin: &Path,
+    control: &control::Control,
+) -> Result<PetriNet> {
     match format {
-        NetFormat::Toml => toml::read(text, origin),
-        NetFormat::Pnml => pnml::read(text, origin),
+        NetFormat::Toml => toml::read_with(text, origin, control),
+        NetFormat::Pnml => pnml::read_with(text, origin, control),
     }
 }
 
-/// Renders `net` in `format`.
-pub fn write_string(format: NetFormat, net: &PetriNet) -> String {
+/// Renders `net` in `format`; PNML refuses names XML cannot carry
+/// ([`pnml::write`]).
+pub fn write_string(format: NetFormat, net: &PetriNet) -> Result<String> {
     match format {
-        NetFormat::Toml => toml::write(net),
+        NetFormat::Toml => Ok(toml::write(net)),
         NetFormat::Pnml => pnml::write(net),
     }
 }
 
 /// Writes `net` to `path` in the format its extension names.
 pub fn write_file(path: &Path, net: &PetriNet) -> Result<()> {
-    let text = write_string(NetFormat::from_path(path)?, net);
+    let text = write_string(NetFormat::from_path(path)?, net).map_err(|e| match e {
+        Error::Incompatible(message) => {
+            Error::Incompatible(format!("{}: {message}", path.display()))
+        }
+        e => e,
+    })?;
     std::fs::write(path, text).map_err(|e| Error::io(path, e))
 }
 

@@ -16,11 +16,13 @@
 //!
 //! `[[places]]` and `[[transitions]]` tables are the same thing spelled
 //! long. Places and transitions keep their file order (the order of
-//! markings and of the incidence matrix). `controllable` is required: a
-//! transition silently taken as controllable would let a supervisor count
-//! on disabling what it cannot. Unknown keys are errors; every error
+//! markings and of the incidence matrix). `controllable` is required (or
+//! stated beside the file, [`super::control`]): a transition silently
+//! taken as controllable would let a supervisor count on disabling what it
+//! cannot. Unknown keys are errors; every error
 //! carries the file, line and column of the offending entry.
 
+use super::control::{Control, Stated};
 use super::{NetBuilder, PetriNet};
 use crate::error::{Error, Location, Result};
 use crate::formats::toml::basic_string as quoted;
@@ -55,21 +57,25 @@ struct RawTransition {
     id: String,
     #[serde(default)]
     name: Option<String>,
-    controllable: bool,
-    #[serde(default = "yes")]
-    observable: bool,
+    #[serde(default)]
+    controllable: Option<bool>,
+    #[serde(default)]
+    observable: Option<bool>,
     #[serde(default)]
     input: Option<Spanned<toml::Table>>,
     #[serde(default)]
     output: Option<Spanned<toml::Table>>,
 }
 
-fn yes() -> bool {
-    true
-}
-
 /// Parses a native TOML net; `origin` names the file in errors.
 pub fn read(text: &str, origin: &Path) -> Result<PetriNet> {
+    read_with(text, origin, &Control::default())
+}
+
+/// Parses a native TOML net with the controllability and observability of
+/// transitions stated in `control` too ([`super::control`]: where both
+/// state it they must agree); `origin` names the file in errors.
+pub fn read_with(text: &str, origin: &Path, control: &Control) -> Result<PetriNet> {
     let at = |offset: usize| Location::at_offset(origin, text, offset);
     let file: File = crate::formats::toml::parse(text, origin)?;
     let mut b = NetBuilder::new(file.name.into_inner());
@@ -84,13 +90,13 @@ pub fn read(text: &str, origin: &Path) -> Result<PetriNet> {
     }
     for t in &file.transitions {
         let tr = t.get_ref();
-        b.add_transition(
-            &tr.id,
-            tr.name.clone(),
-            tr.controllable,
-            tr.observable,
-            at(t.span().start),
-        )?;
+        let here = at(t.span().start);
+        let stated = Stated {
+            controllable: tr.controllable,
+            observable: tr.observable,
+        };
+        let (controllable, observable) = control.resolve(&tr.id, stated, &here)?;
+        b.add_transition(&tr.id, tr.name.clone(), controllable, observable, here)?;
     }
     for t in &file.transitions {
         let tr = t.get_ref();
@@ -116,7 +122,9 @@ pub fn read(text: &str, origin: &Path) -> Result<PetriNet> {
             }
         }
     }
-    Ok(b.build())
+    let net = b.build();
+    control.check_names(&net, origin)?;
+    Ok(net)
 }
 
 /// Renders `net` in the native form (inline tables, one line per place
@@ -216,7 +224,7 @@ transitions = [
         let cases = [
             (
                 MIXERS.replace("controllable = false, ", ""),
-                "n.toml:9:3: missing field `controllable`",
+                "n.toml:9:3: transition `ta2` does not say whether it is controllable: state which transitions are uncontrollable beside the file",
             ),
             (
                 MIXERS.replace("output = { ma1 = 1 }", "output = { ma9 = 1 }"),
