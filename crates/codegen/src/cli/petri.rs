@@ -36,8 +36,9 @@ pub enum PetriCommand {
         /// The net (`.pnml` or `.toml`).
         net: PathBuf,
         /// Explore at most this many markings; also at most 64 token counts
-        /// (markings × places) and 64 firings per marking allowed, and 128
-        /// bytes of state names (floors: 2^22 counts and firings, 16 MiB).
+        /// (markings × places) and 64 firings per marking allowed, and 1024
+        /// bytes of written state names (floors: 2^22 counts and firings,
+        /// 16 MiB of names).
         #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES, value_parser = positive)]
         max_states: usize,
     },
@@ -50,8 +51,9 @@ pub enum PetriCommand {
         #[arg(short, long)]
         output: PathBuf,
         /// Explore at most this many markings; also at most 64 token counts
-        /// (markings × places) and 64 firings per marking allowed, and 128
-        /// bytes of state names (floors: 2^22 counts and firings, 16 MiB).
+        /// (markings × places) and 64 firings per marking allowed, and 1024
+        /// bytes of written state names (floors: 2^22 counts and firings,
+        /// 16 MiB of names).
         #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES, value_parser = positive)]
         max_states: usize,
     },

@@ -32,8 +32,9 @@
 //! markings; at most `max(n ×` [`CELLS_PER_STATE`]`, 2^22)` stored token
 //! counts (markings × places: the memory the markings take) and as many
 //! firings (the graph's transitions); and at most `max(n ×`
-//! [`NAME_BYTES_PER_STATE`]`, 2^24)` bytes of state names (what a written
-//! graph is made of). Each is checked before the marking, firing or name
+//! [`NAME_BYTES_PER_STATE`]`, 2^24)` bytes of state names as a written
+//! graph holds them (a file names a state once, and again for every
+//! firing into or out of it: the bulk of what is written). Each is checked before the marking, firing or name
 //! that would pass it is stored, and refused naming the limit.
 
 use super::constraints::Constraint;
@@ -52,9 +53,10 @@ pub const DEFAULT_MAX_STATES: usize = crate::ops::sync::DEFAULT_MAX_STATES;
 /// each (and at least 2^22).
 pub const CELLS_PER_STATE: usize = 64;
 
-/// Bytes of state names allowed per allowed marking (and at least 2^24
-/// in all).
-pub const NAME_BYTES_PER_STATE: usize = 128;
+/// Bytes of written state names allowed per allowed marking (and at
+/// least 2^24 in all): each name counted once for its state and once per
+/// firing into or out of it, as a written graph repeats it.
+pub const NAME_BYTES_PER_STATE: usize = 1024;
 
 /// What an exploration may hold.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -65,7 +67,8 @@ pub struct Limits {
     pub token_counts: usize,
     /// Firings (the graph's transitions).
     pub firings: usize,
-    /// Bytes of state names.
+    /// Bytes of state names as written: each name once for its state and
+    /// once per firing into or out of it.
     pub name_bytes: usize,
 }
 
@@ -383,15 +386,22 @@ pub fn explore(
         .map(|t| b.add_event(&t.id, t.controllable))
         .collect::<std::result::Result<_, _>>()
         .map_err(|e| Error::Incompatible(format!("net `{}`: {e}", net.name())))?;
+    // How often a written graph names each state: once, and once per
+    // firing into or out of it.
+    let mut mentions = vec![1usize; markings.len()];
+    for &(source, _, target) in &edges {
+        mentions[source] += 1;
+        mentions[target] += 1;
+    }
     let mut name_bytes = 0usize;
     let mut states = Vec::with_capacity(markings.len());
-    for m in &markings {
+    for (m, &times) in markings.iter().zip(&mentions) {
         let name = net.marking_name(m);
-        name_bytes = name_bytes.saturating_add(name.len());
+        name_bytes = name_bytes.saturating_add(name.len().saturating_mul(times));
         if name_bytes > limits.name_bytes {
             return limit(format!(
-                "the state names of the reachability graph of `{}` exceed {} bytes (the limit \
-                 with {max_states} states)",
+                "the state names of the reachability graph of `{}`, as written, exceed {} bytes \
+                 (the limit with {max_states} states)",
                 net.name(),
                 limits.name_bytes
             ));
@@ -805,16 +815,18 @@ transitions = [{ id = "move", controllable = true, input = { src = 1 }, output =
             run(limits(16 * 108, 63, 100_000)).unwrap_err(),
             "the reachability graph of `wide` has more than 63 firings (the limit with 100 states)"
         );
-        // The names: the fillers alone take 16 × 390 bytes.
+        // The names: the fillers alone take 390 bytes a name, and each
+        // name is written 9 times (its state, 4 firings out, 4 in).
         assert_eq!(
-            run(limits(16 * 108, 64, 4096)).unwrap_err(),
-            "the state names of the reachability graph of `wide` exceed 4096 bytes (the limit \
-             with 100 states)"
+            run(limits(16 * 108, 64, 16 * 9 * 390)).unwrap_err(),
+            "the state names of the reachability graph of `wide`, as written, exceed 56160 bytes \
+             (the limit with 100 states)"
         );
+        assert_eq!(run(limits(16 * 108, 64, 16 * 9 * 420)), Ok(16));
         // What `--max-states n` means, with its floors.
         assert_eq!(
             Limits::states(500_000),
-            limits_of(500_000, 32_000_000, 32_000_000, 64_000_000)
+            limits_of(500_000, 32_000_000, 32_000_000, 512_000_000)
         );
         assert_eq!(Limits::states(16), limits_of(16, 1 << 22, 1 << 22, 1 << 24));
         // And 0 is no limit to mean.
