@@ -1410,3 +1410,118 @@ fn petri_verbs_take_the_controllability_a_foreign_net_does_not_state() {
     assert_eq!(run.code, 2);
     assert!(run.stderr.contains("cannot be used with"), "{}", run.stderr);
 }
+
+#[test]
+fn petri_synth_bounds_an_unbounded_buffer_and_checks_what_is_finite() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bounded.toml");
+    let args = |extra: &[&str]| {
+        let mut a: Vec<String> = [
+            "petri",
+            "synth",
+            "models/petri/buffer.toml",
+            "--constraints",
+            "models/petri/buffer.constraints.toml",
+            "-o",
+            out.to_str().unwrap(),
+        ]
+        .map(String::from)
+        .to_vec();
+        a.extend(extra.iter().map(|s| s.to_string()));
+        a
+    };
+    // The plant is unbounded (it was refused as such); the control place
+    // is algebra, and within B ≤ 3 the plant is finite for supcon.
+    let (code, report) = run_json(args(&["--transform"]));
+    assert_eq!(code, 0, "{report}");
+    let c1 = &report["control_places"][0];
+    assert_eq!(c1["enforced_as"], "W1 + B ≤ 3");
+    assert_eq!(
+        c1["incidence"],
+        serde_json::json!({ "start1": -1, "start2": 1 })
+    );
+    assert_eq!(c1["initial"], 3);
+    assert_eq!(report["reachable_markings"], 14);
+    assert_eq!(report["closed_loop_skipped"], serde_json::Value::Null);
+    assert_eq!(report["supcon"]["same_language"], true);
+    assert_eq!(report["supcon"]["skipped"], serde_json::Value::Null);
+
+    // A constraint that leaves the buffer unbounded: the control place is
+    // still given, the checks are skipped with the reason, exit 0.
+    let loose = write(
+        dir.path(),
+        "loose.toml",
+        "[[constraint]]\nname = \"one at a time in 2\"\nweights = { W2 = 1 }\nbound = 1\n",
+    );
+    let run = run_codegen([
+        "petri",
+        "synth",
+        "models/petri/buffer.toml",
+        "--constraints",
+        &loose,
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stdout.contains(
+            "closed loop: not checked (safeness, dead markings): net `two machines and a buffer` \
+             is unbounded: place `B` grows without bound"
+        ),
+        "{}",
+        run.stdout
+    );
+    assert!(
+        run.stdout
+            .contains("supcon on the reachability graph: not compared: the closed loop was not explored (it is unbounded)"),
+        "{}",
+        run.stdout
+    );
+    assert!(out.exists());
+
+    // `info` gives the invariants of the unbounded plant, and says it is
+    // not safe.
+    let (code, info) = run_json(["petri", "info", "models/petri/buffer.toml"]);
+    assert_eq!(code, 1);
+    assert_eq!(info["reachable_markings"], serde_json::Value::Null);
+    assert_eq!(info["safe"], false);
+    assert!(info["not_explored"]
+        .as_str()
+        .unwrap()
+        .contains("place `B` grows without bound"));
+    assert_eq!(info["place_invariants"].as_array().unwrap().len(), 2);
+
+    // 0 is not "no limit".
+    let run = run_codegen([
+        "petri",
+        "info",
+        "models/petri/mixers.toml",
+        "--max-states",
+        "0",
+    ]);
+    assert_eq!(run.code, 2);
+    assert!(
+        run.stderr.contains("the limit must be at least 1 marking"),
+        "{}",
+        run.stderr
+    );
+}
+
+#[test]
+fn petri_reach_never_merges_two_markings_whose_plain_names_coincide() {
+    let dir = tempfile::tempdir().unwrap();
+    // One token in `a+b`, or one each in `a` and `b`: both read `a+b`
+    // plainly, and were one state with a self-loop.
+    let net = write(
+        dir.path(),
+        "collide.toml",
+        "name = \"collide\"\nplaces = [{ id = \"a\" }, { id = \"b\" }, { id = \"a+b\", tokens = 1 }]\n\
+         transitions = [{ id = \"split\", controllable = true, input = { \"a+b\" = 1 }, output = { a = 1, b = 1 } }]\n",
+    );
+    let graph = dir.path().join("collide.gen");
+    let run = run_codegen(["petri", "reach", &net, "-o", graph.to_str().unwrap()]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let a = read_automaton(&graph).unwrap();
+    assert_eq!((a.num_states(), a.num_transitions()), (2, 1));
+    assert_eq!(a.state_name(a.initial().unwrap()), "\"a+b\"");
+}

@@ -174,3 +174,21 @@ fn nets_run_on_the_table_backend_only() {
         );
     }
 }
+
+#[test]
+fn a_control_place_beyond_a_nets_arithmetic_is_refused_not_wrapped() {
+    // Wrapped, the control place had no arcs and the project fired `go`,
+    // the very transition the constraint forbids.
+    let msg = load_err(&format!(
+        "[plc]\nname = \"x\"\n{EVENTS}[[net]]\nname = \"fours\"\nfile = \"nets/fours.toml\"\nconstraints = \"nets/never_busy_2e62.constraints.toml\"\n"
+    ));
+    assert!(
+        msg.contains("never_busy_2e62.constraints.toml:4:1: constraint `never busy`"),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("an arc of weight 18446744073709551616 on transition `go`"),
+        "{msg}"
+    );
+    assert!(msg.contains("(2^32 − 1)"), "{msg}");
+}

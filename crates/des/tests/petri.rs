@@ -114,14 +114,14 @@ fn random_constraint(net: &PetriNet, seed: (usize, usize, i64, i64, i64)) -> Str
 fn within(net: &PetriNet, c: &Constraint) -> HashSet<Marking> {
     let mut seen = HashSet::new();
     let mut queue = VecDeque::new();
-    if c.weighted(net.initial()) <= c.bound {
+    if c.weighted(net.initial()) <= i128::from(c.bound) {
         seen.insert(net.initial().clone());
         queue.push_back(net.initial().clone());
     }
     while let Some(m) = queue.pop_front() {
         for t in 0..net.transitions().len() {
             if let Some(next) = net.fire(&m, t) {
-                if c.weighted(&next) <= c.bound && seen.insert(next.clone()) {
+                if c.weighted(&next) <= i128::from(c.bound) && seen.insert(next.clone()) {
                     queue.push_back(next);
                 }
             }
@@ -146,7 +146,7 @@ proptest! {
         let row: Vec<i64> = (0..net.transitions().len())
             .map(|t| -c.weights.iter().map(|&(p, w)| w * d[p][t]).sum::<i64>())
             .collect();
-        let violated = c.weighted(net.initial()) > c.bound;
+        let violated = c.weighted(net.initial()) > i128::from(c.bound);
         let inadmissible = net
             .transitions()
             .iter()
@@ -166,15 +166,15 @@ proptest! {
                 for m in &r.markings {
                     let (plant, control) = m.split_at(plant_places);
                     prop_assert_eq!(
-                        c.weighted(plant) + i64::from(control[0]),
-                        c.bound,
+                        c.weighted(plant) + i128::from(control[0]),
+                        i128::from(c.bound),
                         "invariant broken in {}", s.net.marking_name(m)
                     );
                     reached.insert(plant.to_vec());
                 }
                 prop_assert_eq!(reached, within(&net, c), "not exactly the constraint:\n{}{}", random.text(), text);
                 // And it is supcon's language on the reachability graph.
-                let cmp = compare::against_supcon(&net, &cs, &s, 100_000).unwrap();
+                let cmp = compare::against_supcon(&net, &cs, &s, 100_000).unwrap().unwrap();
                 prop_assert!(cmp.difference.is_none(), "differs from supcon: {:?}\n{}{}", cmp.difference, random.text(), text);
                 prop_assert_eq!(cmp.controlled_states, cmp.supcon_states);
             }
@@ -197,10 +197,10 @@ proptest! {
         let r = reach::reachability(&net, 100_000).unwrap();
         for y in &ps {
             for (t, _) in net.transitions().iter().enumerate() {
-                let sum: i64 = y.iter().map(|&(p, w)| w as i64 * d[p][t]).sum();
+                let sum: i128 = y.iter().map(|&(p, w)| w as i128 * i128::from(d[p][t])).sum();
                 prop_assert_eq!(sum, 0, "{:?} on t{}\n{}", y, t, random.text());
             }
-            let value = |m: &[u32]| -> u64 { y.iter().map(|&(p, w)| w * u64::from(m[p])).sum() };
+            let value = |m: &[u32]| -> u128 { y.iter().map(|&(p, w)| w * u128::from(m[p])).sum() };
             for m in &r.markings {
                 prop_assert_eq!(value(m), value(net.initial()));
             }
@@ -216,7 +216,7 @@ proptest! {
         prop_assert!(!ps.is_empty());
         for x in transition_invariants(&net).unwrap() {
             for row in &d {
-                let sum: i64 = x.iter().map(|&(t, w)| w as i64 * row[t]).sum();
+                let sum: i128 = x.iter().map(|&(t, w)| w as i128 * i128::from(row[t])).sum();
                 prop_assert_eq!(sum, 0);
             }
         }
@@ -246,9 +246,9 @@ proptest! {
         let r = reach::reachability(&s.net, 100_000).unwrap();
         let plant_places = net.places().len();
         for m in &r.markings {
-            prop_assert!(cs[0].weighted(&m[..plant_places]) <= cs[0].bound);
+            prop_assert!(cs[0].weighted(&m[..plant_places]) <= i128::from(cs[0].bound));
         }
-        let cmp = compare::against_supcon(&net, &cs, &s, 100_000).unwrap();
+        let cmp = compare::against_supcon(&net, &cs, &s, 100_000).unwrap().unwrap();
         if let Some(d) = cmp.difference {
             prop_assert!(!d.in_first, "beyond supcon: {:?}\n{}{}", d.string, random.text(), text);
         }

@@ -3,12 +3,17 @@
 //! - `petri info NET`: places, transitions, the incidence matrix, what
 //!   the reachability graph says (states, bounds, safeness, dead
 //!   markings) and the minimal place and transition invariants; exit 1
-//!   when the net is not safe or has a dead marking.
+//!   when the net is not safe (an unbounded net is not) or has a dead
+//!   marking. The invariants are algebra and are given for any net; the
+//!   graph's properties only where it is finite within `--max-states`
+//!   (otherwise the output says why they were not checked).
 //! - `petri reach NET -o AUTOMATON`: the reachability graph written in any
 //!   automaton format, to feed supcon.
 //! - `petri synth NET --constraints FILE -o OUT`: place-invariant
-//!   synthesis, one control place per constraint, and the closed loop's
-//!   properties; exit 1 when the closed loop can deadlock.
+//!   synthesis, one control place per constraint (for any plant, bounded
+//!   or not), and the closed loop's properties and the supcon comparison
+//!   where their graphs are finite (said, with the reason, when they are
+//!   skipped); exit 1 when the closed loop can deadlock.
 //! - `petri convert NET OUT`: between PNML and the native TOML.
 //!
 //! Every verb takes `--uncontrollable`, `--unobservable` or `--control`
@@ -21,6 +26,7 @@ use super::Outcome;
 use codegen::des::petri::compare::Comparison;
 use codegen::des::petri::constraints::Constraint;
 use codegen::des::petri::invariants::{self, Semiflow};
+use codegen::des::petri::reach::{Beyond, Marked, Region, Stopped};
 use codegen::des::petri::synth::Supervised;
 use codegen::des::petri::{self, reach, PetriNet};
 use codegen::{formats, Error};
@@ -34,8 +40,11 @@ pub enum PetriCommand {
     Info {
         /// The net (`.pnml` or `.toml`).
         net: PathBuf,
-        /// Explore at most this many markings.
-        #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES)]
+        /// Explore at most this many markings; also at most 64 token counts
+        /// (markings × places) and 64 firings per marking allowed, and 1024
+        /// bytes of written state names (floors: 2^22 counts and firings,
+        /// 16 MiB of names).
+        #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES, value_parser = positive)]
         max_states: usize,
         #[command(flatten)]
         control: ControlArgs,
@@ -48,8 +57,11 @@ pub enum PetriCommand {
         /// Output automaton file; its extension picks the format.
         #[arg(short, long)]
         output: PathBuf,
-        /// Explore at most this many markings.
-        #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES)]
+        /// Explore at most this many markings; also at most 64 token counts
+        /// (markings × places) and 64 firings per marking allowed, and 1024
+        /// bytes of written state names (floors: 2^22 counts and firings,
+        /// 16 MiB of names).
+        #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES, value_parser = positive)]
         max_states: usize,
         #[command(flatten)]
         control: ControlArgs,
@@ -67,8 +79,10 @@ pub enum PetriCommand {
         /// The controlled net to write; its extension picks the format.
         #[arg(short, long)]
         output: PathBuf,
-        /// Explore at most this many markings of the closed loop.
-        #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES)]
+        /// Explore at most this many markings of the closed loop (and of the
+        /// plant within the constraints, for the supcon comparison); the
+        /// same bounds on token counts, firings and names as `petri reach`.
+        #[arg(long, default_value_t = reach::DEFAULT_MAX_STATES, value_parser = positive)]
         max_states: usize,
         /// Enforce an inadmissible constraint through an admissible one
         /// that implies it (more places counted upstream of the
@@ -89,6 +103,15 @@ pub enum PetriCommand {
     },
 }
 
+/// A positive number of markings (`0` is refused: it is no limit to mean).
+fn positive(text: &str) -> Result<usize, String> {
+    match text.parse::<usize>() {
+        Ok(0) => Err("the limit must be at least 1 marking".to_owned()),
+        Ok(n) => Ok(n),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
 #[derive(Debug, serde::Serialize)]
 struct Info {
     name: String,
@@ -97,13 +120,19 @@ struct Info {
     /// Rows by place, columns by transition.
     incidence: Vec<Vec<i64>>,
     initial: Vec<u32>,
-    reachable_markings: usize,
+    /// `None` when the graph was not explored (`not_explored` says why).
+    reachable_markings: Option<usize>,
+    /// Why the reachability graph was not explored (unbounded, or beyond
+    /// `--max-states`); `None` when it was.
+    not_explored: Option<String>,
     /// Largest token count of each place over the reachable markings.
-    bounds: Vec<u32>,
-    safe: bool,
+    bounds: Option<Vec<u32>>,
+    /// `None`: not known (the graph is beyond the limit); an unbounded
+    /// net is not safe.
+    safe: Option<bool>,
     dead_markings: Vec<String>,
     /// Transitions that can become dead for good (empty: the net is live).
-    not_live: Vec<String>,
+    not_live: Option<Vec<String>>,
     /// Minimal P-semiflows with `y·m0`.
     place_invariants: Vec<PlaceInvariant>,
     /// Minimal T-semiflows (firing counts).
@@ -114,7 +143,7 @@ struct Info {
 #[derive(Debug, serde::Serialize)]
 struct Term {
     id: String,
-    weight: u64,
+    weight: u128,
 }
 
 #[derive(Debug, serde::Serialize)]
@@ -122,7 +151,7 @@ struct PlaceInvariant {
     /// In place order.
     weights: Vec<Term>,
     /// `y·m` in every reachable marking.
-    value: u64,
+    value: u128,
 }
 
 #[derive(Debug, serde::Serialize)]
@@ -188,9 +217,27 @@ pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome,
             let cs = petri::constraints::read_file(constraints, &plant)?;
             let enforced = petri::admissible::enforced(&plant, &cs, *transform)?;
             let s = petri::synth::synthesize(&plant, &enforced)?;
-            let r = reach::reachability(&s.net, *max_states)?;
-            let cmp = petri::compare::against_supcon(&plant, &cs, &s, *max_states)?;
             petri::write_file(output, &s.net)?;
+            // The control places are algebra; the closed loop and the
+            // comparison need finite graphs, and are skipped (with the
+            // reason) where there are none within the limit.
+            let r = reach::explore(
+                &s.net,
+                reach::Limits::states(*max_states),
+                Marked::Initial,
+                Region::All,
+                Beyond::Drop,
+            )?;
+            let cmp = match &r {
+                Ok(_) => petri::compare::against_supcon(&plant, &cs, &s, *max_states)?,
+                Err(stopped) => Err(Stopped::Limit(format!(
+                    "the closed loop was not explored ({})",
+                    match stopped {
+                        Stopped::Unbounded(_) => "it is unbounded",
+                        Stopped::Limit(_) => "it is beyond the limit",
+                    }
+                ))),
+            };
             synth_report(&plant, &cs, &enforced, &s, &r, &cmp, output, json, out)
         }
         PetriCommand::Convert {
@@ -211,7 +258,13 @@ pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome,
 }
 
 fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<Outcome, Error> {
-    let r = reach::reachability(net, max_states)?;
+    let explored = reach::explore(
+        net,
+        reach::Limits::states(max_states),
+        Marked::Initial,
+        Region::All,
+        Beyond::Drop,
+    )?;
     let weights = |s: &Semiflow, id: &dyn Fn(usize) -> String| -> Vec<Term> {
         s.iter()
             .map(|&(i, w)| Term {
@@ -224,18 +277,52 @@ fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<
     let transition_id = |t: usize| net.transitions()[t].id.clone();
     let place_invariants = invariants::place_invariants(net)?
         .iter()
-        .map(|y| PlaceInvariant {
-            weights: weights(y, &place_id),
-            value: y
-                .iter()
-                .map(|&(p, w)| w * u64::from(net.initial()[p]))
-                .sum(),
+        .map(|y| {
+            let value = invariants::value(y, net.initial()).ok_or_else(|| {
+                Error::Incompatible(format!(
+                    "net `{}`: the value y·m0 of a place invariant exceeds 2^128 − 1",
+                    net.name()
+                ))
+            })?;
+            Ok(PlaceInvariant {
+                weights: weights(y, &place_id),
+                value,
+            })
         })
-        .collect();
+        .collect::<Result<Vec<_>, Error>>()?;
     let transition_invariants = invariants::transition_invariants(net)?
         .iter()
         .map(|x| weights(x, &transition_id))
         .collect();
+    let (reachable_markings, not_explored, bounds, safe, dead_markings, not_live) = match &explored
+    {
+        Ok(r) => (
+            Some(r.markings.len()),
+            None,
+            Some(r.bounds.clone()),
+            Some(r.is_safe()),
+            r.dead
+                .iter()
+                .map(|&k| net.marking_name(&r.markings[k]))
+                .collect(),
+            Some(
+                r.live(net.transitions().len())
+                    .iter()
+                    .zip(net.transitions())
+                    .filter(|&(&live, _)| !live)
+                    .map(|(_, t)| t.id.clone())
+                    .collect(),
+            ),
+        ),
+        Err(stopped) => (
+            None,
+            Some(stopped.to_string()),
+            None,
+            matches!(stopped, Stopped::Unbounded(_)).then_some(false),
+            Vec::new(),
+            None,
+        ),
+    };
     let info = Info {
         name: net.name().to_owned(),
         places: net.places().iter().map(|p| p.id.clone()).collect(),
@@ -250,25 +337,16 @@ fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<
             .collect(),
         incidence: net.incidence(),
         initial: net.initial().clone(),
-        reachable_markings: r.markings.len(),
-        bounds: r.bounds.clone(),
-        safe: r.is_safe(),
-        dead_markings: r
-            .dead
-            .iter()
-            .map(|&k| net.marking_name(&r.markings[k]))
-            .collect(),
-        not_live: r
-            .live(net.transitions().len())
-            .iter()
-            .zip(net.transitions())
-            .filter(|&(&live, _)| !live)
-            .map(|(_, t)| t.id.clone())
-            .collect(),
+        reachable_markings,
+        not_explored,
+        bounds,
+        safe,
+        dead_markings,
+        not_live,
         place_invariants,
         transition_invariants,
     };
-    let outcome = if info.safe && info.dead_markings.is_empty() {
+    let outcome = if info.safe != Some(false) && info.dead_markings.is_empty() {
         Outcome::Holds
     } else {
         Outcome::Fails
@@ -301,8 +379,16 @@ fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<
             .collect::<Vec<_>>()
             .join(" ")
     );
+    let cell = info
+        .incidence
+        .iter()
+        .flatten()
+        .map(|d| d.to_string().len() + 1)
+        .max()
+        .unwrap_or(0)
+        .max(3);
     for (p, row) in info.places.iter().zip(&info.incidence) {
-        let cells: Vec<String> = row.iter().map(|d| format!("{d:>3}")).collect();
+        let cells: Vec<String> = row.iter().map(|d| format!("{d:>cell$}")).collect();
         outln!(out, "    {p:<width$} [{} ]", cells.join(""));
     }
     outln!(
@@ -310,21 +396,34 @@ fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<
         "  initial marking:    {}",
         net.marking_name(&info.initial)
     );
-    outln!(out, "  reachable markings: {}", info.reachable_markings);
-    let over: Vec<String> = info
-        .places
-        .iter()
-        .zip(&info.bounds)
-        .filter(|&(_, &b)| b > 1)
-        .map(|(p, b)| format!("{p} holds up to {b}"))
-        .collect();
-    if over.is_empty() {
-        outln!(
+    match (&info.reachable_markings, &info.not_explored) {
+        (Some(n), _) => outln!(out, "  reachable markings: {n}"),
+        (None, Some(why)) => outln!(out, "  reachable markings: not explored: {why}"),
+        (None, None) => {}
+    }
+    match (&info.bounds, info.safe) {
+        (Some(bounds), _) => {
+            let over: Vec<String> = info
+                .places
+                .iter()
+                .zip(bounds)
+                .filter(|&(_, &b)| b > 1)
+                .map(|(p, b)| format!("{p} holds up to {b}"))
+                .collect();
+            if over.is_empty() {
+                outln!(
+                    out,
+                    "  safe:               yes (no place ever holds two tokens)"
+                );
+            } else {
+                outln!(out, "  safe:               no ({})", over.join(", "));
+            }
+        }
+        (None, Some(false)) => outln!(out, "  safe:               no (unbounded)"),
+        (None, _) => outln!(
             out,
-            "  safe:               yes (no place ever holds two tokens)"
-        );
-    } else {
-        outln!(out, "  safe:               no ({})", over.join(", "));
+            "  safe:               not checked (the graph was not explored)"
+        ),
     }
     let sum = |terms: &[Term]| {
         terms
@@ -336,17 +435,20 @@ fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<
             .collect::<Vec<_>>()
             .join(" + ")
     };
-    if info.not_live.is_empty() {
-        outln!(
+    match &info.not_live {
+        None => outln!(
+            out,
+            "  live:               not checked (the graph was not explored)"
+        ),
+        Some(not_live) if not_live.is_empty() => outln!(
             out,
             "  live:               yes (every transition can always fire again)"
-        );
-    } else {
-        outln!(
+        ),
+        Some(not_live) => outln!(
             out,
             "  live:               no ({} can become dead)",
-            info.not_live.join(", ")
-        );
+            not_live.join(", ")
+        ),
     }
     outln!(out, "  place invariants:");
     for y in &info.place_invariants {
@@ -362,7 +464,12 @@ fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<
     if info.transition_invariants.is_empty() {
         outln!(out, "    none");
     }
-    if info.dead_markings.is_empty() {
+    if info.reachable_markings.is_none() {
+        outln!(
+            out,
+            "  deadlock-free:      not checked (the graph was not explored)"
+        );
+    } else if info.dead_markings.is_empty() {
         outln!(out, "  deadlock-free:      yes");
     } else {
         outln!(
@@ -397,25 +504,28 @@ fn synth_report(
     constraints: &[Constraint],
     enforced: &[Constraint],
     s: &Supervised,
-    r: &reach::Reachability,
-    cmp: &Comparison,
+    r: &Result<reach::Reachability, Stopped>,
+    cmp: &Result<Comparison, Stopped>,
     output: &std::path::Path,
     json: bool,
     out: &mut Out,
 ) -> Result<Outcome, Error> {
     let ids: Vec<&str> = plant.transitions().iter().map(|t| t.id.as_str()).collect();
-    let dead: Vec<DeadInfo> = r
-        .dead
-        .iter()
-        .map(|&k| DeadInfo {
-            marking: s.net.marking_name(&r.markings[k]),
-            firing_sequence: r
-                .firing_sequence(k)
-                .into_iter()
-                .map(|t| ids[t].to_owned())
-                .collect(),
-        })
-        .collect();
+    let dead: Vec<DeadInfo> = match r {
+        Ok(r) => r
+            .dead
+            .iter()
+            .map(|&k| DeadInfo {
+                marking: s.net.marking_name(&r.markings[k]),
+                firing_sequence: r
+                    .firing_sequence(k)
+                    .into_iter()
+                    .map(|t| ids[t].to_owned())
+                    .collect(),
+            })
+            .collect(),
+        Err(_) => Vec::new(),
+    };
     let outcome = if dead.is_empty() {
         Outcome::Holds
     } else {
@@ -450,17 +560,28 @@ fn synth_report(
                 initial: c.initial,
             })
             .collect();
-        out.json(&serde_json::json!({
-            "output": output.display().to_string(),
-            "control_places": control,
-            "reachable_markings": r.markings.len(),
-            "safe": r.is_safe(),
-            "dead_markings": dead,
-            "supcon": {
+        let supcon = match cmp {
+            Ok(cmp) => serde_json::json!({
                 "states": cmp.supcon_states,
                 "same_language": cmp.difference.is_none(),
                 "difference": cmp.difference,
-            },
+                "skipped": null,
+            }),
+            Err(why) => serde_json::json!({
+                "states": null,
+                "same_language": null,
+                "difference": null,
+                "skipped": why.to_string(),
+            }),
+        };
+        out.json(&serde_json::json!({
+            "output": output.display().to_string(),
+            "control_places": control,
+            "reachable_markings": r.as_ref().ok().map(|r| r.markings.len()),
+            "safe": r.as_ref().ok().map(|r| r.is_safe()),
+            "dead_markings": dead,
+            "closed_loop_skipped": r.as_ref().err().map(|why| why.to_string()),
+            "supcon": supcon,
         }));
         return Ok(outcome);
     }
@@ -486,33 +607,48 @@ fn synth_report(
                 written(constraint)
             );
         }
-        let row: Vec<String> = c.incidence.iter().map(|d| format!("{d:>3}")).collect();
+        let cell = c
+            .incidence
+            .iter()
+            .map(|d| d.to_string().len() + 1)
+            .max()
+            .unwrap_or(0)
+            .max(3);
+        let row: Vec<String> = c.incidence.iter().map(|d| format!("{d:>cell$}")).collect();
         outln!(out, "    D_c  = [{} ]", row.join(""));
         outln!(out, "    m_c0 = {}", c.initial);
     }
-    let over: Vec<String> = s
-        .net
-        .places()
-        .iter()
-        .zip(&r.bounds)
-        .filter(|&(_, &b)| b > 1)
-        .map(|(p, b)| format!("{} holds up to {b}", p.id))
-        .collect();
-    outln!(
-        out,
-        "  closed loop: {} reachable markings, {}, {}",
-        r.markings.len(),
-        if over.is_empty() {
-            "safe".to_owned()
-        } else {
-            format!("not safe ({})", over.join(", "))
-        },
-        if dead.is_empty() {
-            "deadlock-free"
-        } else {
-            "can deadlock"
+    match r {
+        Ok(r) => {
+            let over: Vec<String> = s
+                .net
+                .places()
+                .iter()
+                .zip(&r.bounds)
+                .filter(|&(_, &b)| b > 1)
+                .map(|(p, b)| format!("{} holds up to {b}", p.id))
+                .collect();
+            outln!(
+                out,
+                "  closed loop: {} reachable markings, {}, {}",
+                r.markings.len(),
+                if over.is_empty() {
+                    "safe".to_owned()
+                } else {
+                    format!("not safe ({})", over.join(", "))
+                },
+                if dead.is_empty() {
+                    "deadlock-free"
+                } else {
+                    "can deadlock"
+                }
+            );
         }
-    );
+        Err(why) => outln!(
+            out,
+            "  closed loop: not checked (safeness, dead markings): {why}"
+        ),
+    }
     for d in &dead {
         outln!(
             out,
@@ -525,23 +661,26 @@ fn synth_report(
             }
         );
     }
-    match &cmp.difference {
-        None => outln!(
-            out,
-            "  supcon on the reachability graph: the same language ({} states)",
-            cmp.supcon_states
-        ),
-        Some(d) => outln!(
-            out,
-            "  supcon on the reachability graph ({} states) differs: `{}` is allowed only by {}",
-            cmp.supcon_states,
-            d.string.join(" "),
-            if d.in_first {
-                "the control places"
-            } else {
-                "supcon (the control places are more restrictive)"
-            }
-        ),
+    match cmp {
+        Err(why) => outln!(out, "  supcon on the reachability graph: not compared: {why}"),
+        Ok(cmp) => match &cmp.difference {
+            None => outln!(
+                out,
+                "  supcon on the reachability graph: the same language ({} states)",
+                cmp.supcon_states
+            ),
+            Some(d) => outln!(
+                out,
+                "  supcon on the reachability graph ({} states) differs: `{}` is allowed only by {}",
+                cmp.supcon_states,
+                d.string.join(" "),
+                if d.in_first {
+                    "the control places"
+                } else {
+                    "supcon (the control places are more restrictive)"
+                }
+            ),
+        },
     }
     outln!(out, "wrote {}", output.display());
     Ok(outcome)

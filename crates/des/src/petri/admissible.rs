@@ -41,15 +41,26 @@ pub fn enforced(
 }
 
 /// An admissible constraint that implies `c`, or why none was found.
+///
+/// The weights are kept exactly (`i128` while they are worked out) and
+/// must stay within a constraint weight's range (`i64`): a greedy search
+/// whose weights keep growing (uncontrollable transitions that multiply
+/// tokens around a cycle) is refused naming that limit, never wrapped.
 pub fn make_admissible(net: &PetriNet, c: &Constraint) -> Result<Constraint, String> {
-    let d = net.incidence();
+    let columns: Vec<Vec<i64>> = (0..net.transitions().len())
+        .map(|t| net.change(t))
+        .collect();
     let places = net.places().len();
     let transitions = net.transitions();
-    let mut l = vec![0i64; places];
+    let mut l = vec![0i128; places];
     for &(p, w) in &c.weights {
-        l[p] += w;
+        l[p] += i128::from(w);
     }
-    let raised = |l: &[i64], t: usize| -> i64 { (0..places).map(|p| l[p] * d[p][t]).sum() };
+    // Every weight stays within i64 (checked as it changes), so each term
+    // is below 2^95 and the sum is exact in i128.
+    let raised = |l: &[i128], t: usize| -> i128 {
+        (0..places).map(|p| l[p] * i128::from(columns[t][p])).sum()
+    };
     let mut steps = 0;
     while let Some(t) =
         (0..transitions.len()).find(|&t| !transitions[t].controllable && raised(&l, t) > 0)
@@ -62,15 +73,26 @@ pub fn make_admissible(net: &PetriNet, c: &Constraint) -> Result<Constraint, Str
             ));
         }
         let excess = raised(&l, t);
-        let Some(p) = (0..places).find(|&p| d[p][t] < 0) else {
+        let Some(p) = (0..places).find(|&p| columns[t][p] < 0) else {
             return Err(format!(
                 "the uncontrollable transition `{}` raises `{}` and consumes from no place: \
                  nothing upstream can be counted instead",
                 transitions[t].id, c.name
             ));
         };
-        let per_token = -d[p][t];
+        let per_token = -i128::from(columns[t][p]);
         l[p] += (excess + per_token - 1) / per_token;
+        if i64::try_from(l[p]).is_err() {
+            return Err(format!(
+                "no admissible form of `{}` within a constraint weight's range: counting place \
+                 `{}` upstream of the uncontrollable transition `{}` would need a weight of {}, \
+                 beyond 2^63 − 1",
+                c.name,
+                net.places()[p].id,
+                transitions[t].id,
+                l[p]
+            ));
+        }
     }
     if let Some(t) =
         (0..transitions.len()).find(|&t| !transitions[t].observable && raised(&l, t) != 0)
@@ -84,7 +106,7 @@ pub fn make_admissible(net: &PetriNet, c: &Constraint) -> Result<Constraint, Str
         .iter()
         .enumerate()
         .filter(|&(_, &w)| w != 0)
-        .map(|(p, &w)| (p, w))
+        .filter_map(|(p, &w)| i64::try_from(w).ok().map(|w| (p, w)))
         .collect();
     let admissible = Constraint {
         name: c.name.clone(),
@@ -92,7 +114,7 @@ pub fn make_admissible(net: &PetriNet, c: &Constraint) -> Result<Constraint, Str
         bound: c.bound,
         location: c.location.clone(),
     };
-    if admissible.weighted(net.initial()) > admissible.bound {
+    if admissible.weighted(net.initial()) > i128::from(admissible.bound) {
         return Err(format!(
             "the admissible form of `{}` is violated by the initial marking: uncontrollable \
              transitions can break the constraint before any control acts",
@@ -134,5 +156,32 @@ mod tests {
         let net = toml::read(&both, Path::new("m.toml")).unwrap();
         let err = make_admissible(&net, &cs[0]).unwrap_err();
         assert!(err.contains("violated by the initial marking"), "{err}");
+    }
+
+    #[test]
+    fn weights_that_keep_growing_are_refused_at_the_limit_not_wrapped() {
+        // u turns a token of a into 10^6 of b, v one of b into 10^6 of a,
+        // both uncontrollable: counting upstream multiplies the weights by
+        // 10^6 a step, past i64 after a few steps (they once wrapped).
+        let net = toml::read(
+            "name = \"double\"\nplaces = [{ id = \"a\", tokens = 1 }, { id = \"b\" }]\n\
+             transitions = [{ id = \"u\", controllable = false, input = { a = 1 }, output = { b = 1000000 } },\n\
+             { id = \"v\", controllable = false, input = { b = 1 }, output = { a = 1000000 } }]\n",
+            Path::new("d.toml"),
+        )
+        .unwrap();
+        let cs = constraints::read(
+            "[[constraint]]\nname = \"b small\"\nweights = { b = 1 }\nbound = 5\n",
+            Path::new("c.toml"),
+            &net,
+        )
+        .unwrap();
+        let err = make_admissible(&net, &cs[0]).unwrap_err();
+        assert_eq!(
+            err,
+            "no admissible form of `b small` within a constraint weight's range: counting place `b` \
+             upstream of the uncontrollable transition `v` would need a weight of \
+             1000000000000000000000000, beyond 2^63 − 1"
+        );
     }
 }

@@ -1,6 +1,6 @@
-//! The invariant supervisor against supcon: for a bounded net, the
-//! controlled net's language is compared with the supremal controllable
-//! sublanguage of the same constraints taken as a specification.
+//! The invariant supervisor against supcon: the controlled net's
+//! language is compared with the supremal controllable sublanguage of the
+//! same constraints taken as a specification.
 //!
 //! The plant is the net's reachability graph, every marking marked (an
 //! invariant supervisor promises no nonblocking, so only the closed
@@ -9,9 +9,17 @@
 //! observable transitions both are the same language; where the
 //! invariant supervisor is more restrictive (or supcon is), a shortest
 //! string in one language and not the other says so.
+//!
+//! The plant need not be bounded: supcon only looks at the plant within
+//! the specification and one firing out of it (where an uncontrollable
+//! firing would leave it), so the plant is explored within the
+//! constraints and the markings one firing beyond them are kept as
+//! states without being explored ([`Beyond::Frontier`]). What must be
+//! finite is that region and the controlled net; when either is not
+//! (or is beyond the limit) the comparison says why it was not made.
 
 use super::constraints::Constraint;
-use super::reach::{reachability_with, Marked};
+use super::reach::{explore, Beyond, Limits, Marked, Region, Stopped};
 use super::synth::Supervised;
 use super::PetriNet;
 use crate::error::Result;
@@ -31,24 +39,40 @@ pub struct Comparison {
 
 /// Compares `supervised` (synthesised from `constraints` for `plant`)
 /// with supcon on the reachability graphs, exploring at most
-/// `max_states` markings each.
+/// `max_states` markings each; the inner `Err` says why a graph has no
+/// finite form within that limit (and so the comparison was not made).
 pub fn against_supcon(
     plant: &PetriNet,
     constraints: &[Constraint],
     supervised: &Supervised,
     max_states: usize,
-) -> Result<Comparison> {
-    let graph = reachability_with(plant, max_states, Marked::All, &|_| true)?.automaton;
-    let legal = |m: &[u32]| constraints.iter().all(|c| c.weighted(m) <= c.bound);
-    let spec = reachability_with(plant, max_states, Marked::All, &legal)?.automaton;
+) -> Result<std::result::Result<Comparison, Stopped>> {
+    let legal = Region::Constraints(constraints);
+    let limits = Limits::states(max_states);
+    let controlled = match explore(
+        &supervised.net,
+        limits,
+        Marked::All,
+        Region::All,
+        Beyond::Drop,
+    )? {
+        Ok(r) => r.automaton,
+        Err(stopped) => return Ok(Err(stopped)),
+    };
+    let graph = match explore(plant, limits, Marked::All, legal, Beyond::Frontier)? {
+        Ok(r) => r.automaton,
+        Err(stopped) => return Ok(Err(stopped)),
+    };
+    let spec = match explore(plant, limits, Marked::All, legal, Beyond::Drop)? {
+        Ok(r) => r.automaton,
+        Err(stopped) => return Ok(Err(stopped)),
+    };
     let sup = ops::supcon(&graph, &spec)?;
-    let controlled =
-        reachability_with(&supervised.net, max_states, Marked::All, &|_| true)?.automaton;
-    Ok(Comparison {
+    Ok(Ok(Comparison {
         supcon_states: sup.num_states(),
         controlled_states: controlled.num_states(),
         difference: ops::language_difference(&controlled, &sup),
-    })
+    }))
 }
 
 #[cfg(test)]
@@ -69,7 +93,7 @@ mod tests {
         let plant = net(MIXERS);
         let cs = constraints::read(SUPPLY, Path::new("c.toml"), &plant).unwrap();
         let s = synth::synthesize(&plant, &cs).unwrap();
-        let c = against_supcon(&plant, &cs, &s, 1000).unwrap();
+        let c = against_supcon(&plant, &cs, &s, 1000).unwrap().unwrap();
         assert_eq!(c.difference, None);
         assert_eq!((c.controlled_states, c.supcon_states), (15, 15));
     }
@@ -88,7 +112,7 @@ mod tests {
             &plant,
         )
         .unwrap();
-        let c = against_supcon(&plant, &looser, &s, 1000).unwrap();
+        let c = against_supcon(&plant, &looser, &s, 1000).unwrap().unwrap();
         let d = c.difference.expect("m3 ≤ 2 allows both mixers to fill");
         assert!(
             !d.in_first,

@@ -9,8 +9,15 @@
 //! ```
 //!
 //! Places are named by id, or by name where exactly one place has it. A
-//! constraint with no weight, an unknown or ambiguous place, or a name
+//! constraint with no weight, an unknown or ambiguous place, a place
+//! weighed twice (once by id and once by name: summing the two would
+//! hide a slip, and a cancelling pair would weigh nothing), or a name
 //! used twice is refused at its file, line and column.
+//!
+//! Weights and the bound are TOML integers (`i64`). The arithmetic on
+//! them is exact: `L·m` is computed in `i128` ([`Constraint::weighted`]),
+//! and what synthesis derives from it is checked against the limits of a
+//! net (arc weights and tokens of at most 2^32 − 1) before it is used.
 
 use super::PetriNet;
 use crate::error::{Error, Location, Result};
@@ -32,9 +39,14 @@ pub struct Constraint {
 }
 
 impl Constraint {
-    /// `L·m`.
-    pub fn weighted(&self, m: &[u32]) -> i64 {
-        self.weights.iter().map(|&(p, w)| w * i64::from(m[p])).sum()
+    /// `L·m`, exactly: each term is below 2^95 in magnitude (an `i64`
+    /// weight times a `u32` count) and a constraint weighs each place once,
+    /// so the sum stays far inside `i128` for any net that fits in memory.
+    pub fn weighted(&self, m: &[u32]) -> i128 {
+        self.weights
+            .iter()
+            .map(|&(p, w)| i128::from(w) * i128::from(m[p]))
+            .sum()
     }
 }
 
@@ -77,8 +89,21 @@ pub fn read(text: &str, origin: &Path, net: &PetriNet) -> Result<Vec<Constraint>
             ));
         }
         let mut weights = Vec::new();
+        let mut named: Vec<(usize, &str)> = Vec::new();
         for (place, weight) in &c.weights {
             let p = place_index(net, place).map_err(|m| Error::model(location.clone(), m))?;
+            if let Some(&(_, first)) = named.iter().find(|&&(q, _)| q == p) {
+                return Err(Error::model(
+                    location,
+                    format!(
+                        "constraint `{}` weighs place `{}` twice (as `{first}` and as `{place}`): \
+                         give it one weight",
+                        c.name,
+                        net.places()[p].id
+                    ),
+                ));
+            }
+            named.push((p, place));
             let w = weight.as_integer().ok_or_else(|| {
                 Error::model(
                     location.clone(),

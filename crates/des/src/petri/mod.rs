@@ -12,16 +12,26 @@
 //!   [`control`]: which transitions are uncontrollable or unobservable,
 //!   stated beside the file for nets whose file does not say
 //!   ([`read_file_with`]).
-//! - [`invariants`]: minimal place and transition semiflows (Farkas).
+//! - [`invariants`]: minimal place and transition semiflows (Farkas),
+//!   with exact `u128` weights and bounded work.
 //! - [`constraints`] and [`synth`]: linear marking constraints `L·m ≤ b`
-//!   and place-invariant synthesis, one control place per constraint;
+//!   and place-invariant synthesis, one control place per constraint,
+//!   for any net (it is algebra: boundedness is not needed);
 //!   [`admissible`]: an inadmissible constraint made admissible (Moody–
 //!   Antsaklis, greedy); [`compare`]: the result against supcon on the
-//!   reachability graphs.
-//! - [`reach`]: the reachability graph of a bounded net as an automaton
-//!   (one event per transition, its controllability kept), with a state
-//!   limit, and a located refusal for an unbounded net (the place that
-//!   grows and a firing sequence that makes it grow).
+//!   reachability graphs, where they are finite.
+//! - [`reach`]: the reachability graph of a bounded net (or of a region
+//!   of any net) as an automaton (one event per transition, its
+//!   controllability kept), within limits on markings, memory and names,
+//!   and a refusal for an unbounded net (the place that grows and a
+//!   firing sequence that makes it grow).
+//!
+//! **Arithmetic.** Tokens and arc weights are `u32`, constraint weights
+//! and bounds `i64`; everything derived from them (`L·m`, control places,
+//! transformed weights, invariants, markings) is computed exactly, in a
+//! wider type where needed, and what a net cannot hold is refused with
+//! the limit named, never wrapped (`tests/petri_limits.rs` checks this at
+//! the types' edges).
 
 pub mod admissible;
 pub mod compare;
@@ -154,16 +164,28 @@ impl PetriNet {
         Some(next)
     }
 
-    /// A marking as text: the marked places, `id` for one token and
-    /// `k·id` for `k`, joined by `+`; `empty` when no place holds a token.
+    /// A marking as text: the marked places in place order, `id` for one
+    /// token and `k·id` for `k`, joined by `+`; `empty` when no place
+    /// holds a token.
+    ///
+    /// The name is injective: two markings of a net never share it
+    /// (states of the reachability graph are named by it). An id that
+    /// could be misread — one holding `+`, `·`, `"` or `\`, or the id
+    /// `empty` — is written quoted, `"a+b"`, with `\"` and `\\` for
+    /// its quote and backslash; so the `+` between terms, the `·` after a
+    /// count and the word `empty` only ever mean what they say, and the
+    /// name reads back to one marking.
     pub fn marking_name(&self, m: &[u32]) -> String {
         let parts: Vec<String> = m
             .iter()
             .enumerate()
             .filter(|&(_, &k)| k > 0)
-            .map(|(p, &k)| match k {
-                1 => self.places[p].id.clone(),
-                k => format!("{k}·{}", self.places[p].id),
+            .map(|(p, &k)| {
+                let id = marking_term(&self.places[p].id);
+                match k {
+                    1 => id,
+                    k => format!("{k}·{id}"),
+                }
             })
             .collect();
         if parts.is_empty() {
@@ -172,6 +194,25 @@ impl PetriNet {
             parts.join("+")
         }
     }
+}
+
+/// A place id as a term of [`PetriNet::marking_name`]: bare unless it
+/// could be misread, quoted then.
+fn marking_term(id: &str) -> String {
+    let special = |c: char| matches!(c, '+' | '·' | '"' | '\\');
+    if id != "empty" && !id.is_empty() && !id.contains(special) {
+        return id.to_owned();
+    }
+    let mut quoted = String::with_capacity(id.len() + 2);
+    quoted.push('"');
+    for c in id.chars() {
+        if matches!(c, '"' | '\\') {
+            quoted.push('\\');
+        }
+        quoted.push(c);
+    }
+    quoted.push('"');
+    quoted
 }
 
 /// What an id names, for the builder's checks.

@@ -11,8 +11,10 @@
 //! violates the constraint (`m_c0 < 0`); a constraint that would have to
 //! keep an uncontrollable transition from firing (`D_c[t] < 0`, that is
 //! `L·D_uc ≤ 0` fails) or that needs to see an unobservable one
-//! (`D_c[t] ≠ 0`), naming those transitions. (Transforming an
-//! inadmissible constraint into an admissible one is a later step.)
+//! (`D_c[t] ≠ 0`), naming those transitions; and a control place a net
+//! cannot hold (an arc or an initial marking above 2^32 − 1). The
+//! arithmetic is exact, never wrapped. ([`super::admissible`] transforms
+//! an inadmissible constraint into an admissible one.)
 
 use super::constraints::Constraint;
 use super::{PetriNet, Place};
@@ -42,25 +44,35 @@ pub struct Supervised {
 }
 
 /// Synthesises the control places of `constraints` for `plant`.
+///
+/// The arithmetic is exact (`i128`: a weight below 2^63 times an
+/// incidence below 2^32, summed over the places), and a result a net
+/// cannot hold is refused at the constraint's line with the limit named:
+/// an arc weight `|D_c[t]|` or an initial marking `m_c0` above 2^32 − 1.
 pub fn synthesize(plant: &PetriNet, constraints: &[Constraint]) -> Result<Supervised> {
-    let d = plant.incidence();
     let transitions = plant.transitions();
+    let columns: Vec<Vec<i64>> = (0..transitions.len()).map(|t| plant.change(t)).collect();
     let mut net = plant.clone();
     let mut control = Vec::with_capacity(constraints.len());
     for (k, c) in constraints.iter().enumerate() {
-        // D_c = −L·D_p, m_c0 = b − L·m_p0.
-        let row: Vec<i64> = (0..transitions.len())
-            .map(|t| -c.weights.iter().map(|&(p, w)| w * d[p][t]).sum::<i64>())
+        // D_c = −L·D_p, m_c0 = b − L·m_p0, exactly.
+        let exact: Vec<i128> = columns
+            .iter()
+            .map(|column| {
+                -c.weights
+                    .iter()
+                    .map(|&(p, w)| i128::from(w) * i128::from(column[p]))
+                    .sum::<i128>()
+            })
             .collect();
-        let initial = c.bound - c.weighted(plant.initial());
+        let weighted = c.weighted(plant.initial());
+        let initial = i128::from(c.bound) - weighted;
         if initial < 0 {
             return Err(Error::model(
                 c.location.clone(),
                 format!(
-                    "constraint `{}`: the initial marking already violates it (L·m0 = {} > {})",
-                    c.name,
-                    c.weighted(plant.initial()),
-                    c.bound
+                    "constraint `{}`: the initial marking already violates it (L·m0 = {weighted} > {})",
+                    c.name, c.bound
                 ),
             ));
         }
@@ -68,7 +80,8 @@ pub fn synthesize(plant: &PetriNet, constraints: &[Constraint]) -> Result<Superv
             Error::model(
                 c.location.clone(),
                 format!(
-                    "constraint `{}`: m_c0 = {initial} does not fit a place",
+                    "constraint `{}`: its control place would start with m_c0 = b − L·m0 = {initial} \
+                     tokens, more than a place holds (2^32 − 1)",
                     c.name
                 ),
             )
@@ -79,7 +92,7 @@ pub fn synthesize(plant: &PetriNet, constraints: &[Constraint]) -> Result<Superv
                 .map(|t| transitions[t].id.as_str())
                 .collect()
         };
-        let blocks = offending(&|t| !transitions[t].controllable && row[t] < 0);
+        let blocks = offending(&|t| !transitions[t].controllable && exact[t] < 0);
         if !blocks.is_empty() {
             return Err(Error::model(
                 c.location.clone(),
@@ -93,7 +106,7 @@ pub fn synthesize(plant: &PetriNet, constraints: &[Constraint]) -> Result<Superv
                 ),
             ));
         }
-        let unseen = offending(&|t| !transitions[t].observable && row[t] != 0);
+        let unseen = offending(&|t| !transitions[t].observable && exact[t] != 0);
         if !unseen.is_empty() {
             return Err(Error::model(
                 c.location.clone(),
@@ -105,6 +118,32 @@ pub fn synthesize(plant: &PetriNet, constraints: &[Constraint]) -> Result<Superv
                 ),
             ));
         }
+        // D_c with every entry checked to fit an arc, hence an i64.
+        let mut row: Vec<i64> = Vec::with_capacity(exact.len());
+        let mut arcs: Vec<(usize, i64, u32)> = Vec::new();
+        for (t, &w) in exact.iter().enumerate() {
+            let weight = u32::try_from(w.unsigned_abs()).map_err(|_| {
+                Error::model(
+                    c.location.clone(),
+                    format!(
+                        "constraint `{}`: its control place would need an arc of weight {} on \
+                         transition `{}` (D_c = −L·D_p), more than an arc holds (2^32 − 1)",
+                        c.name,
+                        w.unsigned_abs(),
+                        transitions[t].id
+                    ),
+                )
+            })?;
+            let signed = if w < 0 {
+                -i64::from(weight)
+            } else {
+                i64::from(weight)
+            };
+            row.push(signed);
+            if signed != 0 {
+                arcs.push((t, signed, weight));
+            }
+        }
         let id = fresh_id(&net, k + 1);
         let place = net.places.len();
         net.places.push(Place {
@@ -112,17 +151,11 @@ pub fn synthesize(plant: &PetriNet, constraints: &[Constraint]) -> Result<Superv
             name: Some(c.name.clone()),
         });
         net.initial.push(initial);
-        for (t, &w) in row.iter().enumerate() {
-            let weight = u32::try_from(w.unsigned_abs()).map_err(|_| {
-                Error::model(
-                    c.location.clone(),
-                    format!("constraint `{}`: an arc weight of {w} does not fit", c.name),
-                )
-            })?;
-            match w {
-                w if w > 0 => net.transitions[t].output.push((place, weight)),
-                w if w < 0 => net.transitions[t].input.push((place, weight)),
-                _ => {}
+        for (t, signed, weight) in arcs {
+            if signed > 0 {
+                net.transitions[t].output.push((place, weight));
+            } else {
+                net.transitions[t].input.push((place, weight));
             }
         }
         control.push(ControlPlace {
@@ -260,6 +293,11 @@ mod tests {
             "c.toml:5:1: constraint `x` is already declared at line 1"
         );
         assert!(err("").contains("no [[constraint]]"));
+        // One place by id and by name: refused, not summed (to zero here).
+        assert_eq!(
+            err("[[constraint]]\nname = \"x\"\nweights = { m3 = 1, \"mixers on the supply\" = -1 }\nbound = 1\n"),
+            "c.toml:1:1: constraint `x` weighs place `m3` twice (as `m3` and as `mixers on the supply`): give it one weight"
+        );
         // By name where one place has it.
         let cs = constraint(
             &plant,
@@ -267,5 +305,50 @@ mod tests {
         )
         .unwrap();
         assert_eq!(cs[0].weights, [(2, 1)]);
+    }
+
+    /// `go` puts four tokens in `busy`, `done` (uncontrollable) takes them.
+    const FOURS: &str = "name = \"fours\"\nplaces = [{ id = \"free\", tokens = 1 }, { id = \"busy\" }]\n\
+        transitions = [{ id = \"go\", controllable = true, input = { free = 1 }, output = { busy = 4 } },\n\
+        { id = \"done\", controllable = false, input = { busy = 4 }, output = { free = 1 } }]\n";
+
+    #[test]
+    fn a_control_place_beyond_an_arc_or_a_place_is_refused_not_wrapped() {
+        let plant = toml::read(FOURS, Path::new("f.toml")).unwrap();
+        // busy weighted 2^62: D_c[go] = −2^64, which a 64-bit product
+        // wrapped to 0: a control place without arcs, `go` never held.
+        let cs = constraint(
+            &plant,
+            "[[constraint]]\nname = \"never busy\"\nweights = { busy = 4611686018427387904 }\nbound = 0\n",
+        )
+        .unwrap();
+        assert_eq!(
+            synthesize(&plant, &cs).unwrap_err().to_string(),
+            "c.toml:1:1: constraint `never busy`: its control place would need an arc of weight \
+             18446744073709551616 on transition `go` (D_c = −L·D_p), more than an arc holds (2^32 − 1)"
+        );
+        // m_c0 = b − L·m0 beyond a place's 2^32 − 1 tokens.
+        let cs = constraint(
+            &plant,
+            "[[constraint]]\nname = \"loose\"\nweights = { busy = 1 }\nbound = 9223372036854775807\n",
+        )
+        .unwrap();
+        assert_eq!(
+            synthesize(&plant, &cs).unwrap_err().to_string(),
+            "c.toml:1:1: constraint `loose`: its control place would start with m_c0 = b − L·m0 = \
+             9223372036854775807 tokens, more than a place holds (2^32 − 1)"
+        );
+        // Where L·D_p is 0 exactly (4·free + busy is kept: 2^62 and 2^60
+        // times it here), the control place has no arcs, and rightly.
+        let cs = constraint(
+            &plant,
+            "[[constraint]]\nname = \"kept\"\nweights = { free = 4611686018427387904, busy = 1152921504606846976 }\nbound = 4611686018427387904\n",
+        )
+        .unwrap();
+        let s = synthesize(&plant, &cs).unwrap();
+        assert_eq!(
+            (&s.control[0].incidence[..], s.control[0].initial),
+            (&[0, 0][..], 0)
+        );
     }
 }

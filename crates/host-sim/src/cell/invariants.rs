@@ -179,7 +179,7 @@ impl Checker {
             broken.push(Rule::BothHeatingUp);
         }
         for (c, control) in &self.constraints {
-            if c.weighted(marking) + i64::from(marking[*control]) != c.bound {
+            if c.weighted(marking) + i128::from(marking[*control]) != i128::from(c.bound) {
                 broken.push(Rule::PlaceInvariant(c.name.clone()));
             }
         }
