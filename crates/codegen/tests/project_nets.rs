@@ -192,3 +192,35 @@ fn a_control_place_beyond_a_nets_arithmetic_is_refused_not_wrapped() {
     );
     assert!(msg.contains("(2^32 − 1)"), "{msg}");
 }
+
+/// A net counter group's trace name reads back to its state whatever the
+/// place ids hold (`a + b`, `0`, `2·x`, a quote): such ids are quoted.
+#[test]
+fn net_state_names_read_back_whatever_the_place_ids() {
+    let p = load_ok(&format!(
+        "[plc]\nname = \"x\"\n{EVENTS}[[net]]\nname = \"odd\"\nfile = \"nets/odd_ids.toml\"\n"
+    ));
+    let net = &p.nets[0];
+    let markings: [&[u32]; 4] = [&[1, 0, 0, 0], &[0, 2, 1, 0], &[1, 0, 0, 1], &[0, 0, 0, 0]];
+    let mut names = std::collections::HashSet::new();
+    for m in markings {
+        let state = net.pack(0, m);
+        let name = net.state_name(0, state);
+        assert_eq!(net.parse_state(0, &name), Some(state), "{name}");
+        assert!(names.insert(name.clone()), "{name} twice");
+    }
+    assert_eq!(
+        net.state_name(0, net.pack(0, &[0, 2, 1, 0])),
+        "2·\"0\" + \"2·x\""
+    );
+    assert_eq!(
+        net.state_name(0, net.pack(0, &[1, 0, 0, 1])),
+        "\"a + b\" + \"q\\\"\""
+    );
+    assert_eq!(net.parse_state(0, "\"a + b"), None, "an open quote");
+    assert_eq!(
+        net.parse_state(0, "a + b"),
+        None,
+        "unquoted, two unknown places"
+    );
+}

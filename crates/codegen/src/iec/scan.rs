@@ -221,7 +221,7 @@ const ALWAYS_DENSE: usize = 1024;
 /// A sparse table costs a search per lookup and its code, so a table
 /// that saves less stays dense (the boiler's seven, half their entries
 /// defined, would save at most a fifth), as do arrays of at most
-/// [`ALWAYS_DENSE`] bytes; the AGV's saves four fifths, the monolithic
+/// 1 KB; the AGV's saves four fifths, the monolithic
 /// boiler's two fifths.
 pub fn is_sparse(project: &Project, j: usize) -> bool {
     let shape = Shape::of(&project.supervisors[j]);

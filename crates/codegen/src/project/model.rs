@@ -322,37 +322,48 @@ impl Net {
     /// The state of group `g` named by [`Net::state_name`], `None` if
     /// the name is not a marking of the group's places.
     pub fn parse_state(&self, g: usize, name: &str) -> Option<u32> {
+        use des::petri::read_marking_term;
         if name == "0" {
             return Some(0);
         }
         let mut x = 0u32;
-        for term in name.split(" + ") {
-            let (count, id) = match term.split_once('·') {
-                Some((k, id)) => (k.parse::<u32>().ok()?, id),
-                None => (1, term),
+        let mut rest = name;
+        loop {
+            // A count `k·` before the id, when more than one token.
+            let (count, after) = match rest.split_once('·') {
+                Some((k, after)) if !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()) => {
+                    (k.parse::<u32>().ok()?, after)
+                }
+                _ => (1, rest),
             };
-            let p = self.net.place(id)?;
+            let (id, tail) = read_marking_term(after, " + ")?;
+            let p = self.net.place(&id)?;
             let f = self.fields[p];
             if f.group != g || count > f.mask() >> f.shift {
                 return None;
             }
             x |= count << f.shift;
+            match tail.strip_prefix(" + ") {
+                Some(next) => rest = next,
+                None if tail.is_empty() => return Some(x),
+                None => return None,
+            }
         }
-        Some(x)
     }
 
     /// Group `g`'s state read as the marking of its places: `p_1 + 2·p_3`
-    /// style, `0` for no token.
+    /// style, `0` for no token; an id that could be misread (`a + b`, `0`)
+    /// quoted, so that [`Net::parse_state`] reads every name back.
     pub fn state_name(&self, g: usize, state: u32) -> String {
         let terms: Vec<String> = self
             .group_places(g)
             .filter_map(|p| {
                 let f = self.fields[p];
                 let count = (state & f.mask()) >> f.shift;
-                let id = &self.net.places()[p].id;
+                let id = des::petri::marking_term(&self.net.places()[p].id, "0");
                 match count {
                     0 => None,
-                    1 => Some(id.clone()),
+                    1 => Some(id),
                     k => Some(format!("{k}·{id}")),
                 }
             })

@@ -181,7 +181,7 @@ impl PetriNet {
             .enumerate()
             .filter(|&(_, &k)| k > 0)
             .map(|(p, &k)| {
-                let id = marking_term(&self.places[p].id);
+                let id = marking_term(&self.places[p].id, "empty");
                 match k {
                     1 => id,
                     k => format!("{k}·{id}"),
@@ -196,11 +196,14 @@ impl PetriNet {
     }
 }
 
-/// A place id as a term of [`PetriNet::marking_name`]: bare unless it
-/// could be misread, quoted then.
-fn marking_term(id: &str) -> String {
+/// A place id as a term of a marking's name ([`PetriNet::marking_name`],
+/// the trace names of a project's nets): bare unless it could be misread
+/// (it holds `+`, `·`, `"` or `\`, is empty, or is `empty_word`, the
+/// name of the empty marking), quoted then, `"a+b"`, with `\"` and `\\`
+/// for its quote and backslash.
+pub fn marking_term(id: &str, empty_word: &str) -> String {
     let special = |c: char| matches!(c, '+' | '·' | '"' | '\\');
-    if id != "empty" && !id.is_empty() && !id.contains(special) {
+    if id != empty_word && !id.is_empty() && !id.contains(special) {
         return id.to_owned();
     }
     let mut quoted = String::with_capacity(id.len() + 2);
@@ -213,6 +216,27 @@ fn marking_term(id: &str) -> String {
     }
     quoted.push('"');
     quoted
+}
+
+/// The place id of a term written by [`marking_term`] at the start of
+/// `text`, and the rest of `text`; `None` for an unterminated quote.
+pub fn read_marking_term<'t>(text: &'t str, separator: &str) -> Option<(String, &'t str)> {
+    let Some(quoted) = text.strip_prefix('"') else {
+        return Some(match text.find(separator) {
+            Some(k) => (text[..k].to_owned(), &text[k..]),
+            None => (text.to_owned(), ""),
+        });
+    };
+    let mut id = String::new();
+    let mut chars = quoted.char_indices();
+    while let Some((k, c)) = chars.next() {
+        match c {
+            '\\' => id.push(chars.next()?.1),
+            '"' => return Some((id, &quoted[k + 1..])),
+            c => id.push(c),
+        }
+    }
+    None
 }
 
 /// What an id names, for the builder's checks.

@@ -33,7 +33,7 @@
 //! Written: the same, on one page, every name and id exactly as in the
 //! net. XML 1.0 cannot carry the control characters other than tab, line
 //! feed and carriage return, nor U+FFFE and U+FFFF, not even as character
-//! references: a net with one in a name or id is refused by [`write`],
+//! references: a net with one in a name or id is refused by [`write()`],
 //! naming the element, rather than written as a file no reader accepts or
 //! with the name changed.
 
