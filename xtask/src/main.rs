@@ -136,14 +136,45 @@ pub fn python_with_faudes() -> Result<String> {
     }
 }
 
+/// The pinned toolchain with the targets and components
+/// `rust-toolchain.toml` lists. Under `cargo xtask`, `RUSTUP_TOOLCHAIN`
+/// names the active toolchain and `rustup toolchain install` then only
+/// says it exists (leaving a toolchain provisioned without the Cortex-M
+/// targets as it is), so they are added by name.
+fn toolchain() -> Result {
+    #[derive(serde::Deserialize)]
+    struct File {
+        toolchain: Pinned,
+    }
+    #[derive(serde::Deserialize)]
+    struct Pinned {
+        #[serde(default)]
+        targets: Vec<String>,
+        #[serde(default)]
+        components: Vec<String>,
+    }
+    let path = root().join("rust-toolchain.toml");
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let pinned: File = toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let rustup = || {
+        let mut cmd = Command::new("rustup");
+        cmd.current_dir(root());
+        cmd
+    };
+    run(rustup().arg("toolchain").arg("install"))?;
+    run(rustup()
+        .args(["target", "add"])
+        .args(&pinned.toolchain.targets))?;
+    run(rustup()
+        .args(["component", "add"])
+        .args(&pinned.toolchain.components))
+}
+
 /// The whole CI pipeline.
 fn ci() -> Result {
     // Installs the pinned toolchain's targets and components when missing
     // (rustup does not do that on its own for an installed toolchain).
-    run(Command::new("rustup")
-        .arg("toolchain")
-        .arg("install")
-        .current_dir(root()))?;
+    toolchain()?;
     // Before anything installs libclang: the commands a new user starts
     // with must not need it.
     deps::run_task(&[])?;
