@@ -333,12 +333,39 @@ pub mod places {{"
         doc
     }
 
-    /// The configuration statics, `CONFIG` and `Memory`.
-    pub(super) fn config(&mut self) {
-        let pools = self.pools;
-        let p = self.project;
-        let list = |items: Vec<String>| items.join(", ");
+    /// `const <name>: [<ty>; N] = [<items>];` under the doc comment
+    /// `titled(title, doc)`: one pool of the configuration.
+    fn pool(&mut self, name: &str, ty: &str, title: &str, doc: &str, items: &[String]) {
+        let _ = writeln!(
+            self.out,
+            "{}const {name}: [{ty}; {}] = [{}];",
+            titled(title, doc),
+            items.len(),
+            items.join(", ")
+        );
+    }
 
+    /// The configuration statics, `CONFIG` and `Memory`, in the order the
+    /// generated file has always had.
+    pub(super) fn config(&mut self) {
+        self.input_specs();
+        self.output_specs();
+        self.timer_specs();
+        self.event_specs();
+        self.supervisor_specs();
+        self.input_masks();
+        self.event_lists();
+        self.event_masks();
+        self.actions();
+        self.memberships();
+        self.state_map();
+        self.config_and_memory();
+    }
+
+    /// `INPUT_WORDS`, `INPUTS` (filtering and the events each input's
+    /// edges can raise) and `DEBOUNCED`.
+    fn input_specs(&mut self) {
+        let pools = self.pools;
         let mut doc = String::new();
         for (i, input) in pools.inputs.iter().enumerate() {
             let mut about = match input.debounce_scans {
@@ -349,42 +376,44 @@ pub mod places {{"
             if !raised.is_empty() {
                 let _ = write!(about, "; its edges can raise {}", listed(&raised, "and"));
             }
-            let _ = writeln!(doc, "/// - {i} {}: {about}", quoted(&p.inputs[i].name));
+            let name = quoted(&self.project.inputs[i].name);
+            let _ = writeln!(doc, "/// - {i} {name}: {about}");
         }
-        let inputs = list(
-            pools
-                .inputs
-                .iter()
-                .map(|i| {
-                    format!(
-                        "InputSpec {{ debounce_scans: {}, raises: {} }}",
-                        i.debounce_scans,
-                        self.span(i.raises)
-                    )
-                })
-                .collect(),
-        );
+        let inputs: Vec<String> = pools
+            .inputs
+            .iter()
+            .map(|i| {
+                format!(
+                    "InputSpec {{ debounce_scans: {}, raises: {} }}",
+                    i.debounce_scans,
+                    self.span(i.raises)
+                )
+            })
+            .collect();
         let _ = writeln!(
             self.out,
             "/// Words of the input image and of every input mask (32 inputs per word).\npub const INPUT_WORDS: usize = executor::program::words(input::COUNT);"
         );
-        let _ = writeln!(
-            self.out,
-            "{}const INPUTS: [InputSpec; {}] = [{inputs}];",
-            titled(
-                "Input filtering and the events each input's edges can raise, by input",
-                &doc
-            ),
-            pools.inputs.len()
+        self.pool(
+            "INPUTS",
+            "InputSpec",
+            "Input filtering and the events each input's edges can raise, by input",
+            &doc,
+            &inputs,
         );
         let debounced: Vec<String> = pools.debounced.iter().map(|&i| self.input(i)).collect();
-        let _ = writeln!(
-            self.out,
-            "/// The debounced inputs; filter counter `k` belongs to the `k`-th.\nconst DEBOUNCED: [Index; {}] = [{}];",
-            debounced.len(),
-            list(debounced)
+        self.pool(
+            "DEBOUNCED",
+            "Index",
+            "The debounced inputs; filter counter `k` belongs to the `k`-th",
+            "",
+            &debounced,
         );
+    }
 
+    /// `OUTPUTS`: safe levels, initial levels and state maps.
+    fn output_specs(&mut self) {
+        let pools = self.pools;
         let mut doc = String::new();
         for (o, out) in pools.outputs.iter().enumerate() {
             let index = o as ex::Index;
@@ -402,37 +431,34 @@ pub mod places {{"
             } else {
                 format!("1 while {}", self.state_map_text(out.state_map))
             };
-            let _ = writeln!(
-                doc,
-                "/// - {o} {} (safe {}): {drive}",
-                self.output_name(index),
-                u8::from(out.safe)
-            );
+            let name = self.output_name(index);
+            let safe = u8::from(out.safe);
+            let _ = writeln!(doc, "/// - {o} {name} (safe {safe}): {drive}");
         }
-        let outputs = list(
-            pools
-                .outputs
-                .iter()
-                .map(|o| {
-                    format!(
-                        "OutputSpec {{ safe: {}, initial: {}, state_map: {} }}",
-                        o.safe,
-                        o.initial,
-                        self.span(o.state_map)
-                    )
-                })
-                .collect(),
+        let outputs: Vec<String> = pools
+            .outputs
+            .iter()
+            .map(|o| {
+                format!(
+                    "OutputSpec {{ safe: {}, initial: {}, state_map: {} }}",
+                    o.safe,
+                    o.initial,
+                    self.span(o.state_map)
+                )
+            })
+            .collect();
+        self.pool(
+            "OUTPUTS",
+            "OutputSpec",
+            "Outputs, by output (level in fault mode, and how each is driven)",
+            &doc,
+            &outputs,
         );
-        let _ = writeln!(
-            self.out,
-            "{}const OUTPUTS: [OutputSpec; {}] = [{outputs}];",
-            titled(
-                "Outputs, by output (level in fault mode, and how each is driven)",
-                &doc
-            ),
-            pools.outputs.len()
-        );
+    }
 
+    /// `TIMERS`: presets and the events each expiry raises.
+    fn timer_specs(&mut self) {
+        let pools = self.pools;
         let mut doc = String::new();
         for (t, timer) in pools.timers.iter().enumerate() {
             let index = t as ex::Index;
@@ -454,64 +480,68 @@ pub mod places {{"
             }
             let _ = writeln!(doc, "/// - {t} {}: {about}", self.timer_name(index));
         }
-        let timers = list(
-            pools
-                .timers
-                .iter()
-                .map(|t| {
-                    format!(
-                        "TimerSpec {{ preset_ms: {}, raises: {} }}",
-                        t.preset_ms,
-                        self.span(t.raises)
-                    )
-                })
-                .collect(),
+        let timers: Vec<String> = pools
+            .timers
+            .iter()
+            .map(|t| {
+                format!(
+                    "TimerSpec {{ preset_ms: {}, raises: {} }}",
+                    t.preset_ms,
+                    self.span(t.raises)
+                )
+            })
+            .collect();
+        self.pool(
+            "TIMERS",
+            "TimerSpec",
+            "Timer presets, by timer",
+            &doc,
+            &timers,
         );
-        let _ = writeln!(
-            self.out,
-            "{}const TIMERS: [TimerSpec; {}] = [{timers}];",
-            titled("Timer presets, by timer", &doc),
-            pools.timers.len()
-        );
+    }
 
+    /// `EVENTS`: triggers, conditions, requests, actions and memberships.
+    fn event_specs(&mut self) {
+        let pools = self.pools;
         let mut doc = String::new();
         for e in 0..pools.events.len() {
             let _ = writeln!(doc, "/// - {e} {}", self.event_text(e));
         }
-        let events = list(
-            pools
-                .events
-                .iter()
-                .map(|e| {
-                    let trigger = match e.trigger {
-                        ex::Trigger::Command => "Trigger::Command".to_owned(),
-                        ex::Trigger::Rising(s) => format!("Trigger::Rising({})", self.span(s)),
-                        ex::Trigger::Falling(s) => format!("Trigger::Falling({})", self.span(s)),
-                        ex::Trigger::Expired(t) => format!("Trigger::Expired({})", self.timer(t)),
-                    };
-                    let request = e
-                        .request
-                        .map_or("None".to_owned(), |r| format!("Some({})", self.input(r)));
-                    format!(
-                        "EventSpec {{ trigger: {trigger}, when: {}, unless: {}, request: {request}, actions: {}, members: {} }}",
-                        self.span(e.when),
-                        self.span(e.unless),
-                        self.span(e.actions),
-                        self.span(e.members)
-                    )
-                })
-                .collect(),
+        let events: Vec<String> = pools
+            .events
+            .iter()
+            .map(|e| {
+                let trigger = match e.trigger {
+                    ex::Trigger::Command => "Trigger::Command".to_owned(),
+                    ex::Trigger::Rising(s) => format!("Trigger::Rising({})", self.span(s)),
+                    ex::Trigger::Falling(s) => format!("Trigger::Falling({})", self.span(s)),
+                    ex::Trigger::Expired(t) => format!("Trigger::Expired({})", self.timer(t)),
+                };
+                let request = e
+                    .request
+                    .map_or("None".to_owned(), |r| format!("Some({})", self.input(r)));
+                format!(
+                    "EventSpec {{ trigger: {trigger}, when: {}, unless: {}, request: {request}, actions: {}, members: {} }}",
+                    self.span(e.when),
+                    self.span(e.unless),
+                    self.span(e.actions),
+                    self.span(e.members)
+                )
+            })
+            .collect();
+        self.pool(
+            "EVENTS",
+            "EventSpec",
+            "Events in priority order (trigger and conditions; actions; supervisors, with the event's local index)",
+            &doc,
+            &events,
         );
-        let _ = writeln!(
-            self.out,
-            "{}const EVENTS: [EventSpec; {}] = [{events}];",
-            titled(
-                "Events in priority order (trigger and conditions; actions; supervisors, with the event's local index)",
-                &doc
-            ),
-            pools.events.len()
-        );
+    }
 
+    /// `SUPERVISORS`: sizes, initial states, alphabets and the events
+    /// outside them.
+    fn supervisor_specs(&mut self) {
+        let pools = self.pools;
         let mut doc = String::new();
         for (j, s) in pools.supervisors.iter().enumerate() {
             let index = j as ex::Index;
@@ -523,31 +553,32 @@ pub mod places {{"
                 self.state_name(index, s.initial)
             );
         }
-        let sups = list(
-            pools
-                .supervisors
-                .iter()
-                .map(|s| {
-                    format!(
-                        "SupervisorSpec {{ states: {}, initial: {}, alphabet: {}, outside: {} }}",
-                        s.states,
-                        s.initial,
-                        self.span(s.alphabet),
-                        self.span(s.outside)
-                    )
-                })
-                .collect(),
+        let sups: Vec<String> = pools
+            .supervisors
+            .iter()
+            .map(|s| {
+                format!(
+                    "SupervisorSpec {{ states: {}, initial: {}, alphabet: {}, outside: {} }}",
+                    s.states,
+                    s.initial,
+                    self.span(s.alphabet),
+                    self.span(s.outside)
+                )
+            })
+            .collect();
+        self.pool(
+            "SUPERVISORS",
+            "SupervisorSpec",
+            "Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor",
+            &doc,
+            &sups,
         );
-        let _ = writeln!(
-            self.out,
-            "{}const SUPERVISORS: [SupervisorSpec; {}] = [{sups}];",
-            titled(
-                "Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor",
-                &doc
-            ),
-            pools.supervisors.len()
-        );
+    }
 
+    /// `INPUT_MASKS`: edge bindings, `when`/`unless` conditions and the
+    /// debounced inputs, each word named by its inputs.
+    fn input_masks(&mut self) {
+        let pools = self.pools;
         let mut spans = vec![(pools.debounce_mask, "the debounced inputs".to_owned())];
         for (e, spec) in pools.events.iter().enumerate() {
             let name = self.event_name(e);
@@ -559,182 +590,172 @@ pub mod places {{"
         }
         let doc = self.owners(spans);
         let iw = ex::words(pools.inputs.len()).max(1);
-        let masks = list(
-            pools
-                .input_masks
-                .iter()
-                .enumerate()
-                .map(|(at, &w)| self.mask_word_expr(at % iw, w))
-                .collect(),
+        let masks: Vec<String> = pools
+            .input_masks
+            .iter()
+            .enumerate()
+            .map(|(at, &w)| self.mask_word_expr(at % iw, w))
+            .collect();
+        self.pool(
+            "INPUT_MASKS",
+            "u32",
+            "Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position",
+            &doc,
+            &masks,
         );
-        let _ = writeln!(
-            self.out,
-            "{}const INPUT_MASKS: [u32; {}] = [{masks}];",
-            titled(
-                "Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position",
-                &doc
-            ),
-            pools.input_masks.len()
-        );
+    }
 
+    /// `EVENT_LISTS`: what inputs' edges and timers' expiries raise, the
+    /// alphabets, the commands with a request input.
+    fn event_lists(&mut self) {
+        let pools = self.pools;
         let mut spans = Vec::new();
         for (i, input) in pools.inputs.iter().enumerate() {
-            spans.push((
-                input.raises,
-                format!("edges of {}", self.input_name(i as ex::Index)),
-            ));
+            let name = self.input_name(i as ex::Index);
+            spans.push((input.raises, format!("edges of {name}")));
         }
         for (t, timer) in pools.timers.iter().enumerate() {
-            spans.push((
-                timer.raises,
-                format!("expiry of {}", self.timer_name(t as ex::Index)),
-            ));
+            let name = self.timer_name(t as ex::Index);
+            spans.push((timer.raises, format!("expiry of {name}")));
         }
         for (j, sup) in pools.supervisors.iter().enumerate() {
             let name = self.supervisor_name(j as ex::Index);
             spans.push((sup.alphabet, format!("alphabet of {name}")));
         }
-        spans.push((
-            pools.requested,
-            "the commands with a request input".to_owned(),
-        ));
+        let requested = "the commands with a request input".to_owned();
+        spans.push((pools.requested, requested));
         let doc = self.owners(spans);
-        let event_lists = list(
-            pools
-                .event_lists
-                .iter()
-                .map(|&e| format!("event::{}", ident(&p.events[usize::from(e)].name)))
-                .collect(),
+        let events = &self.project.events;
+        let lists: Vec<String> = pools
+            .event_lists
+            .iter()
+            .map(|&e| format!("event::{}", ident(&events[usize::from(e)].name)))
+            .collect();
+        self.pool(
+            "EVENT_LISTS",
+            "Index",
+            "Event lists: what an input's edges or a timer's expiry can raise, each supervisor's alphabet, the commands with a request input, by position",
+            &doc,
+            &lists,
         );
-        let _ = writeln!(
-            self.out,
-            "{}const EVENT_LISTS: [Index; {}] = [{event_lists}];",
-            titled(
-                "Event lists: what an input's edges or a timer's expiry can raise, each supervisor's alphabet, the commands with a request input, by position",
-                &doc
-            ),
-            pools.event_lists.len()
-        );
+    }
 
+    /// `EVENT_MASKS`: what each supervisor never blocks, the commands
+    /// without a request input.
+    fn event_masks(&mut self) {
+        let pools = self.pools;
         let mut spans = Vec::new();
         for (j, sup) in pools.supervisors.iter().enumerate() {
             let name = self.supervisor_name(j as ex::Index);
             spans.push((sup.outside, format!("outside the alphabet of {name}")));
         }
-        spans.push((
-            pools.commands,
-            "the commands without a request input".to_owned(),
-        ));
+        let commands = "the commands without a request input".to_owned();
+        spans.push((pools.commands, commands));
         let doc = self.owners(spans);
         let ew = ex::words(pools.events.len()).max(1);
-        let event_masks = list(
-            pools
-                .event_masks
-                .iter()
-                .enumerate()
-                .map(|(at, &w)| self.event_word_expr(at % ew, w))
-                .collect(),
+        let masks: Vec<String> = pools
+            .event_masks
+            .iter()
+            .enumerate()
+            .map(|(at, &w)| self.event_word_expr(at % ew, w))
+            .collect();
+        self.pool(
+            "EVENT_MASKS",
+            "u32",
+            "Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position",
+            &doc,
+            &masks,
         );
-        let _ = writeln!(
-            self.out,
-            "{}const EVENT_MASKS: [u32; {}] = [{event_masks}];",
-            titled(
-                "Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position",
-                &doc
-            ),
-            pools.event_masks.len()
-        );
+    }
 
+    /// `ACTIONS`, each event's run named by the event.
+    fn actions(&mut self) {
+        let pools = self.pools;
         let spans = (0..pools.events.len())
             .map(|e| (pools.events[e].actions, self.event_name(e)))
             .collect();
         let doc = self.owners(spans);
-        let actions = list(
-            pools
-                .actions
-                .iter()
-                .map(|a| match *a {
-                    ex::Action::Set(o) => format!("Action::Set({})", self.output(o)),
-                    ex::Action::Clear(o) => format!("Action::Clear({})", self.output(o)),
-                    ex::Action::Start(t) => format!("Action::Start({})", self.timer(t)),
-                    ex::Action::Reset(t) => format!("Action::Reset({})", self.timer(t)),
-                })
-                .collect(),
+        let actions: Vec<String> = pools
+            .actions
+            .iter()
+            .map(|a| match *a {
+                ex::Action::Set(o) => format!("Action::Set({})", self.output(o)),
+                ex::Action::Clear(o) => format!("Action::Clear({})", self.output(o)),
+                ex::Action::Start(t) => format!("Action::Start({})", self.timer(t)),
+                ex::Action::Reset(t) => format!("Action::Reset({})", self.timer(t)),
+            })
+            .collect();
+        self.pool(
+            "ACTIONS",
+            "Action",
+            "Event actions, by position",
+            &doc,
+            &actions,
         );
-        let _ = writeln!(
-            self.out,
-            "{}const ACTIONS: [Action; {}] = [{actions}];",
-            titled("Event actions, by position", &doc),
-            pools.actions.len()
-        );
+    }
 
+    /// `MEMBERSHIPS`: which supervisors have each event, and its local
+    /// index there.
+    fn memberships(&mut self) {
+        let pools = self.pools;
         let spans = (0..pools.events.len())
             .map(|e| (pools.events[e].members, self.event_name(e)))
             .collect();
         let doc = self.owners(spans);
-        let members = list(
-            pools
-                .memberships
-                .iter()
-                .map(|m| {
-                    format!(
-                        "Membership {{ supervisor: {}, local: {} }}",
-                        self.supervisor(m.supervisor),
-                        m.local
-                    )
-                })
-                .collect(),
+        let members: Vec<String> = pools
+            .memberships
+            .iter()
+            .map(|m| {
+                let supervisor = self.supervisor(m.supervisor);
+                format!(
+                    "Membership {{ supervisor: {supervisor}, local: {} }}",
+                    m.local
+                )
+            })
+            .collect();
+        self.pool(
+            "MEMBERSHIPS",
+            "Membership",
+            "Which supervisors have each event, and its local index there, by position",
+            &doc,
+            &members,
         );
-        let _ = writeln!(
-            self.out,
-            "{}const MEMBERSHIPS: [Membership; {}] = [{members}];",
-            titled(
-                "Which supervisors have each event, and its local index there, by position",
-                &doc
-            ),
-            pools.memberships.len()
-        );
+    }
 
+    /// `STATE_MAP`: the Moore outputs' supervisor states and place counts.
+    fn state_map(&mut self) {
+        let pools = self.pools;
         let spans = (0..pools.outputs.len())
             .map(|o| (pools.outputs[o].state_map, self.output_name(o as ex::Index)))
             .collect();
         let doc = self.owners(spans);
-        let map = list(
-            pools
-                .state_map
-                .iter()
-                .map(|m| {
-                    if m.mask == u32::MAX {
-                        format!(
-                            "StateMapEntry::in_state({}, {})",
-                            self.supervisor(m.supervisor),
-                            m.state
-                        )
-                    } else {
-                        let count = m.state >> m.mask.trailing_zeros().min(31);
-                        format!(
-                            "StateMapEntry::marked({}, {:#x}, {count})",
-                            self.supervisor(m.supervisor),
-                            m.mask
-                        )
-                    }
-                })
-                .collect(),
-        );
-        let _ = writeln!(
-            self.out,
-            "{}const STATE_MAP: [StateMapEntry; {}] = [{map}];",
-            titled(
-                if self.project.nets.is_empty() {
-                    "Moore outputs: (supervisor, state) pairs, by position"
+        let map: Vec<String> = pools
+            .state_map
+            .iter()
+            .map(|m| {
+                let supervisor = self.supervisor(m.supervisor);
+                if m.mask == u32::MAX {
+                    format!("StateMapEntry::in_state({supervisor}, {})", m.state)
                 } else {
-                    "Moore outputs: a supervisor's state, or a count of tokens in a net's place (its counter's mask), by position"
-                },
-                &doc
-            ),
-            pools.state_map.len()
-        );
+                    let count = m.state >> m.mask.trailing_zeros().min(31);
+                    format!(
+                        "StateMapEntry::marked({supervisor}, {:#x}, {count})",
+                        m.mask
+                    )
+                }
+            })
+            .collect();
+        let title = if self.project.nets.is_empty() {
+            "Moore outputs: (supervisor, state) pairs, by position"
+        } else {
+            "Moore outputs: a supervisor's state, or a count of tokens in a net's place (its counter's mask), by position"
+        };
+        self.pool("STATE_MAP", "StateMapEntry", title, &doc, &map);
+    }
 
+    /// `CONFIG`, `CONFIG_CRC`, `EVENT_WORDS` and `Memory`.
+    fn config_and_memory(&mut self) {
+        let pools = self.pools;
         let policy = match pools.unexpected {
             ex::UnexpectedPolicy::Fault => "Fault",
             ex::UnexpectedPolicy::Ignore => "Ignore",
