@@ -7,6 +7,7 @@
 //! [`Program`] with the very decoder the target uses, or through
 //! [`LogicImage`], which evaluates the minimised CMSSM covers.
 
+use crate::automaton::StateId;
 use crate::backend::logic::{Encoding, LogicError, LogicSupervisor, Minimisation, Settings};
 use crate::backend::table::EncodedTable;
 use crate::error::{Error, Location, Result};
@@ -151,204 +152,21 @@ impl ConfigPools {
         })
     }
 
+    /// The pools are filled in a fixed order (events, outputs, inputs,
+    /// timers, the debounced inputs, supervisors, commands): spans and the
+    /// image CRC depend on it, and so does which error a project with
+    /// several is refused with.
     fn lay_out(project: &Project) -> Result<ConfigPools> {
-        let mut masks = MaskPool::new("input", project.inputs.len());
-        let mut actions = Vec::new();
-        let mut memberships = Vec::new();
-        let mut state_map = Vec::new();
-        let to_indices = |list: &[usize], what: &str| -> Result<Vec<Index>> {
-            list.iter().map(|&i| index(i, what)).collect()
-        };
-
-        // Every executor supervisor as (states, initial, alphabet in local
-        // order): the automata, then the net groups, whose local events are
-        // the transitions touching the group.
-        let mut specs: Vec<(u32, u32, Vec<usize>)> = Vec::new();
-        for s in &project.supervisors {
-            let initial = s.automaton.initial().ok_or_else(|| {
-                Error::Incompatible(format!("supervisor `{}` has no initial state", s.name))
-            })?;
-            let alphabet = s.local_events.iter().map(|&(e, _)| e).collect();
-            specs.push((s.automaton.num_states() as u32, initial.0, alphabet));
-        }
-        for net in &project.nets {
-            for g in 0..net.groups() {
-                let alphabet = net
-                    .group_transitions(g)
-                    .iter()
-                    .map(|&t| net.events[t])
-                    .collect();
-                specs.push((
-                    1 << net.group_bits[g],
-                    net.pack(g, net.net.initial()),
-                    alphabet,
-                ));
-            }
-        }
-
-        // Which supervisors have each event, with its local index there.
-        let mut members_of: Vec<Vec<ex::Membership>> = vec![Vec::new(); project.events.len()];
-        for (j, (_, _, alphabet)) in specs.iter().enumerate() {
-            for (local, &global) in alphabet.iter().enumerate() {
-                members_of[global].push(ex::Membership {
-                    supervisor: index(j, "supervisors")?,
-                    local: index(local, "events")?,
-                });
-            }
-        }
-
-        let mut events = Vec::with_capacity(project.events.len());
-        for (e, ev) in project.events.iter().enumerate() {
-            let trigger = match &ev.trigger {
-                Trigger::Command => ex::Trigger::Command,
-                Trigger::Rising(list) => ex::Trigger::Rising(masks.span(list)?),
-                Trigger::Falling(list) => ex::Trigger::Falling(masks.span(list)?),
-                Trigger::Expired(t) => ex::Trigger::Expired(index(*t, "timers")?),
-            };
-            let when = masks.span(&ev.when)?;
-            let unless = masks.span(&ev.unless)?;
-            let acts: Vec<ex::Action> = ev
-                .actions
-                .iter()
-                .map(|a| {
-                    Ok(match *a {
-                        Action::Set(o) => ex::Action::Set(index(o, "outputs")?),
-                        Action::Clear(o) => ex::Action::Clear(index(o, "outputs")?),
-                        Action::Start(t) => ex::Action::Start(index(t, "timers")?),
-                        Action::Reset(t) => ex::Action::Reset(index(t, "timers")?),
-                    })
-                })
-                .collect::<Result<_>>()?;
-            events.push(ex::EventSpec {
-                trigger,
-                when,
-                unless,
-                request: ev.request.map(|r| index(r, "inputs")).transpose()?,
-                actions: push_span(&mut actions, &acts, "actions")?,
-                members: push_span(&mut memberships, &members_of[e], "memberships")?,
-            });
-        }
-
-        let mut outputs = Vec::with_capacity(project.outputs.len());
-        for out in &project.outputs {
-            let (initial, map) = match &out.drive {
-                Drive::Actions { initial } => (*initial, Span::EMPTY),
-                Drive::States(entries) => {
-                    let mut list = Vec::new();
-                    for (sup, states) in entries {
-                        for s in states {
-                            list.push(ex::StateMapEntry::in_state(
-                                index(*sup, "supervisors")?,
-                                s.0,
-                            ));
-                        }
-                    }
-                    (
-                        false,
-                        push_span(&mut state_map, &list, "state-map entries")?,
-                    )
-                }
-                Drive::Places(entries) => {
-                    // One entry per count a place can hold (at least 1,
-                    // so a place map is never empty).
-                    let mut list = Vec::new();
-                    for &(n, ref places) in entries {
-                        let net = &project.nets[n];
-                        for &p in places {
-                            let field = net.fields[p];
-                            let j = project.group_supervisor(n, field.group);
-                            for count in 1..=net.bounds[p].max(1) {
-                                list.push(ex::StateMapEntry::marked(
-                                    index(j, "supervisors")?,
-                                    field.mask(),
-                                    count,
-                                ));
-                            }
-                        }
-                    }
-                    (
-                        false,
-                        push_span(&mut state_map, &list, "state-map entries")?,
-                    )
-                }
-            };
-            outputs.push(ex::OutputSpec {
-                safe: out.safe,
-                initial,
-                state_map: map,
-            });
-        }
-
-        // The events each input's edges and each timer's expiry can raise.
-        let mut event_lists = Vec::new();
-        let mut raises_of = |bound: &dyn Fn(&Trigger) -> bool| -> Result<Span> {
-            let events: Vec<Index> = project
-                .events
-                .iter()
-                .enumerate()
-                .filter(|(_, ev)| bound(&ev.trigger))
-                .map(|(e, _)| index(e, "events"))
-                .collect::<Result<_>>()?;
-            push_span(&mut event_lists, &events, "event lists")
-        };
-        let mut inputs = Vec::with_capacity(project.inputs.len());
-        for (i, input) in project.inputs.iter().enumerate() {
-            let raises = raises_of(&|t| match t {
-                Trigger::Rising(list) | Trigger::Falling(list) => list.contains(&i),
-                Trigger::Command | Trigger::Expired(_) => false,
-            })?;
-            inputs.push(ex::InputSpec {
-                debounce_scans: input.debounce_scans,
-                raises,
-            });
-        }
-        let mut timers = Vec::with_capacity(project.timers.len());
-        for (t, timer) in project.timers.iter().enumerate() {
-            let raises = raises_of(&|trigger| *trigger == Trigger::Expired(t))?;
-            timers.push(ex::TimerSpec {
-                preset_ms: timer.preset_ms,
-                raises,
-            });
-        }
-        let debounced_inputs: Vec<usize> = (0..project.inputs.len())
-            .filter(|&i| project.inputs[i].debounce_scans >= 2)
-            .collect();
-        let debounce_mask = masks.span(&debounced_inputs)?;
-        let debounced = to_indices(&debounced_inputs, "inputs")?;
-
-        // Event sets: what each supervisor never blocks, then the commands
-        // the controller may choose without a request.
-        let mut event_masks = MaskPool::new("event", project.events.len());
-        let mut supervisors = Vec::with_capacity(specs.len());
-        for (states, initial, alphabet) in specs {
-            let outside: Vec<usize> = (0..project.events.len())
-                .filter(|e| !alphabet.contains(e))
-                .collect();
-            let outside = event_masks.span(&outside)?;
-            supervisors.push(ex::SupervisorSpec {
-                states,
-                initial,
-                alphabet: push_span(
-                    &mut event_lists,
-                    &to_indices(&alphabet, "events")?,
-                    "event lists",
-                )?,
-                outside,
-            });
-        }
-        let is_command = |e: &usize| project.events[*e].trigger == Trigger::Command;
-        let commands: Vec<usize> = (0..project.events.len())
-            .filter(|e| is_command(e) && project.events[*e].request.is_none())
-            .collect();
-        let commands = event_masks.span(&commands)?;
-        let requested: Vec<usize> = (0..project.events.len())
-            .filter(|e| is_command(e) && project.events[*e].request.is_some())
-            .collect();
-        let requested = push_span(
-            &mut event_lists,
-            &to_indices(&requested, "events")?,
-            "event lists",
-        )?;
+        let mut layout = Layout::new(project);
+        let shapes = supervisor_shapes(project)?;
+        let members_of = memberships_by_event(project, &shapes)?;
+        let events = layout.events(&members_of)?;
+        let outputs = layout.outputs()?;
+        let inputs = layout.inputs()?;
+        let timers = layout.timers()?;
+        let (debounced, debounce_mask) = layout.debounced()?;
+        let supervisors = layout.supervisors(shapes)?;
+        let (commands, requested) = layout.commands()?;
 
         index(project.inputs.len(), "inputs")?;
         index(project.outputs.len(), "outputs")?;
@@ -375,14 +193,14 @@ impl ConfigPools {
             timers,
             events,
             supervisors,
-            input_masks: masks.pool,
-            event_lists,
-            event_masks: event_masks.pool,
+            input_masks: layout.input_masks.pool,
+            event_lists: layout.event_lists,
+            event_masks: layout.event_masks.pool,
             commands,
             requested,
-            actions,
-            memberships,
-            state_map,
+            actions: layout.actions,
+            memberships: layout.memberships,
+            state_map: layout.state_map,
         })
     }
 
@@ -414,6 +232,272 @@ impl ConfigPools {
             memberships: &self.memberships,
             state_map: &self.state_map,
         }
+    }
+}
+
+/// `list` as executor indices.
+fn to_indices(list: &[usize], what: &str) -> Result<Vec<Index>> {
+    list.iter().map(|&i| index(i, what)).collect()
+}
+
+/// An executor supervisor before it is laid out.
+struct SupervisorShape {
+    states: u32,
+    initial: u32,
+    /// Its events (project indices) in local order.
+    alphabet: Vec<usize>,
+}
+
+/// Every executor supervisor of `project`: the automata, then the net
+/// groups, whose local events are the transitions touching the group.
+fn supervisor_shapes(project: &Project) -> Result<Vec<SupervisorShape>> {
+    let mut shapes = Vec::new();
+    for s in &project.supervisors {
+        let initial = s.automaton.initial().ok_or_else(|| {
+            Error::Incompatible(format!("supervisor `{}` has no initial state", s.name))
+        })?;
+        shapes.push(SupervisorShape {
+            states: s.automaton.num_states() as u32,
+            initial: initial.0,
+            alphabet: s.local_events.iter().map(|&(e, _)| e).collect(),
+        });
+    }
+    for net in &project.nets {
+        for g in 0..net.groups() {
+            let transitions = net.group_transitions(g);
+            shapes.push(SupervisorShape {
+                states: 1 << net.group_bits[g],
+                initial: net.pack(g, net.net.initial()),
+                alphabet: transitions.iter().map(|&t| net.events[t]).collect(),
+            });
+        }
+    }
+    Ok(shapes)
+}
+
+/// Which supervisors have each event of `project`, with its local index
+/// there.
+fn memberships_by_event(
+    project: &Project,
+    shapes: &[SupervisorShape],
+) -> Result<Vec<Vec<ex::Membership>>> {
+    let mut members_of: Vec<Vec<ex::Membership>> = vec![Vec::new(); project.events.len()];
+    for (j, shape) in shapes.iter().enumerate() {
+        for (local, &global) in shape.alphabet.iter().enumerate() {
+            members_of[global].push(ex::Membership {
+                supervisor: index(j, "supervisors")?,
+                local: index(local, "events")?,
+            });
+        }
+    }
+    Ok(members_of)
+}
+
+/// An event's action as the executor's.
+fn action(a: &Action) -> Result<ex::Action> {
+    Ok(match *a {
+        Action::Set(o) => ex::Action::Set(index(o, "outputs")?),
+        Action::Clear(o) => ex::Action::Clear(index(o, "outputs")?),
+        Action::Start(t) => ex::Action::Start(index(t, "timers")?),
+        Action::Reset(t) => ex::Action::Reset(index(t, "timers")?),
+    })
+}
+
+/// A Moore output's state-map entries: each listed state of each listed
+/// supervisor.
+fn state_entries(entries: &[(usize, Vec<StateId>)]) -> Result<Vec<ex::StateMapEntry>> {
+    let mut list = Vec::new();
+    for (sup, states) in entries {
+        for s in states {
+            list.push(ex::StateMapEntry::in_state(
+                index(*sup, "supervisors")?,
+                s.0,
+            ));
+        }
+    }
+    Ok(list)
+}
+
+/// The pools of a project under construction, filled one record kind at
+/// a time by [`ConfigPools::lay_out`].
+struct Layout<'p> {
+    project: &'p Project,
+    input_masks: MaskPool,
+    event_masks: MaskPool,
+    event_lists: Vec<Index>,
+    actions: Vec<ex::Action>,
+    memberships: Vec<ex::Membership>,
+    state_map: Vec<ex::StateMapEntry>,
+}
+
+impl<'p> Layout<'p> {
+    /// Empty pools for `project`.
+    fn new(project: &'p Project) -> Layout<'p> {
+        Layout {
+            project,
+            input_masks: MaskPool::new("input", project.inputs.len()),
+            event_masks: MaskPool::new("event", project.events.len()),
+            event_lists: Vec::new(),
+            actions: Vec::new(),
+            memberships: Vec::new(),
+            state_map: Vec::new(),
+        }
+    }
+
+    /// The events: their triggers' and conditions' input masks, their
+    /// actions and their memberships (`members_of`, by event).
+    fn events(&mut self, members_of: &[Vec<ex::Membership>]) -> Result<Vec<ex::EventSpec>> {
+        let mut events = Vec::with_capacity(self.project.events.len());
+        for (e, ev) in self.project.events.iter().enumerate() {
+            let masks = &mut self.input_masks;
+            let trigger = match &ev.trigger {
+                Trigger::Command => ex::Trigger::Command,
+                Trigger::Rising(list) => ex::Trigger::Rising(masks.span(list)?),
+                Trigger::Falling(list) => ex::Trigger::Falling(masks.span(list)?),
+                Trigger::Expired(t) => ex::Trigger::Expired(index(*t, "timers")?),
+            };
+            let when = masks.span(&ev.when)?;
+            let unless = masks.span(&ev.unless)?;
+            let acts: Vec<ex::Action> = ev.actions.iter().map(action).collect::<Result<_>>()?;
+            events.push(ex::EventSpec {
+                trigger,
+                when,
+                unless,
+                request: ev.request.map(|r| index(r, "inputs")).transpose()?,
+                actions: push_span(&mut self.actions, &acts, "actions")?,
+                members: push_span(&mut self.memberships, &members_of[e], "memberships")?,
+            });
+        }
+        Ok(events)
+    }
+
+    /// The outputs, and the state-map entries of the Moore outputs.
+    fn outputs(&mut self) -> Result<Vec<ex::OutputSpec>> {
+        let mut outputs = Vec::with_capacity(self.project.outputs.len());
+        for out in &self.project.outputs {
+            let (initial, map) = match &out.drive {
+                Drive::Actions { initial } => (*initial, Span::EMPTY),
+                Drive::States(entries) => {
+                    let list = state_entries(entries)?;
+                    let map = push_span(&mut self.state_map, &list, "state-map entries")?;
+                    (false, map)
+                }
+                Drive::Places(entries) => {
+                    let list = self.place_entries(entries)?;
+                    let map = push_span(&mut self.state_map, &list, "state-map entries")?;
+                    (false, map)
+                }
+            };
+            outputs.push(ex::OutputSpec {
+                safe: out.safe,
+                initial,
+                state_map: map,
+            });
+        }
+        Ok(outputs)
+    }
+
+    /// A Moore output of Petri nets' state-map entries: one per count a
+    /// listed place can hold (at least 1, so a place map is never empty).
+    fn place_entries(&self, entries: &[(usize, Vec<usize>)]) -> Result<Vec<ex::StateMapEntry>> {
+        let mut list = Vec::new();
+        for &(n, ref places) in entries {
+            let net = &self.project.nets[n];
+            for &p in places {
+                let field = net.fields[p];
+                let j = self.project.group_supervisor(n, field.group);
+                for count in 1..=net.bounds[p].max(1) {
+                    let supervisor = index(j, "supervisors")?;
+                    list.push(ex::StateMapEntry::marked(supervisor, field.mask(), count));
+                }
+            }
+        }
+        Ok(list)
+    }
+
+    /// The span of `event_lists` holding the events whose trigger `bound`
+    /// accepts.
+    fn raised_by(&mut self, bound: &dyn Fn(&Trigger) -> bool) -> Result<Span> {
+        let events: Vec<Index> = (self.project.events.iter().enumerate())
+            .filter(|(_, ev)| bound(&ev.trigger))
+            .map(|(e, _)| index(e, "events"))
+            .collect::<Result<_>>()?;
+        push_span(&mut self.event_lists, &events, "event lists")
+    }
+
+    /// The inputs, with the events their edges can raise.
+    fn inputs(&mut self) -> Result<Vec<ex::InputSpec>> {
+        let mut inputs = Vec::with_capacity(self.project.inputs.len());
+        for (i, input) in self.project.inputs.iter().enumerate() {
+            let raises = self.raised_by(&|t| match t {
+                Trigger::Rising(list) | Trigger::Falling(list) => list.contains(&i),
+                Trigger::Command | Trigger::Expired(_) => false,
+            })?;
+            inputs.push(ex::InputSpec {
+                debounce_scans: input.debounce_scans,
+                raises,
+            });
+        }
+        Ok(inputs)
+    }
+
+    /// The timers, with the events their expiry raises.
+    fn timers(&mut self) -> Result<Vec<ex::TimerSpec>> {
+        let mut timers = Vec::with_capacity(self.project.timers.len());
+        for (t, timer) in self.project.timers.iter().enumerate() {
+            let raises = self.raised_by(&|trigger| *trigger == Trigger::Expired(t))?;
+            timers.push(ex::TimerSpec {
+                preset_ms: timer.preset_ms,
+                raises,
+            });
+        }
+        Ok(timers)
+    }
+
+    /// The debounced inputs (`debounce_scans` of 2 or more) and their mask.
+    fn debounced(&mut self) -> Result<(Vec<Index>, Span)> {
+        let inputs = &self.project.inputs;
+        let debounced: Vec<usize> = (0..inputs.len())
+            .filter(|&i| inputs[i].debounce_scans >= 2)
+            .collect();
+        let mask = self.input_masks.span(&debounced)?;
+        Ok((to_indices(&debounced, "inputs")?, mask))
+    }
+
+    /// The supervisors: alphabets in `event_lists`, what each never
+    /// blocks in `event_masks`.
+    fn supervisors(&mut self, shapes: Vec<SupervisorShape>) -> Result<Vec<ex::SupervisorSpec>> {
+        let count = self.project.events.len();
+        let mut supervisors = Vec::with_capacity(shapes.len());
+        for shape in shapes {
+            let outside: Vec<usize> = (0..count).filter(|e| !shape.alphabet.contains(e)).collect();
+            let outside = self.event_masks.span(&outside)?;
+            let alphabet = to_indices(&shape.alphabet, "events")?;
+            supervisors.push(ex::SupervisorSpec {
+                states: shape.states,
+                initial: shape.initial,
+                alphabet: push_span(&mut self.event_lists, &alphabet, "event lists")?,
+                outside,
+            });
+        }
+        Ok(supervisors)
+    }
+
+    /// The commands the controller may choose without a request (a span of
+    /// `event_masks`) and those with a request input (of `event_lists`).
+    fn commands(&mut self) -> Result<(Span, Span)> {
+        let events = &self.project.events;
+        let is_command = |e: &usize| events[*e].trigger == Trigger::Command;
+        let commands: Vec<usize> = (0..events.len())
+            .filter(|e| is_command(e) && events[*e].request.is_none())
+            .collect();
+        let commands = self.event_masks.span(&commands)?;
+        let requested: Vec<usize> = (0..events.len())
+            .filter(|e| is_command(e) && events[*e].request.is_some())
+            .collect();
+        let requested = to_indices(&requested, "events")?;
+        let requested = push_span(&mut self.event_lists, &requested, "event lists")?;
+        Ok((commands, requested))
     }
 }
 
