@@ -234,25 +234,63 @@ impl Builder<'_> {
         self.project.inputs.len()
     }
 
+    /// The type of event numbers and counts: `EV_` constants, `EVENTS`,
+    /// `FAULT_EVENT`, `CMD`.
+    fn event_type(&self) -> Type {
+        index_type(self.project.events.len().max(1))
+    }
+
+    /// The function block's VAR blocks: inputs, outputs, locals and, when
+    /// there are any, constants.
     fn declarations(&self) -> Vec<VarBlock> {
-        let p = self.project;
-        let n = self.names;
+        let mut blocks = vec![
+            VarBlock {
+                section: Section::Input,
+                vars: self.input_vars(),
+            },
+            VarBlock {
+                section: Section::Output,
+                vars: self.output_vars(),
+            },
+            VarBlock {
+                section: Section::Local,
+                vars: self.local_vars(),
+            },
+        ];
+        let constants = self.constant_vars();
+        if !constants.is_empty() {
+            blocks.push(VarBlock {
+                section: Section::Constant,
+                vars: constants,
+            });
+        }
+        blocks
+    }
+
+    /// `VAR_INPUT`: the clock, then the project's inputs.
+    fn input_vars(&self) -> Vec<Var> {
         let mut inputs = vec![Var::new(
             "NOW_MS",
             Type::Udint,
             "millisecond clock: wraps at 2^32",
         )];
-        for (i, input) in p.inputs.iter().enumerate() {
+        for (i, input) in self.project.inputs.iter().enumerate() {
             inputs.push(Var::new(
-                &n.inputs[i],
+                &self.names.inputs[i],
                 Type::Bool,
                 format!("input '{}'", comment_text(&input.name)),
             ));
         }
+        inputs
+    }
+
+    /// `VAR_OUTPUT`: the project's outputs, the fault and event
+    /// diagnostics, the supervisors' states and the nets' markings.
+    fn output_vars(&self) -> Vec<Var> {
         let mut outputs = Vec::new();
-        for (o, output) in p.outputs.iter().enumerate() {
+        for (o, output) in self.project.outputs.iter().enumerate() {
             outputs.push(Var::new(
-                &n.outputs[o],
+                &self.names.outputs[o],
                 Type::Bool,
                 format!(
                     "output '{}' (safe level {})",
@@ -261,10 +299,23 @@ impl Builder<'_> {
                 ),
             ));
         }
+        outputs.extend(self.diagnostic_vars());
+        outputs.extend(self.state_vars());
+        outputs
+    }
+
+    /// The outputs saying what a scan did: fault mode and its cause,
+    /// counters, the events executed and the unexpected ones.
+    fn diagnostic_vars(&self) -> [Var; 9] {
+        let p = self.project;
         let ne = p.events.len().max(1);
-        let event_ty = index_type(ne);
         let nu = p.events.iter().filter(|e| !e.controllable).count().max(1);
-        outputs.extend([
+        let event_ty = self.event_type();
+        let events = |n: usize| Type::Array {
+            dims: vec![(1, n as i64)],
+            elem: Box::new(event_ty.clone()),
+        };
+        [
             Var::new(
                 "FAULT",
                 Type::Bool,
@@ -290,10 +341,7 @@ impl Builder<'_> {
             Var::new("N_EVENTS", event_ty.clone(), "events executed in this scan"),
             Var::new(
                 "EVENTS",
-                Type::Array {
-                    dims: vec![(1, ne as i64)],
-                    elem: Box::new(event_ty.clone()),
-                },
+                events(ne),
                 "the events executed in this scan, in order (EV_ constants)",
             ),
             Var::new(
@@ -303,99 +351,82 @@ impl Builder<'_> {
             ),
             Var::new(
                 "UNEXPECTED",
-                Type::Array {
-                    dims: vec![(1, nu as i64)],
-                    elem: Box::new(event_ty.clone()),
-                },
+                events(nu),
                 "the unexpected events of this scan, in order",
             ),
-        ]);
-        for (j, sup) in p.supervisors.iter().enumerate() {
+        ]
+    }
+
+    /// Each supervisor's state variable and each net's marking array,
+    /// initialised to the initial state and marking.
+    fn state_vars(&self) -> Vec<Var> {
+        let mut vars = Vec::new();
+        for (j, sup) in self.project.supervisors.iter().enumerate() {
             let a = &sup.automaton;
             let initial = a.initial().map_or(0, |s| s.0);
-            outputs.push(
-                Var::new(
-                    &n.states[j],
-                    state_type(a.num_states()),
-                    format!(
-                        "state of supervisor '{}' ({} states)",
-                        comment_text(&sup.name),
-                        a.num_states()
-                    ),
-                )
-                .init(Init::Value(initial.to_string())),
+            let about = format!(
+                "state of supervisor '{}' ({} states)",
+                comment_text(&sup.name),
+                a.num_states()
+            );
+            vars.push(
+                Var::new(&self.names.states[j], state_type(a.num_states()), about)
+                    .init(Init::Value(initial.to_string())),
             );
         }
-        for (k, net) in p.nets.iter().enumerate() {
+        for (k, net) in self.project.nets.iter().enumerate() {
             let places = net.net.places();
-            outputs.push(
+            let ids: Vec<String> = places.iter().map(|pl| comment_text(&pl.id)).collect();
+            let marking = net.net.initial().iter().map(|m| m.to_string()).collect();
+            let about = format!(
+                "marking of net '{}': tokens per place",
+                comment_text(&net.name)
+            );
+            vars.push(
                 Var::new(
-                    &n.nets[k],
+                    &self.names.nets[k],
                     Type::array(places.len(), marking_type(net)),
-                    format!(
-                        "marking of net '{}': tokens per place",
-                        comment_text(&net.name)
-                    ),
+                    about,
                 )
-                .init(Init::Rows(vec![(
-                    places
-                        .iter()
-                        .map(|pl| comment_text(&pl.id))
-                        .collect::<Vec<_>>()
-                        .join(" "),
-                    net.net.initial().iter().map(|m| m.to_string()).collect(),
-                )])),
+                .init(Init::Rows(vec![(ids.join(" "), marking)])),
             );
         }
+        vars
+    }
 
+    /// `VAR`: the input images, latched outputs, timers, event flags, the
+    /// loop index, the command count and what sparse lookups need.
+    fn local_vars(&self) -> Vec<Var> {
+        let p = self.project;
         let mut locals = vec![
             Var::new("FIRST", Type::Bool, "scan 0: no edges").init(Init::Value("TRUE".into()))
         ];
-        if self.ni() > 0 {
-            let arr = || Type::array(self.ni(), Type::Bool);
-            locals.push(Var::new("RAW", arr(), "raw input image"));
-            locals.push(Var::new("FILT", arr(), "filtered input image of this scan"));
-            locals.push(Var::new(
-                "PREV",
-                arr(),
-                "filtered input image of the last scan",
-            ));
-            if self.debounced() {
-                locals.push(Var::new(
-                    "DEB",
-                    Type::array(self.ni(), Type::Int),
-                    "debounce: consecutive scans the raw value has differed",
-                ));
-            }
-        }
+        locals.extend(self.image_vars());
         if !p.outputs.is_empty() {
+            let latched = p
+                .outputs
+                .iter()
+                .map(|o| bool_lit(matches!(o.drive, Drive::Actions { initial: true })))
+                .collect();
             locals.push(
                 Var::new(
                     "LATCH",
                     Type::array(p.outputs.len(), Type::Bool),
                     "levels of action-driven outputs",
                 )
-                .init(Init::Rows(vec![(
-                    String::new(),
-                    p.outputs
-                        .iter()
-                        .map(|o| bool_lit(matches!(o.drive, Drive::Actions { initial: true })))
-                        .collect(),
-                )])),
+                .init(Init::Rows(vec![(String::new(), latched)])),
             );
         }
         if !p.timers.is_empty() {
-            locals.push(Var::new(
-                "T_RUN",
-                Type::array(p.timers.len(), Type::Bool),
-                "timer running",
-            ));
+            let timers = |elem| Type::array(p.timers.len(), elem);
+            locals.push(Var::new("T_RUN", timers(Type::Bool), "timer running"));
             locals.push(Var::new(
                 "T_DL",
-                Type::array(p.timers.len(), Type::Udint),
+                timers(Type::Udint),
                 "timer deadline (NOW_MS at start + preset)",
             ));
         }
+        let ne = p.events.len().max(1);
         locals.push(Var::new(
             "OCC",
             Type::array(ne, Type::Bool),
@@ -408,35 +439,61 @@ impl Builder<'_> {
                 "commands executed in this scan",
             ));
         }
-        locals.push(Var::new(
-            "I",
-            index_type(self.ni().max(p.timers.len())),
-            "loop index",
-        ));
+        let loops = self.ni().max(p.timers.len());
+        locals.push(Var::new("I", index_type(loops), "loop index"));
         if self.commands().count() > 0 && self.command_limit() > 1 {
-            locals.push(Var::new(
-                "CMD",
-                event_ty.clone(),
-                "commands chosen in this scan",
-            ));
+            let about = "commands chosen in this scan";
+            locals.push(Var::new("CMD", self.event_type(), about));
         }
+        locals.extend(self.search_vars());
+        locals
+    }
+
+    /// The raw, filtered and previous input images and the debounce
+    /// counters (none without inputs).
+    fn image_vars(&self) -> Vec<Var> {
+        let mut vars = Vec::new();
+        if self.ni() > 0 {
+            let arr = || Type::array(self.ni(), Type::Bool);
+            vars.push(Var::new("RAW", arr(), "raw input image"));
+            vars.push(Var::new("FILT", arr(), "filtered input image of this scan"));
+            vars.push(Var::new(
+                "PREV",
+                arr(),
+                "filtered input image of the last scan",
+            ));
+            if self.debounced() {
+                vars.push(Var::new(
+                    "DEB",
+                    Type::array(self.ni(), Type::Int),
+                    "debounce: consecutive scans the raw value has differed",
+                ));
+            }
+        }
+        vars
+    }
+
+    /// What sparse tables' searches need: the position `J`, the `CHOSEN`
+    /// flag and each sparse supervisor's last target.
+    fn search_vars(&self) -> Vec<Var> {
+        let mut vars = Vec::new();
         if self.names.sparse.iter().any(Option::is_some) {
-            locals.push(Var::new(
+            vars.push(Var::new(
                 "J",
                 self.position.clone(),
                 "position in a sparse table",
             ));
             if self.chosen_flag() {
-                locals.push(Var::new(
+                vars.push(Var::new(
                     "CHOSEN",
                     Type::Bool,
                     "a command was executed in this round",
                 ));
             }
         }
-        for (j, sup) in p.supervisors.iter().enumerate() {
+        for (j, sup) in self.project.supervisors.iter().enumerate() {
             if let Some(sparse) = &self.names.sparse[j] {
-                locals.push(Var::new(
+                vars.push(Var::new(
                     &sparse.next,
                     state_type(sup.automaton.num_states()),
                     format!(
@@ -446,76 +503,23 @@ impl Builder<'_> {
                 ));
             }
         }
+        vars
+    }
 
-        let mut constants = Vec::new();
-        for (i, input) in p.inputs.iter().enumerate() {
-            constants.push(
-                Var::new(
-                    &n.input_index[i],
-                    index_type(self.ni()),
-                    format!("input '{}'", comment_text(&input.name)),
-                )
-                .init(Init::Value(i.to_string())),
-            );
-        }
-        for (o, output) in p.outputs.iter().enumerate() {
-            if matches!(output.drive, Drive::Actions { .. }) {
-                constants.push(
-                    Var::new(
-                        &n.output_index[o],
-                        index_type(p.outputs.len()),
-                        format!("output '{}'", comment_text(&output.name)),
-                    )
-                    .init(Init::Value(o.to_string())),
-                );
-            }
-        }
-        for (t, timer) in p.timers.iter().enumerate() {
-            constants.push(
-                Var::new(
-                    &n.timers[t],
-                    index_type(p.timers.len()),
-                    format!(
-                        "timer '{}', {} ms",
-                        comment_text(&timer.name),
-                        timer.preset_ms
-                    ),
-                )
-                .init(Init::Value(t.to_string())),
-            );
-        }
-        for (e, event) in p.events.iter().enumerate() {
-            constants.push(
-                Var::new(
-                    &n.events[e],
-                    event_ty.clone(),
-                    format!(
-                        "event '{}', {}",
-                        comment_text(&event.name),
-                        if event.controllable {
-                            "controllable"
-                        } else {
-                            "uncontrollable"
-                        }
-                    ),
-                )
-                .init(Init::Value(e.to_string())),
-            );
-        }
+    /// `VAR CONSTANT`: the index constants, the debounce scans and the
+    /// transition tables.
+    fn constant_vars(&self) -> Vec<Var> {
+        let p = self.project;
+        let mut constants = self.index_constants();
         if self.debounced() {
+            let scans = p.inputs.iter().map(|i| i.debounce_scans.to_string());
             constants.push(
                 Var::new(
                     "DEBOUNCE",
                     Type::array(self.ni(), Type::Int),
                     "debounce scans per input (0 and 1: none)",
                 )
-                .init(Init::Rows(vec![(
-                    String::new(),
-                    p.inputs
-                        .iter()
-                        .map(|i| i.debounce_scans.to_string())
-                        .collect(),
-                )])),
+                .init(Init::Rows(vec![(String::new(), scans.collect())])),
             );
         }
         for (j, sup) in p.supervisors.iter().enumerate() {
@@ -524,28 +528,43 @@ impl Builder<'_> {
                 None => constants.push(self.table(j, sup)),
             }
         }
+        constants
+    }
 
-        let mut blocks = vec![
-            VarBlock {
-                section: Section::Input,
-                vars: inputs,
-            },
-            VarBlock {
-                section: Section::Output,
-                vars: outputs,
-            },
-            VarBlock {
-                section: Section::Local,
-                vars: locals,
-            },
-        ];
-        if !constants.is_empty() {
-            blocks.push(VarBlock {
-                section: Section::Constant,
-                vars: constants,
-            });
+    /// The index of every input, latched output, timer and event, named.
+    fn index_constants(&self) -> Vec<Var> {
+        let p = self.project;
+        let n = self.names;
+        let index = |name: &str, ty: Type, about: String, i: usize| {
+            Var::new(name, ty, about).init(Init::Value(i.to_string()))
+        };
+        let mut constants = Vec::new();
+        for (i, input) in p.inputs.iter().enumerate() {
+            let about = format!("input '{}'", comment_text(&input.name));
+            constants.push(index(&n.input_index[i], index_type(self.ni()), about, i));
         }
-        blocks
+        for (o, output) in p.outputs.iter().enumerate() {
+            if matches!(output.drive, Drive::Actions { .. }) {
+                let about = format!("output '{}'", comment_text(&output.name));
+                let ty = index_type(p.outputs.len());
+                constants.push(index(&n.output_index[o], ty, about, o));
+            }
+        }
+        for (t, timer) in p.timers.iter().enumerate() {
+            let name = comment_text(&timer.name);
+            let about = format!("timer '{name}', {} ms", timer.preset_ms);
+            constants.push(index(&n.timers[t], index_type(p.timers.len()), about, t));
+        }
+        for (e, event) in p.events.iter().enumerate() {
+            let kind = if event.controllable {
+                "controllable"
+            } else {
+                "uncontrollable"
+            };
+            let about = format!("event '{}', {kind}", comment_text(&event.name));
+            constants.push(index(&n.events[e], self.event_type(), about, e));
+        }
+        constants
     }
 
     /// Supervisor `j`'s transition array: a row per state, a column per
