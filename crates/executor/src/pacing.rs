@@ -16,7 +16,23 @@
 //! comparison is wrap-safe (a difference read as `i32`), so the schedule
 //! runs through the 49.7-day wrap like any other millisecond.
 
+use core::ops::RangeInclusive;
+
 use crate::program::Config;
+
+/// The scan periods a program may have (ms): 1 to 2^31 − 1, so that the
+/// next deadline is always less than half the millisecond clock away and
+/// every comparison with it stays wrap-safe. The one statement of the
+/// rule: project validation refuses a period outside it, the image check
+/// ([`crate::validate`]) faults on one, and [`Pacer::new`] panics.
+///
+/// ```
+/// use executor::pacing::SCAN_PERIOD_MS;
+///
+/// assert!(SCAN_PERIOD_MS.contains(&1) && SCAN_PERIOD_MS.contains(&(u32::MAX >> 1)));
+/// assert!(!SCAN_PERIOD_MS.contains(&0) && !SCAN_PERIOD_MS.contains(&(1 << 31)));
+/// ```
+pub const SCAN_PERIOD_MS: RangeInclusive<u32> = 1..=(1 << 31) - 1;
 
 /// When a due scan starts and how late it is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -44,14 +60,15 @@ pub struct Pacer {
 impl Pacer {
     /// The schedule of a program: every `scan_period_ms` from `first_ms`,
     /// overruns beyond `overrun_limit` periods. Project validation keeps
-    /// the period in `1..2^31`; a corrupt image's period outside it (which
-    /// the controller's start-up check refuses: fault mode) is brought to
-    /// the nearest end of that range, so that scans go on writing the safe
-    /// image instead of the board halting here.
+    /// the period in [`SCAN_PERIOD_MS`]; a corrupt image's period outside
+    /// it (which the controller's start-up check refuses: fault mode) is
+    /// brought to the nearest end of that range, so that scans go on
+    /// writing the safe image instead of the board halting here.
     pub const fn for_config(config: &Config<'_>, first_ms: u32) -> Pacer {
+        let (shortest, longest) = (*SCAN_PERIOD_MS.start(), *SCAN_PERIOD_MS.end());
         let period_ms = match config.scan_period_ms {
-            0 => 1,
-            p if p >= 1 << 31 => (1 << 31) - 1,
+            p if p < shortest => shortest,
+            p if p > longest => longest,
             p => p,
         };
         Pacer::new(first_ms, period_ms, config.overrun_limit)
@@ -63,10 +80,11 @@ impl Pacer {
     ///
     /// # Panics
     ///
-    /// When `period_ms` is 0 or not below 2^31.
+    /// When `period_ms` is outside [`SCAN_PERIOD_MS`] (0, or not below
+    /// 2^31).
     pub const fn new(first_ms: u32, period_ms: u32, overrun_limit: u16) -> Pacer {
         assert!(
-            period_ms > 0 && period_ms < 1 << 31,
+            period_ms >= *SCAN_PERIOD_MS.start() && period_ms <= *SCAN_PERIOD_MS.end(),
             "the period must be in 1..2^31 ms"
         );
         Pacer {

@@ -14,6 +14,7 @@
 use core::fmt;
 
 use crate::bits;
+use crate::pacing::SCAN_PERIOD_MS;
 use crate::program::{words, Action, Config, EventSpec, Index, Program, Span, Trigger};
 use crate::table::{bit, read_bits, Rows, SupervisorTable};
 
@@ -81,7 +82,8 @@ pub enum Flaw {
     },
     /// A timer preset of 0 or of 2^31 ms or more.
     Preset,
-    /// A scan period of 0 or of 2^31 ms or more.
+    /// A scan period of 0 or of 2^31 ms or more (outside
+    /// [`SCAN_PERIOD_MS`]).
     Period,
     /// An event's memberships and the alphabets disagree: a membership
     /// names a local event that is another event, or an alphabet lists an
@@ -227,7 +229,7 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
     {
         return fail(Part::Counts, Flaw::TooMany);
     }
-    if c.scan_period_ms == 0 || c.scan_period_ms >= 1 << 31 {
+    if !SCAN_PERIOD_MS.contains(&c.scan_period_ms) {
         return fail(Part::ScanPeriod, Flaw::Period);
     }
     if let Some(r) = c.reset {

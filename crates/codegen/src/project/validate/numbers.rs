@@ -1,16 +1,18 @@
 //! Numbers: the range of every integer field.
 //!
 //! `scan_period_ms` and `preset_ms` lie in `1..2^31` (time differences
-//! must stay wrap-safe on a 32-bit millisecond clock);
+//! must stay wrap-safe on a 32-bit millisecond clock; the scan period's
+//! range is the executor's, [`executor::pacing::SCAN_PERIOD_MS`]);
 //! `max_commands_per_scan` and `overrun_limit` in `0..=65535`;
 //! `rom_test_bytes_per_scan` in `4..=65532`; `debounce_scans` in `0..=255`.
 
 use super::Validator;
 use crate::error::Result;
+use executor::pacing;
 use std::ops::RangeInclusive;
 use toml::Spanned;
 
-/// Exclusive upper bound of `scan_period_ms` and `preset_ms`.
+/// Exclusive upper bound of `preset_ms`.
 const TIME_LIMIT: i64 = 1 << 31;
 
 /// An integer field: its name and its range.
@@ -19,10 +21,11 @@ pub(super) struct Field {
     range: RangeInclusive<i64>,
 }
 
-/// `[plc] scan_period_ms`.
+/// `[plc] scan_period_ms`: the executor's range, so that a project that
+/// passes validation is never refused by the image check or the pacer.
 pub(super) const SCAN_PERIOD_MS: Field = Field {
     name: "scan_period_ms",
-    range: 1..=TIME_LIMIT - 1,
+    range: *pacing::SCAN_PERIOD_MS.start() as i64..=*pacing::SCAN_PERIOD_MS.end() as i64,
 };
 
 /// `[plc] max_commands_per_scan` (0: no limit).
