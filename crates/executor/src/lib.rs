@@ -205,7 +205,7 @@
 //!
 //! # Where it is proven
 //!
-//! - `crates/codegen/tests/conformance.rs`: the table and logic backends
+//! - `crates/codegen/tests/conformance/`: the table and logic backends
 //!   against a reference interpreter written from the specification, over
 //!   10,000 random projects with random inputs, scan by scan, with control
 //!   equivalence checked against the source automata.
