@@ -391,7 +391,7 @@ fn every_file_argument_must_be_a_regular_file() {
         ),
     ];
     for (k, (name, kind, before, after)) in cases.into_iter().enumerate() {
-        for path in e2e::not_regular_files(&dir.path().join(k.to_string()), name) {
+        for path in des::testing::not_regular_files(&dir.path().join(k.to_string()), name) {
             let path = path.display().to_string();
             let run = run_codegen(before.iter().chain([&path]).chain(&after));
             assert_eq!(run.code, 2, "{before:?} {path}: {}", run.stderr);

@@ -106,36 +106,3 @@ where
     drop(child.stdout.take());
     child.wait_with_output().expect("codegen finishes").into()
 }
-
-/// Paths named `name` (so that their extension is the one a command
-/// expects) in subdirectories of `dir` that are no regular files: a link
-/// to `/dev/zero` (read, it never ends), a FIFO when `mkfifo` is there
-/// (read, it blocks until a writer comes) and a directory. A thread opens
-/// the FIFO for writing and closes it at once, so that a command that
-/// wrongly reads it sees an empty file rather than hanging the test.
-#[cfg(unix)]
-pub fn not_regular_files(dir: &Path, name: &str) -> Vec<PathBuf> {
-    let place = |sub: &str| {
-        let d = dir.join(sub);
-        std::fs::create_dir_all(&d).unwrap();
-        d.join(name)
-    };
-    let zero = place("zero");
-    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
-    let folder = place("folder");
-    std::fs::create_dir(&folder).unwrap();
-    let mut paths = vec![zero, folder];
-    let fifo = place("fifo");
-    if Command::new("mkfifo")
-        .arg(&fifo)
-        .status()
-        .is_ok_and(|s| s.success())
-    {
-        let writer = fifo.clone();
-        std::thread::spawn(move || {
-            let _ = std::fs::OpenOptions::new().write(true).open(writer);
-        });
-        paths.push(fifo);
-    }
-    paths
-}

@@ -237,15 +237,7 @@ mod tests {
     #[test]
     fn devices_fifos_and_directories_are_refused_without_reading() {
         let dir = tempfile::tempdir().unwrap();
-        let zero = dir.path().join("zero");
-        std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
-        let fifo = dir.path().join("fifo");
-        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
-        let mut paths = vec![zero, dir.path().to_path_buf()];
-        if made.is_ok_and(|s| s.success()) {
-            paths.push(fifo);
-        }
-        for path in paths {
+        for path in crate::testing::not_regular_files(dir.path(), "f") {
             let err = read_bytes(&path, SMALL).unwrap_err().to_string();
             assert_eq!(
                 err,

@@ -174,34 +174,12 @@ fn boiler_main_job_prints_a_timeline_and_writes_waveforms() {
     assert!(String::from_utf8_lossy(&unknown.stderr).contains("unknown scenario `nope`"));
 }
 
-/// Paths in `dir` that are no regular files: `/dev/zero` (read, it never
-/// ends) and a FIFO when `mkfifo` is there (read, it blocks; a thread
-/// opens it for writing and closes it, so that a wrong read sees an empty
-/// file instead of hanging the test).
-#[cfg(unix)]
-fn not_regular_files(dir: &Path) -> Vec<PathBuf> {
-    let mut paths = vec![PathBuf::from("/dev/zero")];
-    let fifo = dir.join("fifo.csv");
-    if Command::new("mkfifo")
-        .arg(&fifo)
-        .status()
-        .is_ok_and(|s| s.success())
-    {
-        let writer = fifo.clone();
-        std::thread::spawn(move || {
-            let _ = std::fs::OpenOptions::new().write(true).open(writer);
-        });
-        paths.push(fifo);
-    }
-    paths
-}
-
 #[cfg(unix)]
 #[test]
 fn inputs_and_projects_must_be_regular_files() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("t.csv");
-    for path in not_regular_files(dir.path()) {
+    for path in des::testing::not_regular_files(dir.path(), "t.csv") {
         let shown = path.display().to_string();
         let record = |project: &Path, inputs: &Path| {
             Command::new(env!("CARGO_BIN_EXE_host-sim"))
