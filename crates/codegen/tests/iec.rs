@@ -303,7 +303,7 @@ fn the_transition_arrays_are_the_supervisors_transition_functions() {
                 }
                 Some(t) => {
                     layouts.1 += 1;
-                    assert!(iec::scan::is_sparse(&project, j));
+                    assert!(iec::scan::sparse_layout(&project)[j]);
                     let (_, rows) = array_values(&export, &t.rows);
                     let (_, columns) = array_values(&export, &t.columns);
                     let (_, targets) = array_values(&export, &t.targets);

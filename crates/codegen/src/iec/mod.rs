@@ -54,7 +54,7 @@ pub struct Names {
     /// laid out dense.
     pub tables: Vec<String>,
     /// Each automaton supervisor's sparse table, when it is laid out
-    /// sparse ([`scan::is_sparse`]).
+    /// sparse ([`scan::sparse_layout`]).
     pub sparse: Vec<Option<SparseNames>>,
     /// Each net's marking array (`M_…`).
     pub nets: Vec<String>,

@@ -5,7 +5,7 @@
 //! named constants (`FILT[IN_start]`, `T_RUN[TM_runon]`, `EVENTS[n] :=
 //! EV_go`), each automaton a state variable `S_<name>` and a constant
 //! transition array `D_<name>[state, local event]` (−1: no transition)
-//! or, where that is smaller ([`is_sparse`]), a sparse table (row starts
+//! or, where that is smaller ([`sparse_layout`]), a sparse table (row starts
 //! `DR_<name>`, local events `DE_<name>`, targets `DT_<name>`) searched
 //! into `NX_<name>`; each Petri net a marking array `M_<name>[place]`.
 //! Steps are written in the order of the specification, each event as
@@ -88,7 +88,13 @@ pub fn controller(project: &Project, names: &Names) -> Pou {
     let b = Builder {
         project,
         names,
-        position: position_type(project),
+        position: position_type(
+            &project
+                .supervisors
+                .iter()
+                .map(Shape::of)
+                .collect::<Vec<_>>(),
+        ),
     };
     Pou {
         name: names.controller.clone(),
@@ -199,15 +205,8 @@ impl Shape {
 
 /// The type of sparse tables' row starts and of their search index `J`:
 /// one for the project, wide enough for its largest supervisor.
-fn position_type(project: &Project) -> Type {
-    index_type(
-        project
-            .supervisors
-            .iter()
-            .map(|s| Shape::of(s).transitions)
-            .max()
-            .unwrap_or(0),
-    )
+fn position_type(shapes: &[Shape]) -> Type {
+    index_type(shapes.iter().map(|s| s.transitions).max().unwrap_or(0))
 }
 
 /// Dense arrays up to this many bytes stay dense whatever a sparse table
@@ -215,18 +214,24 @@ fn position_type(project: &Project) -> Type {
 /// supervisor's table (every seed).
 const ALWAYS_DENSE: usize = 1024;
 
-/// Whether supervisor `j` of `project` is exported as a sparse table
-/// (row starts, events, targets) rather than a dense `[state, event]`
-/// array: when that takes at most two thirds of the dense array's bytes.
-/// A sparse table costs a search per lookup and its code, so a table
-/// that saves less stays dense (the boiler's seven, half their entries
-/// defined, would save at most a fifth), as do arrays of at most
-/// 1 KB; the AGV's saves four fifths, the monolithic
-/// boiler's two fifths.
-pub fn is_sparse(project: &Project, j: usize) -> bool {
-    let shape = Shape::of(&project.supervisors[j]);
-    shape.dense_bytes() > ALWAYS_DENSE
-        && 3 * shape.sparse_bytes(&position_type(project)) <= 2 * shape.dense_bytes()
+/// For each supervisor of `project`, whether it is exported as a sparse
+/// table (row starts, events, targets) rather than a dense `[state,
+/// event]` array: when that takes at most two thirds of the dense array's
+/// bytes. A sparse table costs a search per lookup and its code, so a
+/// table that saves less stays dense (the boiler's seven, half their
+/// entries defined, would save at most a fifth), as do arrays of at most
+/// 1 KB; the AGV's saves four fifths, the monolithic boiler's two
+/// fifths.
+pub fn sparse_layout(project: &Project) -> Vec<bool> {
+    let shapes: Vec<Shape> = project.supervisors.iter().map(Shape::of).collect();
+    let position = position_type(&shapes);
+    shapes
+        .iter()
+        .map(|shape| {
+            shape.dense_bytes() > ALWAYS_DENSE
+                && 3 * shape.sparse_bytes(&position) <= 2 * shape.dense_bytes()
+        })
+        .collect()
 }
 
 impl Builder<'_> {
@@ -1369,9 +1374,9 @@ pub fn names(project: &Project, namer: &mut Namer, program_ids: &[&str]) -> Name
     let sparse = project
         .supervisors
         .iter()
-        .enumerate()
-        .map(|(j, s)| {
-            is_sparse(project, j).then(|| SparseNames {
+        .zip(sparse_layout(project))
+        .map(|(s, sparse)| {
+            sparse.then(|| SparseNames {
                 rows: namer.name("DR_", &s.name),
                 columns: namer.name("DE_", &s.name),
                 targets: namer.name("DT_", &s.name),
