@@ -240,7 +240,7 @@ pub fn on_grid(project: &Project, rows: Vec<InputRow>) -> Vec<InputRow> {
 /// with the plant: its input image per scan, to replay into a PLC
 /// program.
 pub fn boiler_scenarios(project: &Project) -> Vec<(&'static str, Vec<InputRow>)> {
-    use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Input, IoMap as Boiler};
+    use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, IoMap as Boiler};
     let io = Boiler::new(project).expect("boiler signals");
     scenarios::NAMES
         .iter()
@@ -250,20 +250,7 @@ pub fn boiler_scenarios(project: &Project) -> Vec<(&'static str, Vec<InputRow>)>
             let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table).expect("sim");
             let mut boiler = BoilerPlant::new(BoilerParams::default(), 1);
             let run = plant::run(&mut sim, &mut boiler, &script, duration).expect("runs");
-            let rows = run
-                .rows
-                .iter()
-                .map(|r| {
-                    let mut values = vec![false; project.inputs.len()];
-                    for input in Input::ALL {
-                        values[io.input(input)] = r.inputs.get(input);
-                    }
-                    InputRow {
-                        time_ms: r.time_ms,
-                        values,
-                    }
-                })
-                .collect();
+            let rows = run.input_rows(&io);
             (*name, rows)
         })
         .collect()

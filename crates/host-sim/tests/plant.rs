@@ -5,7 +5,6 @@
 //! broken variants.
 
 use codegen::emit::Backend;
-use host_sim::inputs::InputRow;
 use host_sim::plant::{
     self, Action, BoilerController, BoilerParams, BoilerPlant, Checker, ControllerScan,
     Disturbance, Input, Inputs, Invariants, Outputs, PlantError, Rule, Run, Script, Selector,
@@ -1170,20 +1169,7 @@ fn the_checker_reads_a_replay_trace_like_the_closed_loop() {
 
     let project = sim.project().clone();
     let io = plant::IoMap::new(&project).unwrap();
-    let rows: Vec<InputRow> = run
-        .rows
-        .iter()
-        .map(|r| {
-            let mut values = vec![false; project.inputs.len()];
-            for input in Input::ALL {
-                values[io.input(input)] = r.inputs.get(input);
-            }
-            InputRow {
-                time_ms: r.time_ms,
-                values,
-            }
-        })
-        .collect();
+    let rows = run.input_rows(&io);
     let mut replay = Sim::new(project.clone(), Backend::Logic).unwrap();
     let trace = host_sim::replay::replay(&mut replay, &rows).unwrap();
     let found = plant::check_replay(&project, rules, &rows, &trace).unwrap();

@@ -4,7 +4,8 @@
 
 use super::invariants::{Checker, Invariants, Violation};
 use super::physics::PlantState;
-use super::signals::{Input, Inputs, Output, Outputs};
+use super::signals::{Input, Inputs, IoMap, Output, Outputs};
+use crate::inputs::InputRow;
 use crate::trace::field;
 use std::fmt::Write as _;
 
@@ -65,6 +66,18 @@ impl Run {
             checker.observe(row.time_ms, &row.inputs, &row.outputs);
         }
         checker.finish()
+    }
+
+    /// The input image the controller read in each scan, as rows of the
+    /// project's raw inputs mapped by `io` (to replay the run open loop).
+    pub fn input_rows(&self, io: &IoMap) -> Vec<InputRow> {
+        self.rows
+            .iter()
+            .map(|r| InputRow {
+                time_ms: r.time_ms,
+                values: io.raw_inputs(&r.inputs),
+            })
+            .collect()
     }
 
     /// The first row where `f` holds.

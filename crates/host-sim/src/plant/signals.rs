@@ -340,6 +340,17 @@ impl IoMap {
         Ok(image)
     }
 
+    /// The project's raw input image holding the boiler's `inputs` at
+    /// their indices, every other input 0: the inverse of
+    /// [`IoMap::inputs_of`].
+    pub fn raw_inputs(&self, inputs: &Inputs) -> Vec<bool> {
+        let mut raw = vec![false; self.input_count];
+        for input in Input::ALL {
+            raw[self.input(input)] = inputs.get(input);
+        }
+        raw
+    }
+
     /// The boiler outputs in a raw output image of the project.
     pub fn outputs_of(&self, raw: &[bool]) -> Result<Outputs, PlantError> {
         check_width(raw, self.output_count, "output")?;
