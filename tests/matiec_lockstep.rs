@@ -353,7 +353,7 @@ fn random_runs(project: &Project, seed: u64, drive: Drive) -> Vec<Vec<InputRow>>
 
 /// Compiles `text` and runs it in lockstep on random inputs; the
 /// coverage of the runs.
-fn lockstep(
+fn random_lockstep(
     project: &Project,
     names: &Names,
     text: &str,
@@ -387,7 +387,7 @@ fn project_lockstep(rel: &str, seed: u64) {
         (&configured, Drive::Task, "codegen st --configuration"),
         (&xml, Drive::Task, "codegen plcopen"),
     ] {
-        let cov = lockstep(&project, names, text, drive, what, seed);
+        let cov = random_lockstep(&project, names, text, drive, what, seed);
         assert!(cov.scans >= 10_000, "{rel} ({what}): {} scans", cov.scans);
         cov.assert_exercised(&project, &format!("{rel} ({what})"));
         report.push(format!("{what}: {}", cov.summary(&project)));
@@ -468,7 +468,7 @@ fn a_wrong_transition_or_a_wrong_type_is_found() {
     let text = iec::st::print(&export);
     let mutant = lockstep::mutant(&text, &export.names.tables[0]);
     let outcome = std::panic::catch_unwind(|| {
-        lockstep(&project, &export.names, &mutant, Drive::Block, "mutant", 2)
+        random_lockstep(&project, &export.names, &mutant, Drive::Block, "mutant", 2)
     });
     let message = lockstep::panic_text(outcome.expect_err("the mutant must differ"));
     assert!(message.contains("differs"), "{message}");

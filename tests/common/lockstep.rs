@@ -12,12 +12,9 @@ use executor::Fault;
 use host_sim::inputs::InputRow;
 use host_sim::Sim;
 use std::collections::BTreeSet;
-use std::path::{Path, PathBuf};
 
 /// The repository root.
-pub fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
+pub use e2e::repo as root;
 
 /// The project at `rel` (from the root), loaded or the test fails.
 pub fn load(rel: &str) -> Project {
