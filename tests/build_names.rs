@@ -20,7 +20,7 @@
 
 use codegen::build::Build;
 use codegen::emit::Backend;
-use codegen::project::ident::sanitize;
+use plc_project::ident::sanitize;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -243,7 +243,7 @@ impl Case {
 
 /// A one-line TOML basic string (keys cannot be multi-line strings).
 fn q(text: &str) -> String {
-    codegen::formats::toml::basic_string(text)
+    des::formats::toml::basic_string(text)
 }
 
 /// Writes `text` to `path` unless it already holds it: a rewritten file
@@ -368,7 +368,7 @@ fn refusals(case: &Case, project: &str, dir: &Path, rng: &mut Rng) {
         };
         let path = dir.join("refused.plc.toml");
         let text = mutated.join("\n") + "\n";
-        let err = match codegen::project::from_str(&text, &path) {
+        let err = match plc_project::from_str(&text, &path) {
             Ok(_) => panic!("an input named `{name}` was accepted:\n{text}"),
             Err(e) => e.to_string(),
         };

@@ -1,8 +1,8 @@
 //! The `codegen` command as a user runs it: synthesis, checks, control
 //! data, conversions, Graphviz, and how it reports bad input.
 
-use codegen::formats::read_automaton;
-use codegen::ops;
+use des::formats::read_automaton;
+use des::ops;
 use e2e::{model, run_codegen, run_json, run_with_closed_stdout};
 use std::path::Path;
 
@@ -1057,8 +1057,8 @@ fn petri_reach_writes_the_graph_and_convert_keeps_the_net() {
         back.to_str().unwrap(),
     ]);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    let original = codegen::des::petri::read_file(&model("models/petri/mixers.toml")).unwrap();
-    let converted = codegen::des::petri::read_file(&back).unwrap();
+    let original = des::petri::read_file(&model("models/petri/mixers.toml")).unwrap();
+    let converted = des::petri::read_file(&back).unwrap();
     assert_eq!(converted, original);
 
     // Malformed: located, exit 2.
@@ -1198,7 +1198,7 @@ fn gen_logic_stats_show_each_supervisors_effort_against_its_limit() {
         "--stats",
     ]);
     assert_eq!(code, 0, "{stats}");
-    let project = codegen::project::load(&model("models/crane.plc.toml")).unwrap();
+    let project = plc_project::load(&model("models/crane.plc.toml")).unwrap();
     let stats = stats.as_array().unwrap();
     assert_eq!(stats.len(), project.supervisors.len());
     for (s, sup) in stats.iter().zip(&project.supervisors) {
@@ -1237,7 +1237,7 @@ fn gen_logic_stats_show_each_supervisors_effort_against_its_limit() {
 fn gen_stats_show_a_net_group_with_its_markings_and_no_naive_table() {
     let (code, stats) = run_json(["gen", "models/petri/mixers.plc.toml", "--stats"]);
     assert_eq!(code, 0, "{stats}");
-    let project = codegen::project::load(&model("models/petri/mixers.plc.toml")).unwrap();
+    let project = plc_project::load(&model("models/petri/mixers.plc.toml")).unwrap();
     let group = &stats.as_array().unwrap()[0];
     assert_eq!(group["name"], "mixers");
     assert_eq!(group["layout"], "net");

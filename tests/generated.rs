@@ -21,12 +21,12 @@
 
 use codegen::emit::Backend;
 use codegen::image::{LogicImage, TableImage};
-use codegen::project::{self, Project, Trigger};
-use codegen::{EventId, StateId};
+use des::{EventId, StateId};
 use executor::memory::Memory;
 use executor::program::{Config, Index, Program};
 use executor::Controller;
 use host_sim::{Sim, TraceRow};
+use plc_project::{self as project, Project, Trigger};
 use std::collections::BTreeSet;
 
 /// Each generated file in its own module, compiled with every warning

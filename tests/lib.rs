@@ -24,7 +24,7 @@ pub fn codegen() -> Command {
     let bin = BIN.get_or_init(|| {
         escargot::CargoBuild::new()
             .manifest_path(repo().join("Cargo.toml"))
-            .package("codegen")
+            .package("codegen-cli")
             .bin("codegen")
             .features("espresso")
             .run()

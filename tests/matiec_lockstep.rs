@@ -28,11 +28,11 @@ mod lockstep;
 #[path = "common/plcopen_st.rs"]
 mod plcopen_st;
 
-use codegen::iec::{self, IoMap, Names};
-use codegen::project::Project;
 use host_sim::inputs::InputRow;
 use host_sim::random_inputs::guided_inputs;
+use iec_export::{self as iec, IoMap, Names};
 use lockstep::{blind_inputs, compare, load, on_grid, pack_states, shifted, Coverage, Observed};
+use plc_project::Project;
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::PathBuf;

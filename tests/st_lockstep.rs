@@ -1,5 +1,5 @@
 //! The exported Structured Text, executed: every seed project and the
-//! boiler exported with `codegen::iec` (as `codegen st` writes it),
+//! boiler exported with `iec_export` (as `codegen st` writes it),
 //! parsed and run by `iec-st` (an interpreter of the IEC 61131-3 subset,
 //! written from the standard, which shares no code with the exporter or
 //! the executor), in lockstep with host-sim's executor on the same
@@ -17,13 +17,13 @@
 #[path = "common/lockstep.rs"]
 mod lockstep;
 
-use codegen::iec::{self, IoMap};
-use codegen::project::Project;
 use host_sim::inputs::InputRow;
 use host_sim::random_inputs::guided_inputs;
 use host_sim::Sim;
+use iec_export::{self as iec, IoMap};
 use iec_st::{Instance, IntType, Slot, Value};
 use lockstep::{blind_inputs, compare, load, pack_states, root, Coverage, Observed, PROJECTS};
+use plc_project::Project;
 use std::path::Path;
 
 /// The exported ST text of `project` (default addresses).
@@ -434,7 +434,7 @@ fn a_wrong_transition_in_the_exported_table_is_found() {
 /// and the initial output image.
 #[test]
 fn a_corrupt_state_faults_to_the_safe_image_until_reset() {
-    use codegen::project::Drive;
+    use plc_project::Drive;
     for rel in PROJECTS {
         let project = load(rel);
         if project.supervisors.is_empty() {

@@ -107,7 +107,7 @@ fn main() {
 /// on the command line) has no `[board]` section: the board firmware
 /// needs its pin map (validation errors are left to the generation).
 fn require_board(path: &Path, name: &str) {
-    if let Ok(project) = codegen::project::load(path) {
+    if let Ok(project) = plc_project::load(path) {
         if project.board.is_none() {
             eprintln!(
                 "error: {name} has no [board] section: the board firmware needs the pin of each signal (see docs/board.md); the QEMU harness builds with --no-default-features --features qemu"

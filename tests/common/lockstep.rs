@@ -7,10 +7,10 @@
 
 #![allow(dead_code)]
 
-use codegen::project::{self, Project};
 use executor::Fault;
 use host_sim::inputs::InputRow;
 use host_sim::Sim;
+use plc_project::{self as project, Project};
 use std::collections::BTreeSet;
 
 /// The repository root.
@@ -61,8 +61,8 @@ pub struct Observed {
 /// `FAULT_EVENT`).
 pub fn fault_code(fault: Option<Fault>) -> Option<(i64, i64)> {
     fault.map(|f| match f {
-        Fault::Unexpected { event } => (codegen::iec::scan::CAUSE_UNEXPECTED, i64::from(event)),
-        Fault::Corrupt => (codegen::iec::scan::CAUSE_CORRUPT, -1),
+        Fault::Unexpected { event } => (iec_export::scan::CAUSE_UNEXPECTED, i64::from(event)),
+        Fault::Corrupt => (iec_export::scan::CAUSE_CORRUPT, -1),
         other => panic!("{other:?} cannot happen in a replay"),
     })
 }

@@ -204,5 +204,12 @@ pub fn run(args: &[String]) -> Result {
 }
 
 fn run_build() -> Result {
-    crate::run(cargo().args(["build", "--release", "-p", "codegen", "--bin", "codegen"]))
+    crate::run(cargo().args([
+        "build",
+        "--release",
+        "-p",
+        "codegen-cli",
+        "--bin",
+        "codegen",
+    ]))
 }

@@ -27,8 +27,8 @@ const CLEAN: [Entry; 4] = [
         args: &["-p", "host-sim"],
     },
     Entry {
-        what: "`cargo run -p codegen` (the CLI with its default features)",
-        args: &["-p", "codegen"],
+        what: "`cargo run -p codegen-cli` (the CLI with its default features)",
+        args: &["-p", "codegen-cli"],
     },
     Entry {
         what: "the board firmware and its build script (`cargo run -p firmware --release --target thumbv7em-none-eabihf`)",

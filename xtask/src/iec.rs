@@ -98,7 +98,7 @@ pub fn run_task(args: &[String]) -> Result {
 
 /// Exports every project as `<name>.st` and `<name>.xml` into `dir`.
 fn export_all(dir: &Path) -> Result<Vec<PathBuf>> {
-    run(cargo().args(["build", "--quiet", "-p", "codegen", "--bin", "codegen"]))?;
+    run(cargo().args(["build", "--quiet", "-p", "codegen-cli", "--bin", "codegen"]))?;
     let codegen = target_dir().join("debug/codegen");
     let mut projects: Vec<PathBuf> = std::fs::read_dir(root().join("models"))
         .map_err(|e| format!("models/: {e}"))?

@@ -195,7 +195,18 @@ fn ci() -> Result {
     // The tests turn Espresso on; the builds users start with leave it
     // out, and that configuration must be warning-free too.
     run(cargo().args([
-        "clippy", "-p", "codegen", "-p", "host-sim", "--lib", "--bins", "--", "-D", "warnings",
+        "clippy",
+        "-p",
+        "codegen",
+        "-p",
+        "codegen-cli",
+        "-p",
+        "host-sim",
+        "--lib",
+        "--bins",
+        "--",
+        "-D",
+        "warnings",
     ]))?;
     run(cargo().args(["test", "--workspace", "--exclude", "firmware"]))?;
     // Doc comments are part of the product: no broken or ambiguous links.

@@ -13,7 +13,7 @@
 //!   interrupt on both edges counts (lost-edge detection), see
 //!   [`EdgeLatch`].
 
-use crate::project::{EdgeLatch, InputPin, OutputPin, PinId, Project, Pull};
+use plc_project::{EdgeLatch, InputPin, OutputPin, PinId, Project, Pull};
 use std::fmt::Write;
 
 /// One line of text safe inside a doc comment or a Markdown cell.

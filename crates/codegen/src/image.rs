@@ -7,15 +7,15 @@
 //! [`Program`] with the very decoder the target uses, or through
 //! [`LogicImage`], which evaluates the minimised CMSSM covers.
 
-use crate::automaton::StateId;
 use crate::backend::logic::{Encoding, LogicError, LogicSupervisor, Minimisation, Settings};
 use crate::backend::table::EncodedTable;
-use crate::error::{Error, Location, Result};
-use crate::ops::Progress;
-use crate::project::{Action, Drive, Project, Trigger, Unexpected};
+use des::automaton::StateId;
+use des::error::{Error, Location, Result};
+use des::ops::Progress;
 use executor::image::{self as ex_image, config_crc, table_image_crc};
 use executor::program::{self as ex, Config, Index, Program, Span};
 use executor::table::SupervisorTable;
+use plc_project::{Action, Drive, Project, Trigger, Unexpected};
 
 /// The executor's description of a project, in owned vectors.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -697,7 +697,7 @@ impl LogicImage {
                 let local: Vec<_> = s.local_events.iter().map(|&(_, id)| id).collect();
                 let settings = Settings {
                     minimisation: Minimisation::PerFunction,
-                    max_effort: s.max_logic_effort,
+                    max_effort: crate::backend::logic::effort_limit(s.max_logic_effort),
                 };
                 LogicSupervisor::synthesize_reporting(
                     &s.automaton,

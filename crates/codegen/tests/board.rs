@@ -5,11 +5,11 @@
 
 use codegen::board::{board_module, wiring_rows, wiring_table, Direction};
 use codegen::emit::{generate, Backend};
-use codegen::project::{self, EdgeLatch, PinId, Pull};
+use plc_project::{self as project, EdgeLatch, PinId, Pull};
 use std::path::Path;
 
 mod common;
-use common::{assert_errors_at_marked_lines, fixture, load_err, load_ok, marked_line};
+use common::{assert_errors_at_marked_lines, load_err, load_ok, marked_line};
 
 /// Signals of a small station: three inputs (one debounced), two outputs.
 const SIGNALS: &str = "[plc]\nname = \"station\"\n\
@@ -357,49 +357,4 @@ fn every_seed_project_is_wired() {
         assert!(board_module(&p).contains("pub const EDGE_LATCHED"));
         assert!(p.warnings.is_empty(), "{seed}: {:?}", p.warnings);
     }
-}
-
-/// `codegen wiring`: the table on stdout, JSON rows with `--json`, and a
-/// usage error (exit code 2) for a project without `[board]`.
-#[test]
-fn the_wiring_verb_prints_the_table_or_json() {
-    let codegen = env!("CARGO_BIN_EXE_codegen");
-    let press = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../models/press.plc.toml");
-    let out = std::process::Command::new(codegen)
-        .arg("wiring")
-        .arg(&press)
-        .output()
-        .unwrap();
-    assert!(out.status.success(), "{out:?}");
-    let text = String::from_utf8(out.stdout).unwrap();
-    assert!(text.starts_with("| signal | direction | pin | pull | active level | notes |\n"));
-    assert!(
-        text.contains("| `auto_pb` | input | PC13 | up | low |"),
-        "{text}"
-    );
-    assert_eq!(text, wiring_table(&project::load(&press).unwrap()));
-
-    let out = std::process::Command::new(codegen)
-        .args(["--json", "wiring"])
-        .arg(&press)
-        .output()
-        .unwrap();
-    assert!(out.status.success(), "{out:?}");
-    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(json["chip"], "STM32F411RETx");
-    assert_eq!(json["project"], "stamping-press");
-    let first = &json["signals"][0];
-    assert_eq!(first["signal"], "auto_pb");
-    assert_eq!(first["direction"], "input");
-    assert_eq!(first["pin"], "PC13");
-    assert_eq!(first["active_level"], "low");
-    assert_eq!(first["edge_latched"], true);
-
-    let out = std::process::Command::new(codegen)
-        .arg("wiring")
-        .arg(fixture("press.plc.toml"))
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2), "{out:?}");
-    assert!(String::from_utf8_lossy(&out.stderr).contains("has no [board] section"));
 }

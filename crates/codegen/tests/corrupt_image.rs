@@ -7,12 +7,12 @@
 //! and no reset out of it.
 
 use codegen::image::{ImageCheck, LogicImage, TableImage};
-use codegen::project;
 use executor::memory::HeapMemory;
 use executor::program::{Index, Program, Span};
 use executor::table::SupervisorTable;
 use executor::validate::{validate, Flaw, Invalid, Part};
 use executor::{Config, Controller, Fault};
+use plc_project as project;
 use proptest::prelude::*;
 use std::cell::Cell;
 use std::path::Path;

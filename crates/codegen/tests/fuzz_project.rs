@@ -45,7 +45,7 @@ fn every_seed_project_validates_in_the_fuzzing_directory_and_passes_the_checks()
     assert_eq!(seeds().len(), SEED_PROJECTS.len() - SLOW.len());
     for (name, text) in seeds() {
         let path = root().join("fuzz.plc.toml");
-        if let Err(e) = codegen::project::from_str(text, &path) {
+        if let Err(e) = plc_project::from_str(text, &path) {
             panic!("{name}: {e}");
         }
         check_project(text, root());

@@ -3,12 +3,12 @@
 //! rule rejects its violation at the right line, and no mangled project
 //! file makes the loader panic.
 
-use codegen::formats;
-use codegen::ops;
-use codegen::project::{
-    self, Action, Drive, Origin, Project, SupervisorSource, Trigger, Unexpected,
+use des::formats;
+use des::ops;
+use des::{Error, StateId};
+use plc_project::{
+    self as project, Action, Drive, Origin, Project, SupervisorSource, Trigger, Unexpected,
 };
-use codegen::{Error, StateId};
 use proptest::prelude::*;
 
 mod common;
@@ -185,7 +185,8 @@ fn a_supervisor_beyond_its_logic_effort_is_refused_at_its_line_before_minimising
     let base = std::fs::read_to_string(fixture("factory.plc.toml")).unwrap();
     let project = load_ok(&base);
     let s = &project.supervisors[0];
-    assert_eq!(s.max_logic_effort, DEFAULT_MAX_EFFORT);
+    assert_eq!(s.max_logic_effort, None, "the project states no limit");
+    assert_eq!(logic::effort_limit(s.max_logic_effort), DEFAULT_MAX_EFFORT);
     let local: Vec<_> = s.local_events.iter().map(|&(_, id)| id).collect();
     let encoding = Encoding::binary(s.automaton.num_states());
     let effort = logic::effort(&s.automaton, &local, &encoding, Minimisation::PerFunction).unwrap();

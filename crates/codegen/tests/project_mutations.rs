@@ -27,8 +27,8 @@
 //! in no supervisor's alphabet.
 
 use codegen::emit::{generate, Backend};
-use codegen::project;
-use codegen::Error;
+use des::Error;
+use plc_project as project;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestRng, TestRunner};
 use std::ops::Range;

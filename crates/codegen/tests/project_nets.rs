@@ -4,10 +4,10 @@
 mod common;
 
 use codegen::image::TableImage;
-use codegen::project::{Drive, NetSource};
 use common::{assert_errors_at_marked_lines, load_err, load_ok};
 use executor::memory::HeapMemory;
 use executor::{Controller, Program};
+use plc_project::{Drive, NetSource};
 
 /// The events of `nets/two.toml`: `go` a command, `done` on a rising edge.
 const EVENTS: &str = "[inputs]\nfinished = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"finished\" }\n";

@@ -8,14 +8,14 @@
 //! holds line breaks) of at most [`MAX_RECORD_BYTES`], refused at its line
 //! beyond that rather than read until memory runs out.
 
-use codegen::des::files::{self, Bounded, FileKind};
-use codegen::project::Project;
+use des::files::{self, Bounded, FileKind};
+use plc_project::Project;
 use std::cell::Cell;
 use std::io::{self, BufRead, BufReader, Read};
 use std::path::Path;
 use std::rc::Rc;
 
-/// Inputs files as [`codegen::des::files`] reads them: a regular file of at
+/// Inputs files as [`des::files`] reads them: a regular file of at
 /// most 64 GiB (about three billion scans of a project with eight inputs;
 /// it is streamed, so the limit bounds the time a run takes, not its
 /// memory).
@@ -393,7 +393,7 @@ mod tests {
 
     fn press() -> Project {
         let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../models/press.plc.toml");
-        codegen::project::load(&path).unwrap()
+        plc_project::load(&path).unwrap()
     }
 
     const HEADER: &str = "scan,time_ms,auto_pb,stop_pb,reset_pb,part,top_ls,bottom_ls\n";

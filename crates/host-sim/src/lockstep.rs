@@ -7,7 +7,7 @@
 use crate::sim::{Sim, SimError};
 use crate::trace::TraceRow;
 use codegen::emit::Backend;
-use codegen::project::Project;
+use plc_project::Project;
 use std::path::Path;
 
 /// The same project on both backends, driven in lockstep.
@@ -19,7 +19,7 @@ pub struct Lockstep {
 impl Lockstep {
     /// Loads the project at `path` once per backend.
     pub fn load(path: &Path) -> Result<Lockstep, SimError> {
-        let project = codegen::project::load(path)?;
+        let project = plc_project::load(path)?;
         Lockstep::new(project)
     }
 

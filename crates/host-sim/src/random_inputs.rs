@@ -4,7 +4,7 @@
 use crate::inputs::InputRow;
 use crate::rng::Rng;
 use crate::sim::{Sim, SimError};
-use codegen::project::{Project, Trigger};
+use plc_project::{Project, Trigger};
 
 /// Rows of inputs that mostly make things happen, one per scan, without
 /// end: each scan, with probability 1/4, one uncontrollable event bound to

@@ -12,12 +12,12 @@
 use crate::trace::TraceRow;
 use codegen::emit::Backend;
 use codegen::image::TableImage;
-use codegen::project::{self, Project};
 use executor::memory::HeapMemory;
 use executor::pacing::{Pacer, ScanStart};
 use executor::program::{Config, Index, Program};
 use executor::table::SupervisorTable;
 use executor::Controller;
+use plc_project::{self as project, Project};
 use std::path::Path;
 
 /// A problem setting up or driving a simulation.
@@ -25,7 +25,7 @@ use std::path::Path;
 pub enum SimError {
     /// The project or a model file is invalid.
     #[error(transparent)]
-    Model(#[from] codegen::Error),
+    Model(#[from] des::Error),
     /// A name that is not in the project.
     #[error("`{0}` is not {1} of the project")]
     Unknown(String, &'static str),
@@ -58,7 +58,7 @@ pub enum RuntimeProgram {
 
 impl RuntimeProgram {
     /// The program of `project` in `backend`.
-    pub fn new(project: &Project, backend: Backend) -> Result<Self, codegen::Error> {
+    pub fn new(project: &Project, backend: Backend) -> Result<Self, des::Error> {
         Ok(match backend {
             // The match baseline only exists as generated code; at run time
             // it is the same automaton as the table.

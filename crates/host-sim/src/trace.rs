@@ -1,8 +1,8 @@
 //! Trace rows (docs/formats.md, "trace.csv"): one per scan, with names instead of
 //! indices, and their CSV form.
 
-use codegen::project::Project;
 use executor::{Fault, ScanRecord};
+use plc_project::Project;
 use std::fmt::Write as _;
 
 /// One scan of a trace, as written to `trace.csv`.

@@ -21,7 +21,7 @@
 
 use crate::inputs::InputRow;
 use crate::trace::TraceRow;
-use codegen::project::Project;
+use plc_project::Project;
 use std::io::{self, Write};
 use vcd::{IdCode, TimescaleUnit, Value, VarType};
 

@@ -6,12 +6,12 @@
 //! every scan.
 
 use codegen::emit::Backend;
-use codegen::project::Project;
 use host_sim::plant::{
     self, scenarios, BoilerParams, BoilerPlant, Disturbance, Invariants, Output, Run, Script,
     Selector,
 };
 use host_sim::Sim;
+use plc_project::Project;
 use std::path::Path;
 use std::sync::OnceLock;
 
@@ -27,7 +27,7 @@ fn project(file: &str) -> &'static Project {
         let path = Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../../models/boiler")
             .join(file);
-        codegen::project::load(&path).unwrap_or_else(|e| panic!("{e}"))
+        plc_project::load(&path).unwrap_or_else(|e| panic!("{e}"))
     })
 }
 

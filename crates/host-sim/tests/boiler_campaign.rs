@@ -37,7 +37,7 @@ struct Outcome {
 }
 
 /// One run: its violations and unexplained faults as text, and counts.
-fn campaign_run(project: &codegen::project::Project, seed: u64) -> Outcome {
+fn campaign_run(project: &plc_project::Project, seed: u64) -> Outcome {
     let mut sim = Sim::new(project.clone(), Backend::Table).unwrap();
     let params = BoilerParams {
         ignition_failure_probability: 0.2,
@@ -103,7 +103,7 @@ fn random_campaign_has_no_safety_violation() {
     let runs = env("BOILER_CAMPAIGN_RUNS", 1000);
     let first = env("BOILER_CAMPAIGN_SEED", 1);
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../models/boiler/boiler.plc.toml");
-    let project = codegen::project::load(&path).unwrap();
+    let project = plc_project::load(&path).unwrap();
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u64;
     let results: Vec<Outcome> = std::thread::scope(|s| {
         let handles: Vec<_> = (0..threads)
@@ -153,7 +153,7 @@ fn random_campaign_has_no_safety_violation() {
 fn debug_seed() {
     let seed = env("SEED", 15);
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../models/boiler/boiler.plc.toml");
-    let project = codegen::project::load(&path).unwrap();
+    let project = plc_project::load(&path).unwrap();
     let mut sim = Sim::new(project.clone(), Backend::Table).unwrap();
     let params = BoilerParams {
         ignition_failure_probability: 0.2,

@@ -5,9 +5,9 @@
 //! invariants.
 
 use codegen::emit::Backend;
-use codegen::project::Project;
 use host_sim::cell::{self, CellParams, CellPlant, CellRun, Operator, Rule, Unit, Watch};
 use host_sim::Sim;
+use plc_project::Project;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -16,7 +16,7 @@ fn cell_dir() -> PathBuf {
 }
 
 fn load(file: &str) -> Project {
-    codegen::project::load(&cell_dir().join(file)).unwrap_or_else(|e| panic!("{e}"))
+    plc_project::load(&cell_dir().join(file)).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn project() -> &'static Project {
@@ -185,7 +185,7 @@ fn the_temperature_controller_heats_up_without_overshoot() {
 
 #[test]
 fn the_timed_net_is_the_paper_net_with_uncontrollable_timers() {
-    use codegen::des::petri;
+    use des::petri;
     let paper = petri::read_file(&cell_dir().join("cell.toml")).unwrap();
     let timed = petri::read_file(&cell_dir().join("cell.timed.toml")).unwrap();
     assert_eq!(paper.places(), timed.places());
@@ -220,7 +220,7 @@ fn variant_with(dir: &Path, table: &str, edit: &dyn Fn(&str) -> String) -> Proje
     let head: String = head.lines().map(|l| edit(l) + "\n").collect();
     let path = dir.join("variant.plc.toml");
     std::fs::write(&path, format!("{head}{table}\n{board}")).unwrap();
-    codegen::project::load(&path).unwrap_or_else(|e| panic!("{e}"))
+    plc_project::load(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// [`variant_with`] the rest of the project as it is.
@@ -233,9 +233,9 @@ fn variant(dir: &Path, table: &str) -> Project {
 /// named by their markings), each output's place map turned into the
 /// state map of the markings that mark the place.
 fn automaton_project(dir: &Path) -> Project {
-    use codegen::formats::{self, Component, Kind};
+    use des::formats::{self, Component, Kind};
     let net = &project().nets[0].net;
-    let reach = codegen::des::petri::reach::reachability(net, 100_000).unwrap();
+    let reach = des::petri::reach::reachability(net, 100_000).unwrap();
     let file = dir.join("cell.supervisor.toml");
     let supervisor = Component {
         kind: Kind::Supervisor,
@@ -249,12 +249,7 @@ fn automaton_project(dir: &Path) -> Project {
         let place = net.place(rest.split('"').next().unwrap()).unwrap();
         let states: Vec<String> = (0..reach.markings.len())
             .filter(|&i| reach.markings[i][place] > 0)
-            .map(|i| {
-                format!(
-                    "{:?}",
-                    reach.automaton.state_name(codegen::StateId(i as u32))
-                )
-            })
+            .map(|i| format!("{:?}", reach.automaton.state_name(des::StateId(i as u32))))
             .collect();
         format!(
             "{output} = {{ states = {{ cell = [{}] }} }}",

@@ -12,7 +12,6 @@
 //! hang.
 
 use codegen::emit::Backend;
-use codegen::project::{self, Project};
 use executor::memory::HeapMemory;
 use executor::pacing::{Pacer, ScanStart};
 use executor::{Controller, Program};
@@ -20,6 +19,7 @@ use host_sim::plant::{
     self, Action, BoilerController, BoilerParams, BoilerPlant, Inputs, Plc, Script, Selector,
 };
 use host_sim::{RuntimeProgram, Sim, TraceRow};
+use plc_project::{self as project, Project};
 use std::path::Path;
 
 fn project(name: &str) -> Project {

@@ -8,10 +8,10 @@
 mod common;
 
 use codegen::emit::Backend;
-use codegen::project::Project;
 use common::waveform::{Sample, Waveform};
 use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Input, Output, PlantError};
 use host_sim::{inputs, replay, Sim};
+use plc_project::Project;
 use vcd::{Value, VarType};
 
 /// The press's reviewed cycle replayed: the project, its input rows, the

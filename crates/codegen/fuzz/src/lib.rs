@@ -25,11 +25,11 @@
 
 use codegen::emit::{generate, Backend};
 use codegen::image::TableImage;
-use codegen::project::{self, Project};
 use executor::memory::HeapMemory;
 use executor::program::Program;
 use executor::validate::validate;
 use executor::Controller;
+use plc_project::{self as project, Project};
 use std::collections::HashSet;
 use std::path::{Component, Path};
 
@@ -125,8 +125,8 @@ pub fn check_project(text: &str, root: &Path) {
 
 /// A refused project: the error names a file, and a line of the project
 /// file that exists.
-fn check_error(e: &codegen::Error, text: &str, path: &Path) {
-    use codegen::Error;
+fn check_error(e: &des::Error, text: &str, path: &Path) {
+    use des::Error;
     let message = e.to_string();
     match e {
         Error::Syntax { location, .. } | Error::Model { location, .. } => {

@@ -82,8 +82,8 @@
 //! functions that need neither `std`, allocation nor `unsafe`, and in
 //! mathematical notation.
 
-use crate::automaton::{Automaton, EventId, StateId};
-use crate::ops::Progress;
+use des::automaton::{Automaton, EventId, StateId};
+use des::ops::Progress;
 use std::collections::HashSet;
 use std::fmt;
 
@@ -94,7 +94,7 @@ pub const AVAILABLE: bool = cfg!(feature = "espresso");
 /// What a build without Espresso says when asked for the logic backend.
 pub const UNAVAILABLE: &str =
     "the logic backend minimises its equations with Espresso, which this \
-     build leaves out: rebuild with the `espresso` feature (`cargo run -p codegen --features \
+     build leaves out: rebuild with the `espresso` feature (`cargo run -p codegen-cli --features \
      espresso -- …`; host-sim and the firmware: `--features logic`). Espresso's Rust bindings \
      need libclang when they are built (Debian/Ubuntu: `apt-get install libclang-dev`); the \
      table backend needs nothing of the kind";
@@ -110,6 +110,12 @@ pub const MAX_INPUTS: usize = 128;
 /// Default limit of the minimisation [`effort`] (pairs of ON- and OFF-set
 /// rows over all Espresso runs) of one supervisor; see the module docs.
 pub const DEFAULT_MAX_EFFORT: u64 = 250_000_000;
+
+/// The effort limit of a supervisor whose project states `requested`
+/// (`max_logic_effort`), or [`DEFAULT_MAX_EFFORT`].
+pub fn effort_limit(requested: Option<u64>) -> u64 {
+    requested.unwrap_or(DEFAULT_MAX_EFFORT)
+}
 
 /// How [`LogicSupervisor::synthesize_reporting`] minimises and how much
 /// work it may take on.
@@ -1003,7 +1009,7 @@ mod without_espresso {
 #[cfg(all(test, feature = "espresso"))]
 mod tests {
     use super::*;
-    use crate::automaton::AutomatonBuilder;
+    use des::automaton::AutomatonBuilder;
     use des::testing::auto;
     use proptest::prelude::*;
 

@@ -5,9 +5,9 @@
 //! choice: dense (entry per state × event) or sparse (defined pairs only,
 //! with row starts), whichever takes fewer words, dense on a tie.
 
-use crate::automaton::{Automaton, EventId, StateId};
-use crate::project::Net;
+use des::automaton::{Automaton, EventId, StateId};
 use executor::table::{Rows, SupervisorTable};
+use plc_project::Net;
 
 /// Which target layout a table uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]

@@ -30,8 +30,8 @@ fn titled(title: &str, doc: &str) -> String {
         format!("/// {title}:\n{doc}")
     }
 }
-use crate::project::Origin;
 use executor::program as ex;
+use plc_project::Origin;
 use std::fmt::Write;
 
 impl Emitter<'_> {
@@ -792,7 +792,7 @@ pub mod places {{"
 #[cfg(test)]
 mod tests {
     use crate::emit::{generate, Backend};
-    use crate::project;
+    use plc_project as project;
     use std::path::Path;
 
     /// The doc comment lines of the generated table program of `text`

@@ -7,9 +7,9 @@
 //! explanations it writes are doc comments, so they survive layout.
 
 use super::{doc_text, one_line, quoted, Emitter, SupervisorStats};
-use crate::backend::logic::{Cover, Cube, LogicSupervisor};
-use crate::project::ident::{snake_ident, supervisor_item};
+use crate::backend::logic::{self, Cover, Cube, LogicSupervisor};
 use executor::program as ex;
+use plc_project::ident::{snake_ident, supervisor_item};
 use std::collections::HashSet;
 use std::fmt::Write;
 
@@ -429,7 +429,7 @@ impl Emitter<'_> {
                 naive_bytes: 2 * sup.automaton.num_states() * events.len(),
                 cubes: sizes.cubes,
                 literals: sizes.literals,
-                logic_effort: Some((l.effort(), sup.max_logic_effort)),
+                logic_effort: Some((l.effort(), logic::effort_limit(sup.max_logic_effort))),
             });
         }
         let _ = writeln!(self.out, "}}");
@@ -445,10 +445,10 @@ impl Emitter<'_> {
 #[cfg(all(test, feature = "espresso"))]
 mod tests {
     use super::*;
-    use crate::automaton::Automaton;
     use crate::backend::logic::Encoding;
-    use crate::EventId;
+    use des::automaton::Automaton;
     use des::testing::auto;
+    use des::EventId;
 
     fn ids(a: &Automaton, names: &[&str]) -> Vec<EventId> {
         names.iter().map(|n| a.alphabet().id(n).unwrap()).collect()

@@ -3,8 +3,8 @@
 //! the `Match` program over them. Used to measure the other backends.
 
 use super::{ident, quoted, Emitter, SupervisorStats};
-use crate::project::ident::supervisor_item;
 use executor::program as ex;
+use plc_project::ident::supervisor_item;
 use std::fmt::Write;
 
 impl Emitter<'_> {

@@ -19,11 +19,11 @@ mod matches;
 mod table;
 
 use crate::backend::table::{EncodedTable, Layout};
-use crate::error::{Error, Result};
 use crate::image::{ConfigPools, ImageCheck, LogicImage, ScanSets, TableImage};
-use crate::project::ident::sanitize;
-use crate::project::{Project, SupervisorSource};
+use des::error::{Error, Result};
 use executor::program as ex;
+use plc_project::ident::sanitize;
+use plc_project::{Project, SupervisorSource};
 use std::fmt::Write;
 
 /// How supervisors are represented in the generated program.
@@ -330,7 +330,7 @@ fn duration(ms: u64) -> String {
 fn write_program(
     project: &Project,
     backend: Backend,
-    progress: &dyn crate::ops::Progress,
+    progress: &dyn des::ops::Progress,
 ) -> Result<Unformatted> {
     match backend {
         Backend::Table => {}
@@ -417,7 +417,7 @@ pub fn generate_with_progress(
     project: &Project,
     backend: Backend,
     regenerate: &str,
-    progress: &dyn crate::ops::Progress,
+    progress: &dyn des::ops::Progress,
 ) -> Result<Generated> {
     let program = write_program(project, backend, progress)?;
     let body = format_rust(&program.text)?;
@@ -450,7 +450,7 @@ mod tests {
         let path = Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../../models")
             .join(format!("{name}.plc.toml"));
-        crate::project::load(&path).unwrap()
+        plc_project::load(&path).unwrap()
     }
 
     /// Layout keeps doc comments and drops every other comment, so the

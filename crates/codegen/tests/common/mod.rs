@@ -4,8 +4,8 @@
 
 #![allow(dead_code)] // each test crate uses its own part
 
-use codegen::project::{self, Project};
-use codegen::Error;
+use des::Error;
+use plc_project::{self as project, Project};
 use std::path::{Path, PathBuf};
 
 /// The fixture directory of the project tests.

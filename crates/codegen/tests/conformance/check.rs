@@ -4,11 +4,11 @@
 use crate::reference::{
     initial_states, pack_marking, transition_of, unpack_marking, Record, Reference,
 };
-use codegen::automaton::StateId;
 use codegen::image::{LogicImage, TableImage};
-use codegen::project::Project;
+use des::automaton::StateId;
 use executor::memory::HeapMemory;
 use executor::{Controller, Program};
+use plc_project::Project;
 use proptest::test_runner::TestCaseError;
 use std::fmt::Debug;
 
@@ -100,7 +100,7 @@ pub(crate) fn check_fault_scan(
 }
 
 /// The state vector after `executed` from `before`, moving along
-/// [`codegen::Automaton::successor`]; an error names the first event some
+/// [`des::Automaton::successor`]; an error names the first event some
 /// supervisor having it does not allow.
 pub(crate) fn replay(
     project: &Project,

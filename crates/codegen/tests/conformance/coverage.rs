@@ -6,7 +6,7 @@ use crate::config;
 use crate::projects::{ProjectSpec, WORD};
 use crate::reference::{Record, Reference};
 use crate::runs::RunSpec;
-use codegen::project::{Drive, Project, Trigger};
+use plc_project::{Drive, Project, Trigger};
 use proptest::prelude::*;
 use std::fmt::Debug;
 

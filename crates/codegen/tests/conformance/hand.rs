@@ -2,12 +2,12 @@
 //! trace, which pin the reference itself.
 
 use crate::reference::{Cause, Record, Reference};
-use codegen::automaton::{EventId, StateId};
-use codegen::project::{
+use des::automaton::{EventId, StateId};
+use des::AutomatonBuilder;
+use plc_project::{
     Action, Drive, Event, Input, Origin, Output, Project, Supervisor, SupervisorSource, Timer,
     Trigger, Unexpected,
 };
-use codegen::AutomatonBuilder;
 use std::path::PathBuf;
 
 pub(crate) fn input(name: &str, debounce_scans: u8) -> Input {
@@ -79,7 +79,7 @@ pub(crate) fn supervisor_named(
         local_events: alphabet.iter().copied().zip(ids).collect(),
         source: SupervisorSource::File(PathBuf::from(format!("{name}.toml"))),
         line: 0,
-        max_logic_effort: codegen::backend::logic::DEFAULT_MAX_EFFORT,
+        max_logic_effort: None,
     }
 }
 

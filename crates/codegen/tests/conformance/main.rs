@@ -16,7 +16,7 @@
 //! end. Independently of all three interpreters, every scan is also checked
 //! for **control equivalence** against the source automata
 //! ([`check_control`]): replaying the executed events from the pre-scan
-//! state vector with [`codegen::Automaton::successor`] must find every event defined
+//! state vector with [`des::Automaton::successor`] must find every event defined
 //! in every supervisor that has it (so no executed controllable event was
 //! disabled) and must land on the recorded state vector (no supervisor
 //! moves except along a defined transition, or back to its initial state in
@@ -139,8 +139,8 @@ use crate::projects::{
 };
 use crate::reference::{Record, Reference};
 use crate::runs::{run, wide_run, RunSpec};
-use codegen::automaton::{EventId, StateId};
-use codegen::project::{Action, Drive, Event, Project, Trigger, Unexpected};
+use des::automaton::{EventId, StateId};
+use plc_project::{Action, Drive, Event, Project, Trigger, Unexpected};
 use proptest::prelude::*;
 use proptest::test_runner::{FileFailurePersistence, RngAlgorithm, TestCaseError};
 use std::collections::HashMap;

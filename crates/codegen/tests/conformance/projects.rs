@@ -4,12 +4,12 @@
 //! that draw them, narrow ([`NARROW`]) or wide ([`WIDE`]); random Petri
 //! nets added to a project.
 
-use codegen::automaton::{EventId, StateId};
-use codegen::project::{
+use des::automaton::{EventId, StateId};
+use des::AutomatonBuilder;
+use plc_project::{
     Action, Drive, Event, Input, Net, NetSource, Origin, Output, Project, Supervisor,
     SupervisorSource, Timer, Trigger, Unexpected,
 };
-use codegen::AutomatonBuilder;
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::sample::Index as Pick;
@@ -399,7 +399,7 @@ pub(crate) fn build_supervisor(
         local_events: alphabet.iter().copied().zip(ids).collect(),
         source: SupervisorSource::File(PathBuf::from(format!("s{j}.toml"))),
         line: 0,
-        max_logic_effort: codegen::backend::logic::DEFAULT_MAX_EFFORT,
+        max_logic_effort: None,
     }
 }
 
@@ -566,8 +566,8 @@ pub(crate) fn project(
 /// places. The counters are laid out as `[[net]]` lays them out, from the
 /// bounds of the reachability graph.
 pub(crate) fn add_random_nets(project: &mut Project, seed: u64) {
-    use codegen::des::petri::{reach, NetBuilder};
-    use codegen::Location;
+    use des::petri::{reach, NetBuilder};
+    use des::Location;
     let mut state = seed | 1;
     let mut next = move |n: usize| {
         state ^= state << 13;

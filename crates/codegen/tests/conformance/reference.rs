@@ -3,9 +3,9 @@
 //! (never the executor's `Config`), and the trace record all three
 //! interpreters are compared on.
 
-use codegen::automaton::{EventId, StateId};
-use codegen::project::{Action, Drive, Net, Project, Trigger, Unexpected};
+use des::automaton::{EventId, StateId};
 use executor::{Fault, ScanRecord};
+use plc_project::{Action, Drive, Net, Project, Trigger, Unexpected};
 use std::collections::HashMap;
 use std::fmt::Debug;
 

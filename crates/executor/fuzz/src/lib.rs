@@ -46,7 +46,7 @@ pub fn seed_images(models: &Path) -> Vec<TableImage> {
     SEED_PROJECTS
         .iter()
         .map(|name| {
-            let project = codegen::project::load(&models.join(name))
+            let project = plc_project::load(&models.join(name))
                 .unwrap_or_else(|e| panic!("seed project {name}: {e}"));
             TableImage::new(&project).unwrap_or_else(|e| panic!("seed project {name}: {e}"))
         })

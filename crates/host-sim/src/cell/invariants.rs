@@ -7,8 +7,8 @@
 use super::params::CellParams;
 use super::physics::CellState;
 use super::signals::Unit;
-use codegen::des::petri::constraints::Constraint;
-use codegen::des::petri::PetriNet;
+use des::petri::constraints::Constraint;
+use des::petri::PetriNet;
 use std::fmt;
 
 /// One invariant.

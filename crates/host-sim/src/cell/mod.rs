@@ -31,9 +31,9 @@ pub use record::{Batch, CellRun};
 pub use signals::{CellIo, Commands, Sensors, Unit};
 
 use crate::sim::{Sim, SimError};
-use codegen::des::petri::constraints::{self, Constraint};
-use codegen::des::petri::PetriNet;
-use codegen::project::{NetSource, Project};
+use des::petri::constraints::{self, Constraint};
+use des::petri::PetriNet;
+use plc_project::{NetSource, Project};
 
 /// A problem setting up a closed-loop run of the cell.
 #[derive(Debug, thiserror::Error)]
@@ -49,7 +49,7 @@ pub enum CellError {
     NotAMarking(String),
     /// Reading the constraints failed.
     #[error(transparent)]
-    Model(#[from] codegen::Error),
+    Model(#[from] des::Error),
     /// The simulation failed.
     #[error(transparent)]
     Sim(#[from] SimError),
@@ -105,7 +105,7 @@ impl Watch {
         else {
             return Err(CellError::NoControlledNet);
         };
-        let plant = codegen::des::petri::read_file(plant)?;
+        let plant = des::petri::read_file(plant)?;
         let constraints = constraints::read_file(constraints, &plant)?;
         Ok(Watch::new(net.net.clone(), constraints, params))
     }

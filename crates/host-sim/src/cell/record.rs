@@ -6,7 +6,7 @@ use super::invariants::Violation;
 use super::physics::CellState;
 use super::signals::{CellIo, Commands, Sensors, Unit};
 use crate::inputs::{self, InputRow};
-use codegen::project::Project;
+use plc_project::Project;
 
 /// A finished run.
 #[derive(Debug, Clone, Default)]

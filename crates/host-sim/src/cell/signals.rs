@@ -4,7 +4,7 @@
 //! ([`CellIo`]).
 
 use crate::sim::{Sim, SimError};
-use codegen::project::Project;
+use plc_project::Project;
 
 /// A mixing tank: `a` or `b` in the paper's subscripts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -71,7 +71,7 @@ use super::error::PlantError;
 use super::signals::{Input, Inputs, IoMap, Output, Outputs};
 use crate::inputs::InputRow;
 use crate::trace::TraceRow;
-use codegen::project::Project;
+use plc_project::Project;
 use std::fmt;
 
 /// The constants of the rules.

@@ -6,7 +6,7 @@
 //! them. Other inputs and outputs of the project are left alone.
 
 use super::error::PlantError;
-use codegen::project::Project;
+use plc_project::Project;
 
 /// One of the boiler's PLC inputs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -17,7 +17,7 @@ use super::error::PlantError;
 use super::record::Run;
 use super::signals::{Input, IoMap, Output};
 use crate::vcd::{write_scans, Quantity, Samples, Scan};
-use codegen::project::Project;
+use plc_project::Project;
 use std::io::Write;
 use vcd::Value;
 

@@ -1,0 +1,267 @@
+//! The `codegen` command: synthesis, checks and conversions on automata,
+//! and PLC projects as Rust, Structured Text and PLCopen XML. Argument
+//! parsing, model loading and output.
+//!
+//! Exit codes: 0 = done and every checked property holds; 1 = a checked
+//! property fails; 2 = bad input or usage. A closed standard output (`|
+//! head`) ends the output quietly and keeps the exit code (see [`output`]).
+
+mod check;
+mod condat;
+mod convert;
+mod dot;
+mod gen;
+mod info;
+mod key;
+mod net_control;
+mod output;
+mod petri;
+mod plc;
+mod progress;
+mod synth;
+mod wiring;
+
+use clap::{Parser, Subcommand};
+use des::formats::{self, Component, Kind};
+use des::{Automaton, Error};
+use output::{warn, Out};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Supervisor synthesis and checks for discrete-event models.
+///
+/// Model files: native `.toml`, libFAUDES `.gen`, TCT `.ads`, Supremica
+/// `.wmod` (chosen by extension).
+#[derive(Debug, Parser)]
+#[command(name = "codegen", version, about)]
+pub struct Cli {
+    /// Print machine-readable JSON on stdout instead of text.
+    #[arg(long, global = true)]
+    json: bool,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Sizes and properties of every automaton in the files.
+    Info {
+        /// Model files.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+    },
+    /// Synthesise a supervisor: supcon(sync(plants), sync(specs)).
+    Synth(synth::SynthArgs),
+    /// Check supervisors against a plant: controllable, nonblocking,
+    /// and (for several) nonconflicting.
+    Check {
+        /// Plant component files (their synchronous composition is the plant).
+        #[arg(long = "plant", required = true, num_args = 1..)]
+        plants: Vec<PathBuf>,
+        /// Supervisor files.
+        #[arg(long = "sup", required = true, num_args = 1..)]
+        sups: Vec<PathBuf>,
+    },
+    /// Control data: the controllable events each supervisor state disables.
+    Condat {
+        /// Plant component files.
+        #[arg(long = "plant", required = true, num_args = 1..)]
+        plants: Vec<PathBuf>,
+        /// The supervisor file.
+        #[arg(long = "sup", required = true)]
+        sup: PathBuf,
+    },
+    /// Convert between formats (by extension), keeping each component's
+    /// kind.
+    Convert(convert::ConvertArgs),
+    /// Rust source of a PLC project (what the build script writes), or
+    /// its sizes with `--stats`.
+    Gen(gen::GenArgs),
+    /// The board wiring of a PLC project (its `[board]` section) as a
+    /// Markdown table: signal, direction, pin, pull, active level, notes.
+    Wiring {
+        /// The project file (`*.plc.toml`).
+        project: PathBuf,
+    },
+    /// Graphviz drawing of an automaton: DOT text on stdout or in files.
+    Dot(dot::DotArgs),
+    /// Place/transition Petri nets (`.pnml`, `.toml`): properties,
+    /// reachability graph, conversion.
+    #[command(subcommand)]
+    Petri(petri::PetriCommand),
+    /// A project as an IEC 61131-3 Structured Text function block and
+    /// program (`.st`) for industrial PLCs.
+    St(plc::PlcArgs),
+    /// A project as PLCopen XML (TC6 v2.01) with ST bodies, for PLC tools
+    /// that import it.
+    Plcopen(plc::PlcArgs),
+}
+
+/// How a command ended when it did not fail outright.
+pub enum Outcome {
+    /// Everything holds.
+    Holds,
+    /// A checked property fails (exit code 1).
+    Fails,
+}
+
+/// Parses the arguments, runs the command, prints its output and errors
+/// (exit codes above).
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let json = cli.json;
+    let mut out = Out::default();
+    let result = match cli.command {
+        Command::Info { files } => info::run(&files, json, &mut out),
+        Command::Synth(args) => synth::run(&args, json, &mut out),
+        Command::Check { plants, sups } => check::run(&plants, &sups, json, &mut out),
+        Command::Condat { plants, sup } => condat::run(&plants, &sup, json, &mut out),
+        Command::Convert(args) => convert::run(&args, json, &mut out),
+        Command::Gen(args) => gen::run(&args, json, &mut out),
+        Command::Dot(args) => dot::run(&args, json, &mut out),
+        Command::Wiring { project } => wiring::run(&project, json, &mut out),
+        Command::Petri(command) => petri::run(&command, json, &mut out),
+        Command::St(args) => plc::run(&args, plc::Flavour::St, json, &mut out),
+        Command::Plcopen(args) => plc::run(&args, plc::Flavour::PlcOpen, json, &mut out),
+    };
+    let code = match &result {
+        Ok(Outcome::Holds) => ExitCode::SUCCESS,
+        Ok(Outcome::Fails) => ExitCode::from(1),
+        Err(e) => {
+            out.clear();
+            if json {
+                out.json(&serde_json::json!({ "error": e.to_string() }));
+            }
+            warn(format_args!("error: {e}"));
+            ExitCode::from(2)
+        }
+    };
+    if let Err(e) = out.flush_to_stdout() {
+        warn(format_args!("error: writing standard output: {e}"));
+        return ExitCode::from(2);
+    }
+    code
+}
+
+/// The role a file plays on the command line; for files that hold several
+/// components (Waters modules) it selects the components of that kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// `--plant`
+    Plant,
+    /// `--spec`
+    Spec,
+    /// `--sup`
+    Supervisor,
+}
+
+impl Role {
+    fn accepts(self, kind: Kind) -> bool {
+        match self {
+            Role::Plant => kind == Kind::Plant,
+            Role::Spec => matches!(kind, Kind::Spec | Kind::Property),
+            Role::Supervisor => matches!(kind, Kind::Supervisor | Kind::Spec),
+        }
+    }
+}
+
+/// Loads the automata of `paths` that play `role`: every automaton of a
+/// single-automaton file, the components of matching kind of a module.
+pub fn load(paths: &[PathBuf], role: Role) -> Result<Vec<Automaton>, Error> {
+    let mut out = Vec::new();
+    for path in paths {
+        let components = formats::read_file(path)?;
+        if components.len() == 1 {
+            out.push(components.into_iter().next().expect("one").automaton);
+            continue;
+        }
+        let before = out.len();
+        let kinds: Vec<String> = components
+            .iter()
+            .map(|c| format!("{} `{}`", c.kind, c.automaton.name()))
+            .collect();
+        out.extend(
+            components
+                .into_iter()
+                .filter(|c| role.accepts(c.kind))
+                .map(|c| c.automaton),
+        );
+        if out.len() == before {
+            return Err(Error::Incompatible(format!(
+                "{}: no component to use as {role:?} (the file has: {})",
+                path.display(),
+                if kinds.is_empty() {
+                    "nothing".to_owned()
+                } else {
+                    kinds.join(", ")
+                }
+            )));
+        }
+    }
+    Ok(out)
+}
+
+/// Reads `path` and keeps the component called `name`, or all.
+pub fn load_components(path: &Path, name: Option<&str>) -> Result<Vec<Component>, Error> {
+    let components = formats::read_file(path)?;
+    let Some(name) = name else {
+        return Ok(components);
+    };
+    let names: Vec<String> = components
+        .iter()
+        .map(|c| c.automaton.name().to_owned())
+        .collect();
+    let chosen: Vec<Component> = components
+        .into_iter()
+        .filter(|c| c.automaton.name() == name)
+        .collect();
+    if chosen.is_empty() {
+        return Err(Error::Incompatible(format!(
+            "{}: no component `{name}` (components: {})",
+            path.display(),
+            names.join(", ")
+        )));
+    }
+    Ok(chosen)
+}
+
+/// `states/transitions` plus event counts, for reports.
+#[derive(Debug, serde::Serialize)]
+pub struct Size {
+    pub states: usize,
+    pub transitions: usize,
+    pub events: usize,
+    pub controllable: usize,
+    /// The file says which events are controllable (a plain libFAUDES
+    /// generator may not; its events then take the controllability of the
+    /// automata they meet).
+    pub controllability_stated: bool,
+}
+
+impl Size {
+    /// The size of `a`.
+    pub fn of(a: &Automaton) -> Size {
+        Size {
+            states: a.num_states(),
+            transitions: a.num_transitions(),
+            events: a.alphabet().len(),
+            controllable: a.alphabet().controllable_count(),
+            controllability_stated: a.alphabet().controllability_stated(),
+        }
+    }
+}
+
+impl std::fmt::Display for Size {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} states, {} transitions, {} events",
+            self.states, self.transitions, self.events
+        )?;
+        if self.controllability_stated || self.controllable > 0 {
+            write!(f, " ({} controllable)", self.controllable)
+        } else {
+            f.write_str(" (controllability not stated)")
+        }
+    }
+}

@@ -1,0 +1,53 @@
+//! `codegen wiring` as a user runs it.
+
+use codegen::board::wiring_table;
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// `codegen wiring`: the table on stdout, JSON rows with `--json`, and a
+/// usage error (exit code 2) for a project without `[board]`.
+#[test]
+fn the_wiring_verb_prints_the_table_or_json() {
+    let codegen = env!("CARGO_BIN_EXE_codegen");
+    let press = root().join("models/press.plc.toml");
+    let out = std::process::Command::new(codegen)
+        .arg("wiring")
+        .arg(&press)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("| signal | direction | pin | pull | active level | notes |\n"));
+    assert!(
+        text.contains("| `auto_pb` | input | PC13 | up | low |"),
+        "{text}"
+    );
+    assert_eq!(text, wiring_table(&plc_project::load(&press).unwrap()));
+
+    let out = std::process::Command::new(codegen)
+        .args(["--json", "wiring"])
+        .arg(&press)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["chip"], "STM32F411RETx");
+    assert_eq!(json["project"], "stamping-press");
+    let first = &json["signals"][0];
+    assert_eq!(first["signal"], "auto_pb");
+    assert_eq!(first["direction"], "input");
+    assert_eq!(first["pin"], "PC13");
+    assert_eq!(first["active_level"], "low");
+    assert_eq!(first["edge_latched"], true);
+
+    let out = std::process::Command::new(codegen)
+        .arg("wiring")
+        .arg(root().join("crates/codegen/tests/fixtures/project/press.plc.toml"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("has no [board] section"));
+}

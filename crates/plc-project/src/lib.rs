@@ -1,0 +1,53 @@
+//! PLC projects (`*.plc.toml`): which supervisors run and how their events
+//! meet inputs, outputs and timers.
+//!
+//! [`load`] reads a project file, [`from_str`] parses one given as text;
+//! both return a validated [`Project`] or the first error, located at its
+//! line and column in the project file. Three stages:
+//!
+//! 1. parsing: the TOML text into raw declarations that keep their spans;
+//! 2. [`sources`]: the model file of every supervisor read, or the
+//!    supervisor synthesised (every file recorded for `rerun-if-changed`);
+//! 3. [`validate`]: the declarations and the supervisors' automata checked
+//!    against each other (every rule, by topic).
+//!
+//! This is the front end: it reads and checks, and knows nothing of how a
+//! project is lowered, generated or exported (`codegen`, `iec-export`).
+
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod ident;
+mod locate;
+mod model;
+mod parse;
+pub mod paths;
+pub mod sources;
+pub mod validate;
+
+pub use model::*;
+
+use des::error::Result;
+use std::path::Path;
+
+/// Project files as [`des::files`] reads them: a regular file of at most
+/// 16 MiB (the largest project the executor's 16-bit indices allow, 65,535
+/// events with their bindings, takes a few MiB).
+pub const PROJECT_FILE: des::files::FileKind = des::files::FileKind::new("project file", 16 << 20);
+
+/// Reads and validates the project file at `path` ([`PROJECT_FILE`]);
+/// model paths in it are relative to its directory.
+pub fn load(path: &Path) -> Result<Project> {
+    let text = des::files::read_text(path, PROJECT_FILE)?;
+    from_str(&text, path)
+}
+
+/// Parses and validates `text` as the project file at `path`: `path` names
+/// the file in errors and [`Project::files`], and model paths in the text
+/// are relative to its directory (the file itself need not exist).
+pub fn from_str(text: &str, path: &Path) -> Result<Project> {
+    let raw = parse::parse(text, path)?;
+    let file = locate::ProjectFile::new(path, text);
+    let sources = sources::load(&raw.supervisor, &raw.net, &file)?;
+    validate::validate(raw, sources, &file)
+}
