@@ -8,8 +8,8 @@
 //! the build with its `file:line` message. `build_names.rs` adds seeded
 //! random projects whose names are drawn to break generated code.
 
+use codegen::backend::Backend;
 use codegen::build::Build;
-use codegen::emit::Backend;
 
 #[path = "build_names.rs"]
 mod names;

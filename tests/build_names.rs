@@ -18,8 +18,8 @@
 //! cases; a longer campaign sets them (the test prints nothing new, it only
 //! compiles more).
 
+use codegen::backend::Backend;
 use codegen::build::Build;
-use codegen::emit::Backend;
 use plc_project::ident::sanitize;
 use std::fmt::Write as _;
 use std::path::Path;

@@ -7,7 +7,7 @@
 //!
 //! - the generated name modules (`input`, `output`, `timer`, `event`,
 //!   `supervisor`, `states`), `CONFIG` and `IMAGE_CRC` agree with the
-//!   project and with the run-time image `codegen::image` builds from it
+//!   project and with the run-time image `codegen::lower` builds from it
 //!   (`TableImage::new(&project).crc` for tables, the configuration CRC of
 //!   `LogicImage` for logic), and the CRC of `PROGRAM`'s image is it;
 //! - the generated δ (const tables or logic functions) equals the run-time
@@ -19,8 +19,8 @@
 //!   toggles and clock jumps make every event, faults, resets and timer
 //!   expiries happen (checked by coverage assertions).
 
-use codegen::emit::Backend;
-use codegen::image::{LogicImage, TableImage};
+use codegen::backend::Backend;
+use codegen::lower::{LogicImage, TableImage};
 use des::{EventId, StateId};
 use executor::memory::Memory;
 use executor::program::{Config, Index, Program};

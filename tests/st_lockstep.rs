@@ -277,7 +277,7 @@ fn the_cells_two_batches_in_closed_loop_give_the_same_trace() {
     let project = load("models/petri/cell/cell.plc.toml");
     let params = CellParams::default();
     let watch = Watch::of_project(&project, &params).expect("watch");
-    let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table).expect("sim");
+    let mut sim = Sim::new(project.clone(), codegen::backend::Backend::Table).expect("sim");
     let mut plant = CellPlant::new(params);
     let both = Operator::new()
         .press(1_000, Unit::A, 1_000)
@@ -349,7 +349,7 @@ fn the_program_wires_the_controller_to_its_addresses_and_keeps_time() {
             .collect();
         let period = u64::from(project.scan_period_ms);
         let rows = guided_inputs(&project, 3_000, 11, 40).expect("inputs");
-        let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table).expect("sim");
+        let mut sim = Sim::new(project.clone(), codegen::backend::Backend::Table).expect("sim");
         sim.retain_trace(false);
         let mut changes = 0;
         for (k, row) in rows.iter().enumerate() {

@@ -58,7 +58,8 @@ fn main() {
             std::process::exit(1);
         }
     };
-    if backend == codegen::emit::Backend::Logic && std::env::var_os("CARGO_FEATURE_LOGIC").is_none()
+    if backend == codegen::backend::Backend::Logic
+        && std::env::var_os("CARGO_FEATURE_LOGIC").is_none()
     {
         eprintln!(
             "error: PLC_BACKEND=logic needs the firmware's `logic` feature (`--features logic`): \

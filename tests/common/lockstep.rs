@@ -147,7 +147,7 @@ pub fn compare(
     what: &str,
     mut plc: impl FnMut(usize, &InputRow) -> Observed,
 ) -> Coverage {
-    let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table).expect("sim");
+    let mut sim = Sim::new(project.clone(), codegen::backend::Backend::Table).expect("sim");
     sim.retain_trace(false);
     let mut cov = Coverage::default();
     let mut was_fault = false;
@@ -244,7 +244,7 @@ pub fn boiler_scenarios(project: &Project) -> Vec<(&'static str, Vec<InputRow>)>
         .filter(|n| **n != "controller-stall")
         .map(|name| {
             let (script, duration) = scenarios::named(name).expect("scenario");
-            let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table).expect("sim");
+            let mut sim = Sim::new(project.clone(), codegen::backend::Backend::Table).expect("sim");
             let mut boiler = BoilerPlant::new(BoilerParams::default(), 1);
             let run = plant::run(&mut sim, &mut boiler, &script, duration).expect("runs");
             let rows = run.input_rows(&io);

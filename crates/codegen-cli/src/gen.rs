@@ -4,8 +4,9 @@ use super::output::{outln, Out};
 use super::progress::Spinner;
 use super::Outcome;
 use codegen::backend::table::EncodedTable;
-use codegen::emit::{generate_with_progress, Backend, SupervisorStats};
-use codegen::image::ImageCheck;
+use codegen::backend::Backend;
+use codegen::emit::{generate_with_progress, SupervisorStats};
+use codegen::lower::ImageCheck;
 use des::formats;
 use des::Error;
 use plc_project as project;
@@ -129,7 +130,7 @@ fn print_image_check(out: &mut Out, check: &ImageCheck) {
 }
 
 /// What the enabled-event sets cost.
-fn print_scan_sets(out: &mut Out, sets: &codegen::image::ScanSets) {
+fn print_scan_sets(out: &mut Out, sets: &codegen::lower::ScanSets) {
     outln!(
         out,
         "  enabled-event sets: {} word(s) per set; flash {} bytes of alphabets and {} bytes of masks (the enabled events are the rows above); RAM {} bytes",

@@ -4,7 +4,7 @@
 //!
 //! ```no_run
 //! codegen::build::Build::new("models/press.plc.toml")
-//!     .backend(codegen::emit::Backend::Table)
+//!     .backend(codegen::backend::Backend::Table)
 //!     .generate_or_exit();
 //! ```
 //!
@@ -30,7 +30,8 @@
 //! before a single line is printed. Warning text has its control
 //! characters replaced ([`warning_line`]).
 
-use crate::emit::{generate, Backend, Generated};
+use crate::backend::Backend;
+use crate::emit::{generate, Generated};
 use des::error::{Error, Result};
 use plc_project as project;
 pub use plc_project::paths::{printable_path, UnprintablePath};

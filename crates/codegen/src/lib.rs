@@ -4,7 +4,8 @@
 //! writes.
 //!
 //! - [`backend`]: supervisors as bit-packed tables or CMSSM logic.
-//! - [`image`]: a project laid out as the executor's program image.
+//! - [`lower`]: a project lowered once to the executor's program image
+//!   (what each backend means is said there).
 //! - [`emit`]: the generated Rust source; [`build`]: the build-script API.
 //! - [`board`]: the `[board]` pin map as generated Rust and as a wiring
 //!   table.
@@ -20,4 +21,4 @@ pub mod backend;
 pub mod board;
 pub mod build;
 pub mod emit;
-pub mod image;
+pub mod lower;

@@ -3,8 +3,9 @@
 //! offending line, warnings name what the firmware will do, and the pin
 //! map comes out as generated Rust and as a wiring table.
 
+use codegen::backend::Backend;
 use codegen::board::{board_module, wiring_rows, wiring_table, Direction};
-use codegen::emit::{generate, Backend};
+use codegen::emit::generate;
 use plc_project::{self as project, EdgeLatch, PinId, Pull};
 use std::path::Path;
 

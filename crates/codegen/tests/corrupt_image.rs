@@ -6,7 +6,7 @@
 //! the safe output image, one fault counted, no panic whatever the inputs,
 //! and no reset out of it.
 
-use codegen::image::{ImageCheck, LogicImage, TableImage};
+use codegen::lower::{ImageCheck, LogicImage, TableImage};
 use executor::memory::HeapMemory;
 use executor::program::{Index, Program, Span};
 use executor::table::SupervisorTable;

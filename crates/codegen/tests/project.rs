@@ -181,7 +181,7 @@ fn a_synthesis_beyond_its_max_states_is_refused_at_its_line() {
 #[test]
 fn a_supervisor_beyond_its_logic_effort_is_refused_at_its_line_before_minimising() {
     use codegen::backend::logic::{self, Encoding, Minimisation, DEFAULT_MAX_EFFORT};
-    use codegen::image::{LogicImage, TableImage};
+    use codegen::lower::{LogicImage, TableImage};
     let base = std::fs::read_to_string(fixture("factory.plc.toml")).unwrap();
     let project = load_ok(&base);
     let s = &project.supervisors[0];

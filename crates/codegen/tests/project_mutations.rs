@@ -26,7 +26,8 @@
 //! or a timer with an event, an output driven twice, a controllable event
 //! in no supervisor's alphabet.
 
-use codegen::emit::{generate, Backend};
+use codegen::backend::Backend;
+use codegen::emit::generate;
 use des::Error;
 use plc_project as project;
 use proptest::prelude::*;

@@ -3,7 +3,7 @@
 
 mod common;
 
-use codegen::image::TableImage;
+use codegen::lower::TableImage;
 use common::{assert_errors_at_marked_lines, load_err, load_ok};
 use executor::memory::HeapMemory;
 use executor::{Controller, Program};
@@ -163,7 +163,10 @@ fn nets_run_on_the_table_backend_only() {
     let p = load_ok(&format!(
         "[plc]\nname = \"x\"\n{EVENTS}[[net]]\nname = \"two\"\nfile = \"nets/two.toml\"\n"
     ));
-    for backend in [codegen::emit::Backend::Logic, codegen::emit::Backend::Match] {
+    for backend in [
+        codegen::backend::Backend::Logic,
+        codegen::backend::Backend::Match,
+    ] {
         let msg = codegen::emit::generate(&p, backend, "")
             .unwrap_err()
             .to_string();

@@ -34,5 +34,5 @@ pub mod trace;
 pub mod vcd;
 
 pub use lockstep::Lockstep;
-pub use sim::{RuntimeProgram, Sim, SimError};
+pub use sim::{Sim, SimError};
 pub use trace::TraceRow;

@@ -6,7 +6,7 @@
 
 use crate::sim::{Sim, SimError};
 use crate::trace::TraceRow;
-use codegen::emit::Backend;
+use codegen::backend::Backend;
 use plc_project::Project;
 use std::path::Path;
 

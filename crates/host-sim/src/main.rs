@@ -1,7 +1,7 @@
 //! `host-sim`: run PLC projects on the PC.
 
 use clap::{Parser, Subcommand, ValueEnum};
-use codegen::emit::Backend;
+use codegen::backend::Backend;
 use host_sim::{inputs, random_inputs, replay, scenario, Sim};
 use std::fmt;
 use std::io::{self, Write};

@@ -30,7 +30,7 @@ pub struct GuidedInputs {
 impl GuidedInputs {
     /// The generator for `project`, seeded with `seed`.
     pub fn new(project: &Project, seed: u64, noise_one_in: u64) -> Result<Self, SimError> {
-        let mut sim = Sim::new(project.clone(), codegen::emit::Backend::Table)?;
+        let mut sim = Sim::new(project.clone(), codegen::backend::Backend::Table)?;
         sim.retain_trace(false);
         Ok(GuidedInputs {
             sim,
@@ -115,7 +115,7 @@ pub fn guided_inputs(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use codegen::emit::Backend;
+    use codegen::backend::Backend;
     use std::path::Path;
 
     #[test]

@@ -93,7 +93,7 @@ pub fn stream(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use codegen::emit::Backend;
+    use codegen::backend::Backend;
 
     fn repo(path: &str) -> std::path::PathBuf {
         Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -159,7 +159,7 @@ where
 mod tests {
     use super::*;
     use crate::random_inputs::guided_inputs;
-    use codegen::emit::Backend;
+    use codegen::backend::Backend;
     use executor::replay::RecordedScan;
     use std::path::Path;
 

@@ -10,12 +10,11 @@
 //! resumes in phase.
 
 use crate::trace::TraceRow;
-use codegen::emit::Backend;
-use codegen::image::TableImage;
+use codegen::backend::Backend;
+use codegen::lower::Lowered;
 use executor::memory::HeapMemory;
 use executor::pacing::{Pacer, ScanStart};
-use executor::program::{Config, Index, Program};
-use executor::table::SupervisorTable;
+use executor::program::Program;
 use executor::Controller;
 use plc_project::{self as project, Project};
 use std::path::Path;
@@ -47,68 +46,10 @@ pub enum SimError {
     },
 }
 
-/// The program a host simulation runs, built at run time from a project.
-#[derive(Debug, Clone)]
-pub enum RuntimeProgram {
-    /// Bit-packed tables.
-    Table(TableImage),
-    /// CMSSM logic functions.
-    Logic(codegen::image::LogicImage),
-}
-
-impl RuntimeProgram {
-    /// The program of `project` in `backend`.
-    pub fn new(project: &Project, backend: Backend) -> Result<Self, des::Error> {
-        Ok(match backend {
-            // The match baseline only exists as generated code; at run time
-            // it is the same automaton as the table.
-            Backend::Table | Backend::Match => RuntimeProgram::Table(TableImage::new(project)?),
-            Backend::Logic => RuntimeProgram::Logic(codegen::image::LogicImage::new(project)?),
-        })
-    }
-}
-
-impl Program for RuntimeProgram {
-    fn config(&self) -> Config<'_> {
-        match self {
-            RuntimeProgram::Table(t) => t.config(),
-            RuntimeProgram::Logic(l) => l.config(),
-        }
-    }
-
-    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
-        match self {
-            RuntimeProgram::Table(t) => t.next_state(supervisor, state, local),
-            RuntimeProgram::Logic(l) => l.next_state(supervisor, state, local),
-        }
-    }
-
-    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
-        match self {
-            RuntimeProgram::Table(t) => t.enabled(supervisor, state, from, len),
-            RuntimeProgram::Logic(l) => l.enabled(supervisor, state, from, len),
-        }
-    }
-
-    fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {
-        match self {
-            RuntimeProgram::Table(t) => t.table(supervisor),
-            RuntimeProgram::Logic(l) => l.table(supervisor),
-        }
-    }
-
-    fn recorded_crc(&self) -> u32 {
-        match self {
-            RuntimeProgram::Table(t) => t.recorded_crc(),
-            RuntimeProgram::Logic(l) => l.recorded_crc(),
-        }
-    }
-}
-
 /// A controller on a virtual clock, with its trace.
 pub struct Sim {
     project: Project,
-    controller: Controller<RuntimeProgram, HeapMemory>,
+    controller: Controller<Lowered, HeapMemory>,
     inputs: Vec<bool>,
     /// The controller's clock: when its last scan, or the stall after it,
     /// ended.
@@ -130,7 +71,7 @@ impl Sim {
 
     /// A controller for `project` at time 0 with every input 0.
     pub fn new(project: Project, backend: Backend) -> Result<Sim, SimError> {
-        let program = RuntimeProgram::new(&project, backend)?;
+        let program = Lowered::new(&project, backend, &())?;
         let memory = HeapMemory::for_config(&program.config());
         // Validation keeps `scan_period_ms` in 1..2^31, as the pacer needs.
         let pacer = Pacer::for_config(&program.config(), 0);
@@ -162,12 +103,12 @@ impl Sim {
     }
 
     /// The controller (fault state, counters).
-    pub fn controller(&self) -> &Controller<RuntimeProgram, HeapMemory> {
+    pub fn controller(&self) -> &Controller<Lowered, HeapMemory> {
         &self.controller
     }
 
     /// The controller, mutably (to report overruns or lost edges).
-    pub fn controller_mut(&mut self) -> &mut Controller<RuntimeProgram, HeapMemory> {
+    pub fn controller_mut(&mut self) -> &mut Controller<Lowered, HeapMemory> {
         &mut self.controller
     }
 

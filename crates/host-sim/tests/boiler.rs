@@ -5,7 +5,7 @@
 //! (`boiler_mono.plc.toml`) with the same executed events and outputs on
 //! every scan.
 
-use codegen::emit::Backend;
+use codegen::backend::Backend;
 use host_sim::plant::{
     self, scenarios, BoilerParams, BoilerPlant, Disturbance, Invariants, Output, Run, Script,
     Selector,

@@ -13,7 +13,7 @@
 //! `BOILER_CAMPAIGN_RUNS` (default 1000) and `BOILER_CAMPAIGN_SEED`
 //! (default 1) choose the runs.
 
-use codegen::emit::Backend;
+use codegen::backend::Backend;
 use host_sim::plant::{self, BoilerParams, BoilerPlant, Invariants, Script};
 use host_sim::Sim;
 use std::path::Path;

@@ -4,7 +4,7 @@
 //! plant simulation of `host_sim::cell`, every scan checked by its
 //! invariants.
 
-use codegen::emit::Backend;
+use codegen::backend::Backend;
 use host_sim::cell::{self, CellParams, CellPlant, CellRun, Operator, Rule, Unit, Watch};
 use host_sim::Sim;
 use plc_project::Project;

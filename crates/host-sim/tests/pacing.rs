@@ -11,14 +11,15 @@
 //! driver, say): the clock moves on with no poll. `Sim::stall` is that
 //! hang.
 
-use codegen::emit::Backend;
+use codegen::backend::Backend;
+use codegen::lower::Lowered;
 use executor::memory::HeapMemory;
 use executor::pacing::{Pacer, ScanStart};
 use executor::{Controller, Program};
 use host_sim::plant::{
     self, Action, BoilerController, BoilerParams, BoilerPlant, Inputs, Plc, Script, Selector,
 };
-use host_sim::{RuntimeProgram, Sim, TraceRow};
+use host_sim::{Sim, TraceRow};
 use plc_project::{self as project, Project};
 use std::path::Path;
 
@@ -32,7 +33,7 @@ fn project(name: &str) -> Project {
 /// The firmware's scan loop on a simulated SysTick millisecond clock.
 struct BoardLoop {
     project: Project,
-    controller: Controller<RuntimeProgram, HeapMemory>,
+    controller: Controller<Lowered, HeapMemory>,
     pacer: Pacer,
     /// SysTick's millisecond count.
     now_ms: u32,
@@ -43,7 +44,7 @@ struct BoardLoop {
 impl BoardLoop {
     /// Starts at millisecond 0, the schedule's first deadline.
     fn new(project: &Project) -> BoardLoop {
-        let program = RuntimeProgram::new(project, Backend::Table).unwrap();
+        let program = Lowered::new(project, Backend::Table, &()).unwrap();
         let pacer = Pacer::for_config(&program.config(), 0);
         let memory = HeapMemory::for_config(&program.config());
         BoardLoop {

@@ -4,7 +4,7 @@
 //! hand-written reference controller and catches each of its deliberately
 //! broken variants.
 
-use codegen::emit::Backend;
+use codegen::backend::Backend;
 use host_sim::plant::{
     self, Action, BoilerController, BoilerParams, BoilerPlant, Checker, ControllerScan,
     Disturbance, Input, Inputs, Invariants, Outputs, PlantError, Rule, Run, Script, Selector,

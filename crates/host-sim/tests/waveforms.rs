@@ -7,7 +7,7 @@
 
 mod common;
 
-use codegen::emit::Backend;
+use codegen::backend::Backend;
 use common::waveform::{Sample, Waveform};
 use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Input, Output, PlantError};
 use host_sim::{inputs, replay, Sim};

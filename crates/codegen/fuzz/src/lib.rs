@@ -23,8 +23,9 @@
 //! not followed: that would fuzz the machine's file system, not the
 //! project reader.
 
-use codegen::emit::{generate, Backend};
-use codegen::image::TableImage;
+use codegen::backend::Backend;
+use codegen::emit::generate;
+use codegen::lower::TableImage;
 use executor::memory::HeapMemory;
 use executor::program::Program;
 use executor::validate::validate;

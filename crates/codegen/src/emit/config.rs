@@ -791,7 +791,8 @@ pub mod places {{"
 
 #[cfg(test)]
 mod tests {
-    use crate::emit::{generate, Backend};
+    use crate::backend::Backend;
+    use crate::emit::generate;
     use plc_project as project;
     use std::path::Path;
 

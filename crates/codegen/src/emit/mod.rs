@@ -19,50 +19,13 @@ mod matches;
 mod table;
 
 use crate::backend::table::{EncodedTable, Layout};
-use crate::image::{ConfigPools, ImageCheck, LogicImage, ScanSets, TableImage};
+use crate::backend::Backend;
+use crate::lower::{ConfigPools, ImageCheck, Lowered, ScanSets};
 use des::error::{Error, Result};
 use executor::program as ex;
 use plc_project::ident::sanitize;
 use plc_project::{Project, SupervisorSource};
 use std::fmt::Write;
-
-/// How supervisors are represented in the generated program.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Backend {
-    /// Bit-packed transition tables (the default).
-    #[default]
-    Table,
-    /// CMSSM next-state and output functions (Espresso-minimised).
-    Logic,
-    /// Baseline for measurements: one plain `match` on (state, event) per
-    /// supervisor, what a hand-written state machine does.
-    Match,
-}
-
-impl Backend {
-    /// Every backend.
-    pub const ALL: [Backend; 3] = [Backend::Table, Backend::Logic, Backend::Match];
-
-    /// The name used on command lines and in file headers.
-    pub fn name(self) -> &'static str {
-        match self {
-            Backend::Table => "table",
-            Backend::Logic => "logic",
-            Backend::Match => "match",
-        }
-    }
-}
-
-impl std::str::FromStr for Backend {
-    type Err = String;
-
-    fn from_str(s: &str) -> std::result::Result<Backend, String> {
-        Backend::ALL
-            .into_iter()
-            .find(|b| b.name() == s)
-            .ok_or_else(|| format!("unknown backend `{s}` (expected table, logic or match)"))
-    }
-}
 
 /// Size figures of one supervisor in the generated program.
 #[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
@@ -325,29 +288,21 @@ fn duration(ms: u64) -> String {
     }
 }
 
-/// Writes the program of `project`: the configuration, the board and the
-/// supervisors in `backend`'s representation, not yet laid out.
-fn write_program(
-    project: &Project,
-    backend: Backend,
-    progress: &dyn des::ops::Progress,
-) -> Result<Unformatted> {
-    match backend {
-        Backend::Table => {}
-        Backend::Logic => crate::image::table_only(project, "logic")?,
-        Backend::Match => crate::image::table_only(project, "match")?,
-    }
-    let pools = ConfigPools::from_project(project)?;
+/// Writes the program of `project` lowered as `lowered`: the
+/// configuration, the board and the supervisors in the backend's
+/// representation, not yet laid out.
+fn write_program(project: &Project, lowered: &Lowered) -> Unformatted {
+    let pools = lowered.pools();
     let mut e = Emitter {
         project,
-        pools: &pools,
+        pools,
         out: String::new(),
     };
-    let uses = match backend {
-        Backend::Table => {
+    let uses = match lowered {
+        Lowered::Table(_) => {
             "use executor::program::Program;\nuse executor::table::{Rows, SupervisorTable};"
         }
-        Backend::Logic | Backend::Match => {
+        Lowered::Logic(_) | Lowered::Match(_) => {
             "use executor::program::Program;\nuse executor::table::SupervisorTable;"
         }
     };
@@ -358,40 +313,27 @@ fn write_program(
     e.names();
     e.config();
     e.out.push_str(&crate::board::board_module(project));
-    let (stats, crc, image) = match backend {
-        Backend::Table => {
-            let image = TableImage::new(project)?;
-            let check = ImageCheck::of(&image);
-            let doc = image_crc_doc(&check, "the configuration and the tables");
-            (e.tables(&image, &doc), image.crc, check)
+    let image = lowered.image_check();
+    let stats = match lowered {
+        Lowered::Table(tables) => {
+            let doc = image_crc_doc(&image, "the configuration and the tables");
+            e.tables(tables, &doc)
         }
-        Backend::Logic => {
-            let image = LogicImage::with_progress(project, progress)?;
-            let check = ImageCheck::of(&image);
-            let doc = image_crc_doc(&check, "the configuration; the supervisors are code");
-            (
-                e.logic(&image.supervisors, image.crc, &doc),
-                image.crc,
-                check,
-            )
+        Lowered::Logic(logic) => {
+            let doc = image_crc_doc(&image, "the configuration; the supervisors are code");
+            e.logic(&logic.supervisors, logic.crc, &doc)
         }
-        Backend::Match => {
-            let program = executor::table::TableProgram {
-                config: pools.config(),
-                tables: &[],
-                crc: executor::image::config_crc(&pools.config()),
-            };
-            let check = ImageCheck::of(&program);
-            let doc = image_crc_doc(&check, "the configuration; the supervisors are code");
-            (e.matches(program.crc, &doc), program.crc, check)
+        Lowered::Match(code) => {
+            let doc = image_crc_doc(&image, "the configuration; the supervisors are code");
+            e.matches(code.crc, &doc)
         }
     };
-    Ok(Unformatted {
+    Unformatted {
         text: e.out,
         stats,
-        crc,
+        crc: executor::program::Program::recorded_crc(lowered),
         image,
-    })
+    }
 }
 
 /// Parses `text` as a Rust file and lays it out: prettyplease, then a
@@ -419,7 +361,8 @@ pub fn generate_with_progress(
     regenerate: &str,
     progress: &dyn des::ops::Progress,
 ) -> Result<Generated> {
-    let program = write_program(project, backend, progress)?;
+    let lowered = Lowered::new(project, backend, progress)?;
+    let program = write_program(project, &lowered);
     let body = format_rust(&program.text)?;
     let backend_name = backend.name();
     let header = format!(
@@ -433,7 +376,7 @@ pub fn generate_with_progress(
         stats: program.stats,
         crc: program.crc,
         image: program.image,
-        sets: ScanSets::of(&ConfigPools::from_project(project)?),
+        sets: lowered.scan_sets(),
     })
 }
 
@@ -466,7 +409,8 @@ mod tests {
         for name in SEEDS {
             let project = seed(name);
             for &backend in backends {
-                let written = write_program(&project, backend, &()).unwrap().text;
+                let lowered = Lowered::new(&project, backend, &()).unwrap();
+                let written = write_program(&project, &lowered).text;
                 let laid_out = format_rust(&written).unwrap();
                 let kept: HashSet<&str> = laid_out.lines().map(str::trim).collect();
                 for line in written.lines().map(str::trim) {

@@ -4,7 +4,7 @@
 
 use super::{doc_text, ident, quoted, Emitter, SupervisorStats};
 use crate::backend::table::Layout;
-use crate::image::TableImage;
+use crate::lower::TableImage;
 use std::fmt::Write;
 
 /// Words as hexadecimal literals.

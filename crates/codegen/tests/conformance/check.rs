@@ -4,7 +4,7 @@
 use crate::reference::{
     initial_states, pack_marking, transition_of, unpack_marking, Record, Reference,
 };
-use codegen::image::{LogicImage, TableImage};
+use codegen::lower::{LogicImage, TableImage};
 use des::automaton::StateId;
 use executor::memory::HeapMemory;
 use executor::{Controller, Program};

@@ -3,7 +3,7 @@
 //! `executor_fuzz::run_image`).
 #![no_main]
 
-use codegen::image::TableImage;
+use codegen::lower::TableImage;
 use libfuzzer_sys::fuzz_target;
 use std::path::Path;
 use std::sync::OnceLock;

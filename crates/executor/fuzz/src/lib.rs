@@ -20,7 +20,7 @@
 //! - the two controllers, fed the same, record the same scans.
 
 use arbitrary::{Result, Unstructured};
-use codegen::image::TableImage;
+use codegen::lower::TableImage;
 use executor::memory::HeapMemory;
 use executor::pacing::Pacer;
 use executor::program::{Index, Program, Span};

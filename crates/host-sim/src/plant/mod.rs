@@ -29,7 +29,7 @@
 //!    late scan when the stall ends, then the grid in phase again).
 //!
 //! ```no_run
-//! use codegen::emit::Backend;
+//! use codegen::backend::Backend;
 //! use host_sim::plant::{self, BoilerParams, BoilerPlant, Invariants, Script, Selector};
 //! use host_sim::Sim;
 //!
