@@ -9,6 +9,8 @@
 //!   budgets, ratios to a `match` baseline).
 //! - `size [MODEL…]`: flash and static RAM of the board firmware.
 //! - `deps`: no build a new user starts with needs libclang (bindgen).
+//! - `layers`: the one-way rules: workspace crates depend only on lower
+//!   stages, and no crate has an import circle between its modules.
 //! - `iec [--all]`: the Structured Text and PLCopen XML exports of every
 //!   seed project parsed by blark and validated against the TC6 schema.
 //! - `matiec`: the same exports compiled by matiec (OpenPLC's and
@@ -21,6 +23,7 @@ mod bench;
 mod budgets;
 mod deps;
 mod iec;
+mod layers;
 mod matiec;
 mod qemu;
 mod size;
@@ -34,6 +37,7 @@ fn main() -> ExitCode {
         Some("qemu") => qemu::run_task(&args[1..]),
         Some("size") => size::run_task(&args[1..]),
         Some("deps") => deps::run_task(&args[1..]),
+        Some("layers") => layers::run_task(&args[1..]),
         Some("iec") => iec::run_task(&args[1..]),
         Some("matiec") => matiec::run_task(&args[1..]),
         _ => {
@@ -45,6 +49,7 @@ fn main() -> ExitCode {
                  qemu [PROJECT] [SCENARIO]  replay in QEMU: zero mismatches, instructions per scan, budgets\n  \
                  size [MODEL…]              flash and static RAM of the board firmware, budgets\n  \
                  deps                       the README's commands and the firmware build without libclang (cargo tree)\n  \
+                 layers [--edges]           crates depend on lower stages only; no import circle inside a crate\n  \
                  iec [--all]                ST and PLCopen XML of every seed: blark parse, TC6 schema (--all: the largest ST too)\n  \
                  matiec                     ST and PLCopen XML of every seed compiled by matiec and gcc, run in lockstep with host-sim"
             );
@@ -181,6 +186,9 @@ fn ci() -> Result {
     // The logic backend's tests need Espresso, hence libclang.
     sysdeps::ensure_libclang()?;
     run(cargo().args(["fmt", "--all", "--", "--check"]))?;
+    // The one-way rules (crate stages, no import circle inside a crate):
+    // manifests and source text only, so before anything compiles.
+    layers::run_task(&[])?;
     // Host crates; the firmware is checked for its own targets below.
     run(cargo().args([
         "clippy",

@@ -11,8 +11,6 @@
 //! [`Program`] trait, implemented by bit-packed tables ([`crate::table`])
 //! and by generated CMSSM logic functions alike.
 
-use crate::table::SupervisorTable;
-
 /// Index of an input, output, timer, event or supervisor.
 pub type Index = u16;
 
@@ -302,6 +300,46 @@ pub struct Config<'a> {
     pub memberships: &'a [Membership],
     /// Pool of state-map entries.
     pub state_map: &'a [StateMapEntry],
+}
+
+/// How the targets of a [`SupervisorTable`] are laid out (the encoding:
+/// [`crate::table`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rows<'a> {
+    /// Entry `s·m + e` for every pair.
+    Dense,
+    /// Only defined pairs, with a packed row start per state.
+    Sparse {
+        /// `n` packed entries of `start_bits` bits.
+        row_starts: &'a [u32],
+        /// Width of a row start.
+        start_bits: u8,
+    },
+    /// A group of places of a Petri net: `defined` holds `PRE[t]` and
+    /// `targets` `POST[t]`, one word per local transition ([`crate::table`],
+    /// "Petri nets").
+    Net {
+        /// The mask of each place's counter, in place order.
+        fields: &'a [u32],
+    },
+}
+
+/// One supervisor's transition function, bit-packed (the encoding and
+/// the decoder: [`crate::table`]). Plain data, like [`Config`]: the
+/// generator emits it as constants, and [`Program::table`] hands it out
+/// for the image CRC and validation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SupervisorTable<'a> {
+    /// Number of local events `m`.
+    pub events: Index,
+    /// Bits per state `b`.
+    pub state_bits: u8,
+    /// `n·m` defined-bits.
+    pub defined: &'a [u32],
+    /// Packed `b`-bit targets.
+    pub targets: &'a [u32],
+    /// Layout of `targets`.
+    pub rows: Rows<'a>,
 }
 
 /// Supervisor dynamics plus the static description: what a

@@ -68,40 +68,9 @@
 
 use crate::program::{Config, Index, Program};
 
-/// How the targets of a [`SupervisorTable`] are laid out.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Rows<'a> {
-    /// Entry `s·m + e` for every pair.
-    Dense,
-    /// Only defined pairs, with a packed row start per state.
-    Sparse {
-        /// `n` packed entries of `start_bits` bits.
-        row_starts: &'a [u32],
-        /// Width of a row start.
-        start_bits: u8,
-    },
-    /// A group of places of a Petri net: `defined` holds `PRE[t]` and
-    /// `targets` `POST[t]`, one word per local transition (module docs).
-    Net {
-        /// The mask of each place's counter, in place order.
-        fields: &'a [u32],
-    },
-}
-
-/// One supervisor's transition function, bit-packed (see module docs).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct SupervisorTable<'a> {
-    /// Number of local events `m`.
-    pub events: Index,
-    /// Bits per state `b`.
-    pub state_bits: u8,
-    /// `n·m` defined-bits.
-    pub defined: &'a [u32],
-    /// Packed `b`-bit targets.
-    pub targets: &'a [u32],
-    /// Layout of `targets`.
-    pub rows: Rows<'a>,
-}
+/// The tables' data, defined beside the [`Program`] trait that hands them
+/// out; this module decodes them.
+pub use crate::program::{Rows, SupervisorTable};
 
 /// The `width`-bit entry `index` of a packed array (0 if out of range).
 #[inline]
