@@ -255,7 +255,7 @@ mod record;
 pub mod replay;
 mod rom_test;
 pub mod table;
-mod timers;
+pub mod timers;
 pub mod validate;
 
 pub use controller::{Controller, SizeMismatch};

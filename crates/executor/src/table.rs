@@ -66,6 +66,10 @@
 //! CRC ([`crate::image::table_image_crc`]), which the generator records and the controller
 //! checks at start-up and, in the background, scan after scan.
 
+/// Most bits of a Petri-net group's packed marking, its state ("Petri
+/// nets" above): a group of `b` bits has `2^b` states, `1 ≤ b ≤` this.
+pub const NET_GROUP_BITS: u32 = 31;
+
 use crate::program::{Config, Index, Program};
 
 /// The tables' data, defined beside the [`Program`] trait that hands them

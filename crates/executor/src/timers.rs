@@ -1,5 +1,11 @@
 //! Timers: deadlines on a wrapping millisecond clock.
 
+/// The timer presets the executor runs (ms): below 2^31, so that a
+/// deadline compared by wrapping difference on the 32-bit clock is never
+/// mistaken for one in the past. The image check, the project validation
+/// and the IEC export use this range.
+pub const PRESET_MS: core::ops::RangeInclusive<u32> = 1..=(1 << 31) - 1;
+
 /// `true` when `deadline` has been reached at `now`, comparing on the
 /// wrapping 32-bit clock (valid while presets stay below 2^31 ms).
 #[inline]

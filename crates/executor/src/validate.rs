@@ -246,7 +246,7 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
         pool(Part::Output(o), spec.state_map, c.state_map)?;
     }
     for (t, spec) in c.timers.iter().enumerate() {
-        if spec.preset_ms == 0 || spec.preset_ms >= 1 << 31 {
+        if !crate::timers::PRESET_MS.contains(&spec.preset_ms) {
             return fail(Part::Timer(t), Flaw::Preset);
         }
         event_list(Part::Timer(t), spec.raises, c)?;
@@ -413,7 +413,7 @@ fn validate_net(
     fields: &[u32],
 ) -> Result<(), Invalid> {
     let width = table.state_bits;
-    if !(1..=31).contains(&width) || states != 1 << width {
+    if !(1..=crate::table::NET_GROUP_BITS).contains(&u32::from(width)) || states != 1 << width {
         return fail(part, Flaw::StateBits);
     }
     let mut covered = 0u32;

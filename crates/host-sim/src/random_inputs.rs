@@ -32,11 +32,12 @@ impl GuidedInputs {
     pub fn new(project: &Project, seed: u64, noise_one_in: u64) -> Result<Self, SimError> {
         let mut sim = Sim::new(project.clone(), codegen::backend::Backend::Table)?;
         sim.retain_trace(false);
+        let period = u64::from(sim.config().scan_period_ms.max(1));
         Ok(GuidedInputs {
             sim,
             rng: Rng::new(seed),
             values: vec![false; project.inputs.len()],
-            period: u64::from(project.scan_period_ms.max(1)),
+            period,
             requests: project.events.iter().filter_map(|e| e.request).collect(),
             noise_one_in,
             scan: 0,

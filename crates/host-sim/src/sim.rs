@@ -102,6 +102,13 @@ impl Sim {
         &self.project
     }
 
+    /// The lowered configuration the controller runs: timing and limits
+    /// as the executor reads them (the project says what they were
+    /// declared as; after lowering, this is what holds).
+    pub fn config(&self) -> executor::program::Config<'_> {
+        self.controller.program().config()
+    }
+
     /// The controller (fault state, counters).
     pub fn controller(&self) -> &Controller<Lowered, HeapMemory> {
         &self.controller

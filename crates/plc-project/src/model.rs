@@ -221,9 +221,9 @@ pub struct Net {
     pub line: u32,
 }
 
-/// Bits of a group's packed marking: the executor's net layout holds at
-/// most 31 (`executor::table`, "Petri nets").
-pub const GROUP_BITS: u32 = 31;
+/// Bits of a group's packed marking: the most the executor's net layout
+/// holds ([`executor::table::NET_GROUP_BITS`]).
+pub const GROUP_BITS: u32 = executor::table::NET_GROUP_BITS;
 
 impl Net {
     /// The counters of `net`'s places, whose reachable markings have

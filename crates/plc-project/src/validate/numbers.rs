@@ -2,18 +2,16 @@
 //!
 //! `scan_period_ms` and `preset_ms` lie in `1..2^31` (time differences
 //! must stay wrap-safe on a 32-bit millisecond clock; the scan period's
-//! range is the executor's, [`executor::pacing::SCAN_PERIOD_MS`]);
+//! ranges are the executor's, [`executor::pacing::SCAN_PERIOD_MS`] and
+//! [`executor::timers::PRESET_MS`]);
 //! `max_commands_per_scan` and `overrun_limit` in `0..=65535`;
 //! `rom_test_bytes_per_scan` in `4..=65532`; `debounce_scans` in `0..=255`.
 
 use super::Validator;
 use des::error::Result;
-use executor::pacing;
+use executor::{pacing, timers};
 use std::ops::RangeInclusive;
 use toml::Spanned;
-
-/// Exclusive upper bound of `preset_ms`.
-const TIME_LIMIT: i64 = 1 << 31;
 
 /// An integer field: its name and its range.
 pub(super) struct Field {
@@ -55,7 +53,7 @@ pub(super) const DEBOUNCE_SCANS: Field = Field {
 /// `preset_ms` of a timer.
 pub(super) const PRESET_MS: Field = Field {
     name: "preset_ms",
-    range: 1..=TIME_LIMIT - 1,
+    range: *timers::PRESET_MS.start() as i64..=*timers::PRESET_MS.end() as i64,
 };
 
 impl Validator<'_> {
