@@ -13,18 +13,18 @@
 //!   generator behind everything random.
 //! - [`cell`]: the batch process cell (two mixing tanks, two reactors)
 //!   in closed loop with its controlled Petri net, every scan checked.
-//! - [`plant`]: the gas-fired boiler in closed loop (`host-sim boiler`):
+//! - [`boiler`]: the gas-fired boiler in closed loop (`host-sim boiler`):
 //!   its physics and sensor faults, scripts of operator actions and faults,
 //!   the named scenarios, the safety checker, and a run's SVG and VCD.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod boiler;
 pub mod cell;
 pub mod inputs;
 pub mod lockstep;
 pub mod partial;
-pub mod plant;
 pub mod random_inputs;
 pub mod replay;
 pub mod rng;

@@ -1,5 +1,5 @@
-//! Plant simulations in closed loop with a controller: the gas-fired
-//! water-bath boiler of docs/seeds.md A, and its safety invariants.
+//! The gas-fired water-bath boiler of docs/seeds.md A in closed loop with
+//! a controller, and its safety invariants.
 //!
 //! - [`physics`]: the plant itself ([`BoilerPlant`], [`BoilerParams`]):
 //!   flames, heat balances, limit switches, the operator panel, and the
@@ -30,13 +30,13 @@
 //!
 //! ```no_run
 //! use codegen::emit::Backend;
-//! use host_sim::plant::{self, BoilerParams, BoilerPlant, Invariants, Script, Selector};
+//! use host_sim::boiler::{self, BoilerParams, BoilerPlant, Invariants, Script, Selector};
 //! use host_sim::Sim;
 //!
 //! let mut sim = Sim::load("models/boiler/boiler.plc.toml".as_ref(), Backend::Table)?;
 //! let mut plant = BoilerPlant::new(BoilerParams::default(), 1);
 //! let script = Script::new().at(1_000, Selector::Low).at(120_000, Selector::Off);
-//! let run = plant::run(&mut sim, &mut plant, &script, 180_000)?;
+//! let run = boiler::run(&mut sim, &mut plant, &script, 180_000)?;
 //! assert!(run.violations(&Invariants::default()).is_empty());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
