@@ -237,7 +237,7 @@ pub fn on_grid(project: &Project, rows: Vec<InputRow>) -> Vec<InputRow> {
 /// with the plant: its input image per scan, to replay into a PLC
 /// program.
 pub fn boiler_scenarios(project: &Project) -> Vec<(&'static str, Vec<InputRow>)> {
-    use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, IoMap as Boiler};
+    use host_sim::boiler::{self, scenarios, BoilerParams, BoilerPlant, IoMap as Boiler};
     let io = Boiler::new(project).expect("boiler signals");
     scenarios::NAMES
         .iter()
@@ -245,8 +245,8 @@ pub fn boiler_scenarios(project: &Project) -> Vec<(&'static str, Vec<InputRow>)>
         .map(|name| {
             let (script, duration) = scenarios::named(name).expect("scenario");
             let mut sim = Sim::new(project.clone(), codegen::backend::Backend::Table).expect("sim");
-            let mut boiler = BoilerPlant::new(BoilerParams::default(), 1);
-            let run = plant::run(&mut sim, &mut boiler, &script, duration).expect("runs");
+            let mut plant = BoilerPlant::new(BoilerParams::default(), 1);
+            let run = boiler::run(&mut sim, &mut plant, &script, duration).expect("runs");
             let rows = run.input_rows(&io);
             (*name, rows)
         })

@@ -11,20 +11,23 @@
 //! - [`scenario`]: postcard scenarios for the QEMU harness (`host-sim
 //!   record`), from an input file or [`random_inputs`]; [`rng`]: the seeded
 //!   generator behind everything random.
-//! - [`cell`]: the batch process cell (two mixing tanks, two reactors)
-//!   in closed loop with its controlled Petri net, every scan checked.
-//! - [`plant`]: the gas-fired boiler in closed loop (`host-sim boiler`):
-//!   its physics and sensor faults, scripts of operator actions and faults,
-//!   the named scenarios, the safety checker, and a run's SVG and VCD.
+//! - [`closed_loop`]: a plant simulation in closed loop with a controller
+//!   ([`closed_loop::Plant`], one runner for every plant):
+//!   - [`boiler`]: the gas-fired boiler (`host-sim boiler`): its physics
+//!     and sensor faults, scripts of operator actions and faults, the
+//!     named scenarios, the safety checker, and a run's SVG and VCD;
+//!   - [`cell`]: the batch process cell (two mixing tanks, two reactors)
+//!     with its controlled Petri net, every scan checked.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod boiler;
 pub mod cell;
+pub mod closed_loop;
 pub mod inputs;
 pub mod lockstep;
 pub mod partial;
-pub mod plant;
 pub mod random_inputs;
 pub mod replay;
 pub mod rng;

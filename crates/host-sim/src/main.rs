@@ -268,7 +268,7 @@ fn boiler(
     list: bool,
     out: &mut Report,
 ) -> Result<(), String> {
-    use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Invariants, Output};
+    use host_sim::boiler::{self, scenarios, BoilerParams, BoilerPlant, Invariants, Output};
     if list {
         for n in scenarios::NAMES.into_iter().chain(["random-<seed>"]) {
             say!(out, "{n:<24} {}", scenarios::about(n).unwrap_or_default());
@@ -283,7 +283,7 @@ fn boiler(
     })?;
     let mut sim = Sim::load(project_path, Backend::Table).map_err(|e| e.to_string())?;
     let mut plant = BoilerPlant::new(BoilerParams::default(), seed);
-    let run = plant::run(&mut sim, &mut plant, &script, duration).map_err(|e| e.to_string())?;
+    let run = boiler::run(&mut sim, &mut plant, &script, duration).map_err(|e| e.to_string())?;
 
     say!(
         out,
@@ -342,13 +342,13 @@ fn boiler(
     }
 
     let mut buf = Vec::new();
-    plant::waveform::write(&mut buf, sim.project(), &run).map_err(|e| e.to_string())?;
+    boiler::waveform::write(&mut buf, sim.project(), &run).map_err(|e| e.to_string())?;
     write(vcd_path, &buf)?;
     note!("wrote {}", vcd_path.display());
     if let Some(path) = svg {
         write(
             path,
-            plant::svg::render(&run, &format!("boiler: {name}")).as_bytes(),
+            boiler::svg::render(&run, &format!("boiler: {name}")).as_bytes(),
         )?;
         note!("wrote {}", path.display());
     }

@@ -10,7 +10,7 @@
 //! - `events`: one wire per event, 0 from the first scan, 1 during each
 //!   scan it executes in;
 //! - `fault`: 1 on scans spent in fault mode;
-//! - `plant`, for a closed-loop run ([`crate::plant::waveform`]): the
+//! - `plant`, for a closed-loop run ([`crate::boiler::waveform`]): the
 //!   plant's quantities as `real` variables, wires or strings.
 //!
 //! Time unit: 1 ms. A variable is written when its value changes (an

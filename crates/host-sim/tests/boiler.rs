@@ -6,7 +6,7 @@
 //! every scan.
 
 use codegen::backend::Backend;
-use host_sim::plant::{
+use host_sim::boiler::{
     self, scenarios, BoilerParams, BoilerPlant, Disturbance, Invariants, Output, Run, Script,
     Selector,
 };
@@ -37,7 +37,7 @@ fn run(script: &Script, ms: u64) -> Run {
     let run_on = |file: &str| {
         let mut sim = Sim::new(project(file).clone(), Backend::Table).unwrap();
         let mut plant = BoilerPlant::new(BoilerParams::default(), 1);
-        plant::run(&mut sim, &mut plant, script, ms).unwrap()
+        boiler::run(&mut sim, &mut plant, script, ms).unwrap()
     };
     let modular = run_on("boiler.plc.toml");
     let violations = modular.violations(&Invariants::default());

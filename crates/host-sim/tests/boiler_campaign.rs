@@ -14,7 +14,7 @@
 //! (default 1) choose the runs.
 
 use codegen::backend::Backend;
-use host_sim::plant::{self, BoilerParams, BoilerPlant, Invariants, Script};
+use host_sim::boiler::{self, BoilerParams, BoilerPlant, Invariants, Script};
 use host_sim::Sim;
 use std::path::Path;
 
@@ -46,7 +46,7 @@ fn campaign_run(project: &plc_project::Project, seed: u64) -> Outcome {
     let mut plant = BoilerPlant::new(params, seed);
     let duration = MINUTES * 60_000;
     let script = Script::random(seed, duration);
-    let run = plant::run(&mut sim, &mut plant, &script, duration).unwrap();
+    let run = boiler::run(&mut sim, &mut plant, &script, duration).unwrap();
     let mut problems: Vec<String> = run
         .violations(&Invariants::default())
         .iter()
@@ -161,7 +161,7 @@ fn debug_seed() {
     };
     let mut plant = BoilerPlant::new(params, seed);
     let script = Script::random(seed, 600_000);
-    let run = plant::run(&mut sim, &mut plant, &script, 600_000).unwrap();
+    let run = boiler::run(&mut sim, &mut plant, &script, 600_000).unwrap();
     let v = run.violations(&Invariants::default());
     println!("{v:#?}");
     if let Some(first) = v.first() {

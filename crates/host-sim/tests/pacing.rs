@@ -16,7 +16,7 @@ use codegen::lower::Lowered;
 use executor::memory::HeapMemory;
 use executor::pacing::{Pacer, ScanStart};
 use executor::{Controller, Program};
-use host_sim::plant::{
+use host_sim::boiler::{
     self, Action, BoilerController, BoilerParams, BoilerPlant, Inputs, Plc, Script, Selector,
 };
 use host_sim::{Sim, TraceRow};
@@ -303,7 +303,7 @@ fn in_closed_loop_the_plant_follows_the_controller_through_a_stall() {
     let script = Script::new()
         .at(1_000, Selector::High)
         .at(40_000, Action::Stall { ms: 300 });
-    let run = plant::run(&mut sim, &mut plant, &script, 41_000).unwrap();
+    let run = boiler::run(&mut sim, &mut plant, &script, 41_000).unwrap();
     assert!(run.rows.iter().all(|r| r.plant.time_ms == r.time_ms));
     let at = run.rows.iter().position(|r| r.time_ms == 40_000).unwrap();
     let times: Vec<u64> = run.rows[at..at + 4].iter().map(|r| r.time_ms).collect();

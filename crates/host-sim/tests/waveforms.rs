@@ -9,7 +9,7 @@ mod common;
 
 use codegen::backend::Backend;
 use common::waveform::{Sample, Waveform};
-use host_sim::plant::{self, scenarios, BoilerParams, BoilerPlant, Input, Output, PlantError};
+use host_sim::boiler::{self, scenarios, BoilerParams, BoilerPlant, Input, Output, PlantError};
 use host_sim::{inputs, replay, Sim};
 use plc_project::Project;
 use vcd::{Value, VarType};
@@ -102,12 +102,12 @@ fn a_boiler_waveform_adds_the_plants_temperatures_flames_and_selector() {
     let mut sim = Sim::load(&common::model("boiler/boiler.plc.toml"), Backend::Table).unwrap();
     let mut plant = BoilerPlant::new(BoilerParams::default(), 1);
     let (script, duration) = scenarios::named("main-flame-failure").unwrap();
-    let run = plant::run(&mut sim, &mut plant, &script, duration).unwrap();
+    let run = boiler::run(&mut sim, &mut plant, &script, duration).unwrap();
     let mut buf = Vec::new();
-    plant::waveform::write(&mut buf, sim.project(), &run).unwrap();
+    boiler::waveform::write(&mut buf, sim.project(), &run).unwrap();
     let w = Waveform::parse(&buf);
 
-    type Quantity = fn(&plant::PlantState) -> f64;
+    type Quantity = fn(&boiler::PlantState) -> f64;
     let reals: [(&str, Quantity); 4] = [
         ("bath_c", |p| p.bath_c),
         ("flue_c", |p| p.flue_c),
@@ -176,9 +176,9 @@ fn a_boiler_waveform_needs_a_project_with_the_boilers_signals() {
     let mut sim = Sim::load(&common::model("boiler/boiler.plc.toml"), Backend::Table).unwrap();
     let mut plant = BoilerPlant::new(BoilerParams::default(), 1);
     let (script, duration) = scenarios::named("cold-start-low").unwrap();
-    let run = plant::run(&mut sim, &mut plant, &script, duration / 10).unwrap();
+    let run = boiler::run(&mut sim, &mut plant, &script, duration / 10).unwrap();
     let (press, _, _) = press_cycle();
-    let err = plant::waveform::write(Vec::new(), &press, &run).unwrap_err();
+    let err = boiler::waveform::write(Vec::new(), &press, &run).unwrap_err();
     assert!(matches!(err, PlantError::MissingSignals { .. }), "{err}");
     assert!(err.to_string().contains("input `sel_high`"), "{err}");
 }

@@ -11,11 +11,10 @@
 //! - [`invariants`]: what must hold every scan ([`Checker`]);
 //! - [`record`]: what a run leaves ([`CellRun`]: events, batches).
 //!
-//! One scan of [`run`]: the operator's button actions due are applied, the
-//! controller scans the switches the plant shows, the invariants are
-//! checked on the plant, the output image and the controlled net's
-//! marking read from the controller, and the plant runs one period under
-//! the new outputs.
+//! [`run`] is the [`closed_loop`] with the operator's start buttons, the
+//! project on the executor as the controller (its output image and the
+//! controlled net's marking read after each scan), and the invariants
+//! checked on the plant every scan into a [`CellRun`].
 
 pub mod invariants;
 pub mod params;
@@ -30,6 +29,7 @@ pub use physics::{CellPlant, CellState};
 pub use record::{Batch, CellRun};
 pub use signals::{CellIo, Commands, Sensors, Unit};
 
+use crate::closed_loop::{self, Controller, Plant, Record, Scan};
 use crate::sim::{Sim, SimError};
 use des::petri::constraints::{self, Constraint};
 use des::petri::PetriNet;
@@ -59,7 +59,7 @@ pub enum CellError {
 /// the plant's time reaches them.
 #[derive(Debug, Clone, Default)]
 pub struct Operator {
-    actions: Vec<(u64, Unit, bool)>,
+    actions: Vec<(u64, (Unit, bool))>,
 }
 
 impl Operator {
@@ -70,17 +70,17 @@ impl Operator {
 
     /// Presses the start button of `reactor` at `at_ms` for `hold_ms`.
     pub fn press(mut self, at_ms: u64, reactor: Unit, hold_ms: u64) -> Operator {
-        self.actions.push((at_ms, reactor, true));
-        self.actions.push((at_ms + hold_ms, reactor, false));
-        self.actions.sort_by_key(|&(t, _, _)| t);
+        self.actions.push((at_ms, (reactor, true)));
+        self.actions.push((at_ms + hold_ms, (reactor, false)));
+        self.actions.sort_by_key(|&(t, _)| t);
         self
     }
 
     /// Presses the start button of `reactor` at `at_ms` and holds it:
     /// batch after batch.
     pub fn hold(mut self, at_ms: u64, reactor: Unit) -> Operator {
-        self.actions.push((at_ms, reactor, true));
-        self.actions.sort_by_key(|&(t, _, _)| t);
+        self.actions.push((at_ms, (reactor, true)));
+        self.actions.sort_by_key(|&(t, _)| t);
         self
     }
 }
@@ -162,59 +162,134 @@ pub fn run(
 ) -> Result<CellRun, CellError> {
     let io = CellIo::new(sim.project()).map_err(CellError::MissingSignals)?;
     sim.retain_trace(false);
-    let period = u64::from(sim.project().scan_period_ms);
-    let end = plant.time_ms() + duration_ms;
-    let mut next = 0;
-    let mut out = CellRun {
-        max_reaction_temps: [f64::MIN; 2],
-        scan_period_ms: period,
-        ..CellRun::default()
+    let mut plc = Plc { sim, io, watch };
+    let mut log = Log {
+        checker: &watch.checker,
+        run: CellRun {
+            max_reaction_temps: [f64::MIN; 2],
+            scan_period_ms: plc.scan_period_ms(),
+            ..CellRun::default()
+        },
     };
-    while plant.time_ms() < end {
-        while let Some(&(_, reactor, pressed)) = operator
-            .actions
-            .get(next)
-            .filter(|(at, _, _)| *at <= plant.time_ms())
-        {
-            plant.press(reactor, pressed);
-            next += 1;
-        }
-        let sensors = plant.sensors();
-        io.write_inputs(&sensors, sim)?;
-        if out.sensors.last().is_none_or(|(_, s)| *s != sensors) {
-            out.sensors.push((plant.time_ms(), sensors));
-        }
-        let row = sim.scan().clone();
-        let commands = io.read_outputs(&row.outputs);
-        out.events
-            .extend(row.events.iter().map(|e| (plant.time_ms(), e.clone())));
-        if out.commands.last().is_none_or(|(_, c)| *c != commands) {
-            out.commands.push((plant.time_ms(), commands));
-        }
-        let mut state = plant.state();
-        state.valves = commands;
-        let marking = watch.marking(sim)?;
-        let fault = sim.controller().fault().map(|f| format!("{f:?}"));
-        out.violations.extend(
-            watch
-                .checker
-                .check(&state, &marking, fault)
-                .into_iter()
-                .map(|rule| Violation {
-                    time_ms: plant.time_ms(),
-                    rule,
-                }),
-        );
-        plant.step(period, &commands);
-        out.scans += 1;
-        track_extremes(&mut out, &plant.state(), plant.params());
-    }
+    closed_loop::run(&mut plc, plant, &operator.actions, duration_ms, &mut log)?;
+    let mut out = log.run;
     out.last = plant.state();
     out.marking = watch
         .net
-        .marking_name(&watch.marking(sim)?)
+        .marking_name(&watch.marking(plc.sim)?)
         .replace(' ', "");
     Ok(out)
+}
+
+/// What one scan of the cell's controller reports.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CellScan {
+    /// The output image.
+    pub commands: Commands,
+    /// Executed events in order.
+    pub events: Vec<String>,
+    /// The controlled net's marking after the scan.
+    pub marking: Vec<u32>,
+    /// Fault cause on a scan spent in fault mode.
+    pub fault: Option<String>,
+}
+
+/// The cell in the closed loop: an action is a start button pressed
+/// (`true`) or released.
+impl Plant for CellPlant {
+    type Action = (Unit, bool);
+    type State = CellState;
+    type Inputs = Sensors;
+    type Report = CellScan;
+
+    fn time_ms(&self) -> u64 {
+        CellPlant::time_ms(self)
+    }
+
+    fn apply(&mut self, &(reactor, pressed): &(Unit, bool)) {
+        self.press(reactor, pressed);
+    }
+
+    fn state(&self) -> CellState {
+        CellPlant::state(self)
+    }
+
+    fn inputs(&self) -> Sensors {
+        self.sensors()
+    }
+
+    fn advance(&mut self, dt_ms: u64, report: &CellScan) {
+        self.step(dt_ms, &report.commands);
+    }
+}
+
+/// The project in a [`Sim`] as the cell's controller: the cell's signals
+/// by name, the marking read through the [`Watch`].
+struct Plc<'a> {
+    sim: &'a mut Sim,
+    io: CellIo,
+    watch: &'a Watch,
+}
+
+impl Controller<CellPlant> for Plc<'_> {
+    type Error = CellError;
+
+    fn scan_period_ms(&self) -> u64 {
+        u64::from(self.sim.config().scan_period_ms)
+    }
+
+    fn scan(&mut self, sensors: &Sensors) -> Result<CellScan, CellError> {
+        self.io.write_inputs(sensors, self.sim)?;
+        let row = self.sim.scan();
+        let commands = self.io.read_outputs(&row.outputs);
+        let events = row.events.clone();
+        Ok(CellScan {
+            commands,
+            events,
+            marking: self.watch.marking(self.sim)?,
+            fault: self.sim.controller().fault().map(|f| format!("{f:?}")),
+        })
+    }
+}
+
+/// A [`CellRun`] in the making, and the invariants it checks.
+struct Log<'a> {
+    checker: &'a Checker,
+    run: CellRun,
+}
+
+impl Record<CellPlant> for Log<'_> {
+    fn record(&mut self, scan: Scan<CellPlant>, plant: &CellPlant) {
+        let Scan {
+            time_ms,
+            mut state,
+            inputs: sensors,
+            report:
+                CellScan {
+                    commands,
+                    events,
+                    marking,
+                    fault,
+                },
+        } = scan;
+        let out = &mut self.run;
+        if out.sensors.last().is_none_or(|(_, s)| *s != sensors) {
+            out.sensors.push((time_ms, sensors));
+        }
+        out.events.extend(events.into_iter().map(|e| (time_ms, e)));
+        if out.commands.last().is_none_or(|(_, c)| *c != commands) {
+            out.commands.push((time_ms, commands));
+        }
+        state.valves = commands;
+        out.violations.extend(
+            self.checker
+                .check(&state, &marking, fault)
+                .into_iter()
+                .map(|rule| Violation { time_ms, rule }),
+        );
+        out.scans += 1;
+        track_extremes(out, &plant.state(), plant.params());
+    }
 }
 
 /// Highest levels, and reactor temperatures while held at the reaction

@@ -1,5 +1,5 @@
-//! Plant simulations in closed loop with a controller: the gas-fired
-//! water-bath boiler of docs/seeds.md A, and its safety invariants.
+//! The gas-fired water-bath boiler of docs/seeds.md A in closed loop with
+//! a controller, and its safety invariants.
 //!
 //! - [`physics`]: the plant itself ([`BoilerPlant`], [`BoilerParams`]):
 //!   flames, heat balances, limit switches, the operator panel, and the
@@ -18,25 +18,19 @@
 //! - [`svg`]: a picture of a run; [`waveform`]: its VCD.
 //! - [`error`]: what can go wrong ([`PlantError`]).
 //!
-//! One scan of [`run`] / [`run_with`]:
-//!
-//! 1. script actions due at the plant's time (`at <= now`) are applied;
-//! 2. the controller scans the input image the plant shows (sensor faults
-//!    applied); a controller stall among those actions ([`Action::Stall`])
-//!    hangs it right after this scan;
-//! 3. the plant advances under the scan's outputs until the controller's
-//!    next scan: one period, or as its schedule says after a stall (the
-//!    late scan when the stall ends, then the grid in phase again).
+//! [`run`] and [`run_with`] are the [`closed_loop`] with the boiler's
+//! script ([`Action::Stall`] hangs the controller), a
+//! [`BoilerController`], and one [`RunRow`] per scan.
 //!
 //! ```no_run
 //! use codegen::backend::Backend;
-//! use host_sim::plant::{self, BoilerParams, BoilerPlant, Invariants, Script, Selector};
+//! use host_sim::boiler::{self, BoilerParams, BoilerPlant, Invariants, Script, Selector};
 //! use host_sim::Sim;
 //!
 //! let mut sim = Sim::load("models/boiler/boiler.plc.toml".as_ref(), Backend::Table)?;
 //! let mut plant = BoilerPlant::new(BoilerParams::default(), 1);
 //! let script = Script::new().at(1_000, Selector::Low).at(120_000, Selector::Off);
-//! let run = plant::run(&mut sim, &mut plant, &script, 180_000)?;
+//! let run = boiler::run(&mut sim, &mut plant, &script, 180_000)?;
 //! assert!(run.violations(&Invariants::default()).is_empty());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -65,6 +59,7 @@ pub use script::{Action, Script};
 pub use signals::{Input, Inputs, IoMap, Output, Outputs, Selector};
 pub use wiring::SensorFault;
 
+use crate::closed_loop::{self, Controller, Plant, Record, Scan};
 use crate::sim::Sim;
 
 /// Runs the project in `sim` against `plant` for `duration_ms` of plant
@@ -87,46 +82,87 @@ pub fn run_with<C: BoilerController + ?Sized>(
     script: &Script,
     duration_ms: u64,
 ) -> Result<Run, PlantError> {
-    let period = u64::from(controller.scan_period_ms().max(1));
-    let end = plant.time_ms() + duration_ms;
-    let actions = script.actions();
-    let mut next = 0;
+    let period = Controller::<BoilerPlant>::scan_period_ms(controller).max(1);
     let mut rows = Vec::with_capacity((duration_ms / period) as usize + 1);
-    while plant.time_ms() < end {
-        let mut stall = 0;
-        while let Some((_, action)) = actions.get(next).filter(|(at, _)| *at <= plant.time_ms()) {
-            if let Action::Stall { ms } = *action {
-                stall += ms;
-            }
-            action.apply_to(plant);
-            next += 1;
-        }
-        let state = plant.state();
-        let inputs = plant.inputs();
-        let scan = controller.scan(&inputs)?;
-        if stall > 0 {
-            controller.stall(stall);
-        }
-        // In steps of at most a period, so a stall is simulated as finely.
-        let until = plant.time_ms() + controller.next_scan_in_ms().max(1);
-        while plant.time_ms() < until {
-            plant.step(period.min(until - plant.time_ms()), &scan.outputs);
-        }
-        rows.push(RunRow {
-            scan: rows.len() as u64,
-            time_ms: scan.time_ms,
-            inputs,
-            outputs: scan.outputs,
-            events: scan.events,
-            states: scan.states,
-            fault: scan.fault,
-            reinitialised: scan.reinitialised,
-            plant: state,
-        });
-    }
+    closed_loop::run(controller, plant, script.actions(), duration_ms, &mut rows)?;
     Ok(Run {
         scan_period_ms: period as u32,
         debounce: controller.debounce(),
         rows,
     })
+}
+
+/// The boiler in the closed loop: script actions, the input image with
+/// its sensor faults, and the true state in every row.
+impl Plant for BoilerPlant {
+    type Action = Action;
+    type State = PlantState;
+    type Inputs = Inputs;
+    type Report = ControllerScan;
+
+    fn time_ms(&self) -> u64 {
+        BoilerPlant::time_ms(self)
+    }
+
+    fn apply(&mut self, action: &Action) {
+        action.apply_to(self);
+    }
+
+    fn stall_ms(action: &Action) -> u64 {
+        match *action {
+            Action::Stall { ms } => ms,
+            _ => 0,
+        }
+    }
+
+    fn state(&self) -> PlantState {
+        BoilerPlant::state(self)
+    }
+
+    fn inputs(&self) -> Inputs {
+        BoilerPlant::inputs(self)
+    }
+
+    fn advance(&mut self, dt_ms: u64, report: &ControllerScan) {
+        self.step(dt_ms, &report.outputs);
+    }
+}
+
+/// Every boiler controller runs in the closed loop as it is.
+impl<C: BoilerController + ?Sized> Controller<BoilerPlant> for C {
+    type Error = PlantError;
+
+    fn scan_period_ms(&self) -> u64 {
+        u64::from(BoilerController::scan_period_ms(self))
+    }
+
+    fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, PlantError> {
+        BoilerController::scan(self, inputs)
+    }
+
+    fn stall(&mut self, ms: u64) {
+        BoilerController::stall(self, ms);
+    }
+
+    fn next_scan_in_ms(&self) -> u64 {
+        BoilerController::next_scan_in_ms(self)
+    }
+}
+
+/// The rows of a boiler run, one pushed per scan.
+impl Record<BoilerPlant> for Vec<RunRow> {
+    fn record(&mut self, scan: Scan<BoilerPlant>, _: &BoilerPlant) {
+        let report = scan.report;
+        self.push(RunRow {
+            scan: self.len() as u64,
+            time_ms: report.time_ms,
+            inputs: scan.inputs,
+            outputs: report.outputs,
+            events: report.events,
+            states: report.states,
+            fault: report.fault,
+            reinitialised: report.reinitialised,
+            plant: scan.state,
+        });
+    }
 }

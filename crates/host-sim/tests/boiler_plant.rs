@@ -1,11 +1,11 @@
-//! The boiler plant of `host_sim::plant`: physics that behaves like a
+//! The boiler plant of `host_sim::boiler`: physics that behaves like a
 //! water-bath boiler, sensor faults as specified, determinism, the closed
 //! loop through the executor, and the safety checker, which passes a
 //! hand-written reference controller and catches each of its deliberately
 //! broken variants.
 
 use codegen::backend::Backend;
-use host_sim::plant::{
+use host_sim::boiler::{
     self, Action, BoilerController, BoilerParams, BoilerPlant, Checker, ControllerScan,
     Disturbance, Input, Inputs, Invariants, Outputs, PlantError, Rule, Run, Script, Selector,
     SensorFault, Violation,
@@ -29,7 +29,8 @@ fn model(file: &str) -> PathBuf {
 
 // ---------------------------------------------------------------- physics
 
-fn boiler() -> BoilerPlant {
+/// A new plant at the default parameters.
+fn fresh() -> BoilerPlant {
     BoilerPlant::new(BoilerParams::default(), 1)
 }
 
@@ -77,7 +78,7 @@ const HIGH_FIRE: Outputs = Outputs {
 
 /// A plant with the pilot lit and the spark off again.
 fn lit_pilot() -> BoilerPlant {
-    let mut p = boiler();
+    let mut p = fresh();
     hold(&mut p, GAS_AND_SPARK, 2_000);
     assert!(p.inputs().pilot_flame);
     p
@@ -85,7 +86,7 @@ fn lit_pilot() -> BoilerPlant {
 
 #[test]
 fn the_pilot_lights_after_two_seconds_of_gas_and_spark() {
-    let mut p = boiler();
+    let mut p = fresh();
     let seen = hold(&mut p, GAS_AND_SPARK, 2_500);
     let lit = seen.iter().position(|i| i.pilot_flame).unwrap();
     assert_eq!((lit as u64 + 1) * SCAN_MS, 2_000);
@@ -94,7 +95,7 @@ fn the_pilot_lights_after_two_seconds_of_gas_and_spark() {
 
 #[test]
 fn gas_alone_or_a_spark_alone_lights_nothing() {
-    let mut p = boiler();
+    let mut p = fresh();
     assert!(hold(&mut p, PILOT_GAS, 10_000)
         .iter()
         .all(|i| !i.pilot_flame));
@@ -144,7 +145,7 @@ fn a_scripted_trial_fails_and_the_next_one_lights() {
 
 #[test]
 fn injected_ignition_failures_take_the_next_trials() {
-    let mut p = boiler();
+    let mut p = fresh();
     p.disturb(Disturbance::FailIgnitions(2));
     for _ in 0..2 {
         assert!(hold(&mut p, GAS_AND_SPARK, 4_000)
@@ -222,7 +223,7 @@ fn the_main_flame_needs_pilot_air_and_gas() {
         main_valve_lo: false,
         ..LOW_FIRE
     }));
-    let mut cold = boiler();
+    let mut cold = fresh();
     let no_pilot = Outputs {
         pilot_valve: false,
         ..LOW_FIRE
@@ -315,7 +316,7 @@ fn the_bath_heats_faster_on_high_fire_than_on_low_and_cools_with_the_fire_off() 
 
 #[test]
 fn the_bath_limit_switch_has_five_kelvin_of_hysteresis() {
-    let mut p = boiler();
+    let mut p = fresh();
     let mut bath_hot_at = |c: f64| {
         p.disturb(Disturbance::BathTemperature(c));
         p.inputs().bath_hot
@@ -364,7 +365,7 @@ fn a_fouled_flue_trips_the_flue_limit_which_resets_twenty_kelvin_below() {
 
 #[test]
 fn a_bouncing_flame_detector_flickers_after_each_change_then_settles() {
-    let mut p = boiler();
+    let mut p = fresh();
     p.install_sensor_fault(
         Input::PilotFlame,
         SensorFault::Bounce {
@@ -386,7 +387,7 @@ fn a_bouncing_flame_detector_flickers_after_each_change_then_settles() {
 
 #[test]
 fn a_stuck_detector_reads_its_level_from_the_injection_until_cleared() {
-    let mut p = boiler();
+    let mut p = fresh();
     hold(&mut p, NOTHING, 1_000);
     p.install_sensor_fault(Input::MainFlame, SensorFault::StuckAt(true));
     assert!(hold(&mut p, NOTHING, 5_000).iter().all(|i| i.main_flame));
@@ -397,7 +398,7 @@ fn a_stuck_detector_reads_its_level_from_the_injection_until_cleared() {
 
 #[test]
 fn a_dropout_reads_zero_for_its_interval_only() {
-    let mut p = boiler();
+    let mut p = fresh();
     p.set_selector(Selector::Low);
     hold(&mut p, NOTHING, 1_000);
     p.install_sensor_fault(Input::SelLow, SensorFault::Dropout { for_ms: 300 });
@@ -410,7 +411,7 @@ fn a_dropout_reads_zero_for_its_interval_only() {
 
 #[test]
 fn the_operator_panel_sets_the_selector_contacts_and_pulses_reset() {
-    let mut p = boiler();
+    let mut p = fresh();
     p.set_selector(Selector::High);
     assert_eq!(p.inputs().selector(), Selector::High);
     assert!(p.inputs().sel_high && !p.inputs().sel_low);
@@ -678,7 +679,7 @@ impl BoilerController for Reference {
 
 fn run_reference(flaw: Flaw, params: BoilerParams, script: &Script, ms: u64) -> Run {
     let mut plant = BoilerPlant::new(params, 1);
-    plant::run_with(&mut Reference::new(flaw), &mut plant, script, ms).unwrap()
+    boiler::run_with(&mut Reference::new(flaw), &mut plant, script, ms).unwrap()
 }
 
 fn listing(violations: &[Violation]) -> String {
@@ -789,7 +790,7 @@ fn the_reference_controller_is_safe_under_random_scripts() {
         let script = Script::random(seed, 600_000);
         let mut plant = BoilerPlant::new(params.clone(), seed);
         let mut reference = Reference::new(Flaw::None);
-        let run = plant::run_with(&mut reference, &mut plant, &script, 600_000).unwrap();
+        let run = boiler::run_with(&mut reference, &mut plant, &script, 600_000).unwrap();
         let v = run.violations(&Invariants::default());
         assert!(v.is_empty(), "seed {seed}: {}", listing(&v));
         let rises = |f: fn(&Outputs) -> bool| {
@@ -809,7 +810,7 @@ fn the_reference_controller_is_safe_under_random_scripts() {
 
 /// The inputs the plant's truth would give (no sensor faults), as far as
 /// the recorded state tells.
-fn truth_of(r: &plant::RunRow) -> Inputs {
+fn truth_of(r: &boiler::RunRow) -> Inputs {
     Inputs {
         pilot_flame: r.plant.pilot_flame,
         main_flame: r.plant.main_flame,
@@ -826,7 +827,7 @@ fn a_run_is_a_function_of_its_seeds() {
     let go = |seed: u64| {
         let script = Script::random(seed, 300_000);
         let mut plant = BoilerPlant::new(params.clone(), seed);
-        plant::run_with(
+        boiler::run_with(
             &mut Reference::new(Flaw::None),
             &mut plant,
             &script,
@@ -1092,8 +1093,8 @@ fn a_selector_on_when_the_controller_reinitialises_demands_no_heat_until_switche
 #[test]
 fn a_project_without_the_boiler_signals_is_refused_by_name() {
     let mut sim = Sim::load(&model("conveyor.plc.toml"), Backend::Table).unwrap();
-    let mut plant = boiler();
-    let err = plant::run(&mut sim, &mut plant, &Script::new(), 1_000).unwrap_err();
+    let mut plant = fresh();
+    let err = boiler::run(&mut sim, &mut plant, &Script::new(), 1_000).unwrap_err();
     let text = err.to_string();
     assert!(matches!(err, PlantError::MissingSignals { .. }));
     for name in [
@@ -1110,11 +1111,11 @@ fn a_project_without_the_boiler_signals_is_refused_by_name() {
 #[test]
 fn the_executor_lights_the_burner_in_closed_loop() {
     let mut sim = Sim::load(&data("pilot_burner.plc.toml"), Backend::Table).unwrap();
-    let mut plant = boiler();
+    let mut plant = fresh();
     let script = Script::new()
         .at(1_000, Selector::Low)
         .at(40_000, Selector::Off);
-    let run = plant::run(&mut sim, &mut plant, &script, 45_000).unwrap();
+    let run = boiler::run(&mut sim, &mut plant, &script, 45_000).unwrap();
     assert!(run.rows.iter().all(|r| r.fault.is_none()));
     let on = run.first(|r| r.events.iter().any(|e| e == "on")).unwrap();
     assert_eq!(on.time_ms, 1_000);
@@ -1138,12 +1139,12 @@ fn the_executor_lights_the_burner_in_closed_loop() {
 fn both_backends_run_the_same_closed_loop() {
     let script = Script::random(5, 120_000);
     let mut sim = Sim::load(&data("pilot_burner.plc.toml"), Backend::Table).unwrap();
-    let mut plant = boiler();
-    let single = plant::run(&mut sim, &mut plant, &script, 120_000).unwrap();
+    let mut plant = fresh();
+    let single = boiler::run(&mut sim, &mut plant, &script, 120_000).unwrap();
     let mut ls = Lockstep::load(&data("pilot_burner.plc.toml")).unwrap();
-    let mut plant = boiler();
-    let both = plant::run_with(
-        &mut plant::Plc::lockstep(&mut ls).unwrap(),
+    let mut plant = fresh();
+    let both = boiler::run_with(
+        &mut boiler::Plc::lockstep(&mut ls).unwrap(),
         &mut plant,
         &script,
         120_000,
@@ -1156,9 +1157,9 @@ fn both_backends_run_the_same_closed_loop() {
 fn the_checker_reads_a_replay_trace_like_the_closed_loop() {
     let path = data("pilot_burner.plc.toml");
     let mut sim = Sim::load(&path, Backend::Table).unwrap();
-    let mut plant = boiler();
+    let mut plant = fresh();
     let script = Script::new().at(1_000, Selector::High);
-    let run = plant::run(&mut sim, &mut plant, &script, 30_000).unwrap();
+    let run = boiler::run(&mut sim, &mut plant, &script, 30_000).unwrap();
     // A stricter purge, so that there is something to find.
     let rules = Invariants {
         purge_ms: 20_000,
@@ -1168,10 +1169,10 @@ fn the_checker_reads_a_replay_trace_like_the_closed_loop() {
     assert_eq!(expected.len(), 2, "{}", listing(&expected));
 
     let project = sim.project().clone();
-    let io = plant::IoMap::new(&project).unwrap();
+    let io = boiler::IoMap::new(&project).unwrap();
     let rows = run.input_rows(&io);
     let mut replay = Sim::new(project.clone(), Backend::Logic).unwrap();
     let trace = host_sim::replay::replay(&mut replay, &rows).unwrap();
-    let found = plant::check_replay(&project, rules, &rows, &trace).unwrap();
+    let found = boiler::check_replay(&project, rules, &rows, &trace).unwrap();
     assert_eq!(found, expected);
 }

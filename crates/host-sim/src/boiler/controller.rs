@@ -126,7 +126,7 @@ impl<'a> Plc<'a> {
 
 impl BoilerController for Plc<'_> {
     fn scan_period_ms(&self) -> u32 {
-        self.sim().project().scan_period_ms
+        self.sim().config().scan_period_ms
     }
 
     fn debounce(&self) -> [u8; Input::ALL.len()] {
