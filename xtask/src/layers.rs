@@ -104,6 +104,13 @@ const LAYERS: &[Layer] = &[
         dev: &[],
     },
     Layer {
+        name: "boards",
+        stage: Stage::Core,
+        normal: &[],
+        build: &[],
+        dev: &[],
+    },
+    Layer {
         name: "iec-st",
         stage: Stage::Core,
         normal: &[],
@@ -113,14 +120,14 @@ const LAYERS: &[Layer] = &[
     Layer {
         name: "plc-project",
         stage: Stage::FrontEnd,
-        normal: &["des", "executor"],
+        normal: &["boards", "des", "executor"],
         build: &[],
         dev: &[],
     },
     Layer {
         name: "codegen",
         stage: Stage::Backend,
-        normal: &["des", "executor", "plc-project"],
+        normal: &["boards", "des", "executor", "plc-project"],
         build: &[],
         dev: &[],
     },
@@ -148,7 +155,7 @@ const LAYERS: &[Layer] = &[
     Layer {
         name: "firmware",
         stage: Stage::Top,
-        normal: &["executor"],
+        normal: &["boards", "executor"],
         build: &["codegen", "plc-project"],
         dev: &[],
     },

@@ -12,7 +12,11 @@
 //! - `EDGE_LATCHED`: the inputs whose changes between two samples an
 //!   interrupt on both edges counts (lost-edge detection), see
 //!   [`EdgeLatch`].
+//!
+//! What the words say about the chip and the board (EXTI lines, where a
+//! pin is on a Nucleo-F411RE) is the board data's (crate `boards`).
 
+use boards::Chip;
 use plc_project::{EdgeLatch, InputPin, OutputPin, PinId, Project, Pull};
 use std::fmt::Write;
 
@@ -55,14 +59,15 @@ fn level_words(active_low: bool) -> &'static str {
     }
 }
 
-/// Why an input is (not) edge-latched, in words.
-fn latch_words(project: &Project, pin: &InputPin) -> String {
+/// Why an input is (not) edge-latched, in words; `mcu` is the chip of
+/// the project's board.
+fn latch_words(project: &Project, mcu: &Chip, pin: &InputPin) -> String {
+    let line = mcu.exti_line(pin.pin);
     match pin.edge_latch {
-        EdgeLatch::Latched => format!("edge-latched on EXTI{}", pin.pin.number),
+        EdgeLatch::Latched => format!("edge-latched on EXTI{line}"),
         EdgeLatch::Debounced => "not edge-latched: debounced".to_owned(),
         EdgeLatch::LineTaken(owner) => format!(
-            "not edge-latched: EXTI{} belongs to `{}`",
-            pin.pin.number,
+            "not edge-latched: EXTI{line} belongs to `{}`",
             doc_text(&project.inputs[owner].name)
         ),
     }
@@ -176,7 +181,7 @@ pub fn board_module(project: &Project) -> String {
                 doc,
                 "/// - {i} `{}`: {}",
                 doc_text(&input.name),
-                latch_words(project, p)
+                latch_words(project, board.mcu, p)
             );
         }
         items.push(latched.to_string());
@@ -219,48 +224,15 @@ pub struct WiringRow {
     pub note: String,
 }
 
-/// Where a pin is on a Nucleo-F411RE: its Arduino header name, the user
-/// button or LED (UM1724); `None` for pins only on the morpho headers.
-fn nucleo_place(pin: PinId) -> Option<&'static str> {
-    Some(match (pin.port, pin.number) {
-        ('A', 0) => "Arduino A0",
-        ('A', 1) => "Arduino A1",
-        ('A', 4) => "Arduino A2",
-        ('B', 0) => "Arduino A3",
-        ('C', 1) => "Arduino A4",
-        ('C', 0) => "Arduino A5",
-        ('A', 3) => "Arduino D0 (ST-LINK VCP RX by default)",
-        ('A', 2) => "Arduino D1 (ST-LINK VCP TX by default)",
-        ('A', 10) => "Arduino D2",
-        ('B', 3) => "Arduino D3",
-        ('B', 5) => "Arduino D4",
-        ('B', 4) => "Arduino D5",
-        ('B', 10) => "Arduino D6",
-        ('A', 8) => "Arduino D7",
-        ('A', 9) => "Arduino D8",
-        ('C', 7) => "Arduino D9",
-        ('B', 6) => "Arduino D10",
-        ('A', 7) => "Arduino D11",
-        ('A', 6) => "Arduino D12",
-        ('A', 5) => "Arduino D13, user LED LD2",
-        ('B', 9) => "Arduino D14",
-        ('B', 8) => "Arduino D15",
-        ('C', 13) => "user button B1 (low while pressed)",
-        _ => return None,
-    })
-}
-
 /// The rows of the wiring table, inputs then outputs in declaration
 /// order; `None` when the project has no `[board]` section.
 pub fn wiring_rows(project: &Project) -> Option<Vec<WiringRow>> {
     let board = project.board.as_ref()?;
-    let nucleo = board.chip.to_ascii_uppercase().starts_with("STM32F411R");
+    // Where a pin is on a development board that carries the chip.
+    let dev_board = boards::dev_board_of(&board.chip);
     let place = |pin: PinId| {
-        if nucleo {
-            nucleo_place(pin).map(|p| format!("Nucleo: {p}"))
-        } else {
-            None
-        }
+        let b = dev_board?;
+        Some(format!("{}: {}", b.short_name, b.place(pin)?))
     };
     let mut rows = Vec::new();
     for (input, pin) in project.inputs.iter().zip(&board.inputs) {
@@ -274,7 +246,7 @@ pub fn wiring_rows(project: &Project) -> Option<Vec<WiringRow>> {
                 edge_latched: p.edge_latch == EdgeLatch::Latched,
                 note: place(p.pin)
                     .into_iter()
-                    .chain([latch_words(project, p)])
+                    .chain([latch_words(project, board.mcu, p)])
                     .collect::<Vec<_>>()
                     .join("; "),
             },

@@ -54,11 +54,15 @@ impl<const N: usize> ChangeCounts<N> {
     }
 }
 
+/// How many EXTI lines the chip has (`MCU.exti_lines`, 16); line *n*
+/// listens to pin *n* of one port (`boards::Chip::exti_line`).
+const LINES: usize = crate::MCU.exti_lines as usize;
+
 /// Which input each EXTI line 0–15 counts for (one input per line: a
 /// line listens to one port).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct LineMap {
-    inputs: [Option<u16>; 16],
+    inputs: [Option<u16>; LINES],
 }
 
 impl LineMap {
@@ -67,11 +71,11 @@ impl LineMap {
     /// twice or more than 65 536 inputs fail to compile.
     pub const fn new(lines: &[Option<u8>]) -> LineMap {
         assert!(lines.len() <= 1 << 16, "more inputs than an Index holds");
-        let mut inputs = [None; 16];
+        let mut inputs = [None; LINES];
         let mut i = 0;
         while i < lines.len() {
             if let Some(line) = lines[i] {
-                assert!(line < 16, "EXTI lines are 0 to 15");
+                assert!((line as usize) < LINES, "EXTI lines are 0 to 15");
                 assert!(
                     inputs[line as usize].is_none(),
                     "two inputs latched on one EXTI line"
@@ -85,7 +89,7 @@ impl LineMap {
 
     /// The input line `line` counts for.
     pub const fn input(&self, line: usize) -> Option<usize> {
-        if line < 16 {
+        if line < LINES {
             if let Some(i) = self.inputs[line] {
                 return Some(i as usize);
             }
@@ -97,7 +101,7 @@ impl LineMap {
     pub const fn mask(&self) -> u32 {
         let mut mask = 0;
         let mut line = 0;
-        while line < 16 {
+        while line < LINES {
             if self.inputs[line].is_some() {
                 mask |= 1 << line;
             }
@@ -109,7 +113,7 @@ impl LineMap {
     /// The inputs of the lines set in `pending` (bit n = line n), in line
     /// order.
     pub fn inputs_of(&self, pending: u32) -> impl Iterator<Item = usize> + '_ {
-        (0..16)
+        (0..LINES)
             .filter(move |line| pending & (1 << line) != 0)
             .filter_map(|line| self.input(line))
     }

@@ -1,10 +1,12 @@
 //! The PLC on a Cortex-M: the generated program of the project chosen at
 //! build time (`PLC_PROJECT`, `PLC_BACKEND`; see `build.rs`), shared by
 //! the board firmware (`src/main.rs`) and the QEMU replay harness, and
-//! the board's timing and edge bookkeeping as plain logic that the host
-//! tests (`cargo test -p firmware --lib`):
+//! the board's edge bookkeeping as plain logic that the host tests
+//! (`cargo test -p firmware --lib`):
 //!
-//! - [`watchdog`]: the watchdog timeout for a scan period;
+//! - [`MCU`]: the chip the board firmware is written for, as the board
+//!   data describes it (crate `boards`: reserved pins, the EXTI rule, the
+//!   watchdog timeout for a scan period);
 //! - [`edges`]: change counts of edge-latched inputs, lost edges, the EXTI
 //!   line map;
 //! - [`levels`]: active-low pins.
@@ -20,7 +22,11 @@
 
 pub mod edges;
 pub mod levels;
-pub mod watchdog;
+
+/// The chip the board firmware is written for (its HAL is the
+/// STM32F411's): the pins it keeps for itself, its EXTI lines, its
+/// watchdog.
+pub const MCU: &boards::Chip = &boards::STM32F411;
 
 /// The generated program: `PROGRAM`, `Memory`, `CONFIG`, the name
 /// modules (`input`, `output`, `event`, `supervisor`, `states`) and, for a

@@ -46,15 +46,15 @@ fn main() -> ! {
     use executor::pacing::Pacer;
     use executor::Controller;
     use firmware::program::{self, CONFIG};
-    use firmware::watchdog::{watchdog_timeout_ms, WATCHDOG_MAX_MS};
+    use firmware::MCU;
     use panic_probe as _;
     use stm32f4xx_hal::gpio::GpioExt;
     use stm32f4xx_hal::pac;
     use stm32f4xx_hal::syscfg::SysCfgExt;
 
-    const WATCHDOG_MS: u32 = watchdog_timeout_ms(CONFIG.scan_period_ms);
+    const WATCHDOG_MS: u32 = MCU.watchdog.timeout_ms(CONFIG.scan_period_ms);
     const _: () = assert!(
-        WATCHDOG_MS <= WATCHDOG_MAX_MS,
+        WATCHDOG_MS <= MCU.watchdog.max_timeout_ms,
         "scan_period_ms is too long for the independent watchdog (at most 8000 ms)"
     );
 

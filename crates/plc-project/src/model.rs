@@ -9,6 +9,9 @@
 use des::automaton::{Automaton, EventId, StateId};
 use std::path::PathBuf;
 
+// A pin of `[board]` and its pull are the board data's (crate `boards`).
+pub use boards::{PinId, Pull};
+
 /// What to do with an uncontrollable event no supervisor can explain.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Unexpected {
@@ -415,82 +418,9 @@ pub struct Warning {
     pub message: String,
 }
 
-/// Internal bias resistor of an input pin.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Pull {
-    /// Floating: the wiring defines the level (default).
-    #[default]
-    None,
-    /// Pulled up to VDD.
-    Up,
-    /// Pulled down to ground.
-    Down,
-}
-
-impl Pull {
-    /// The name used in project files: `none`, `up` or `down`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Pull::None => "none",
-            Pull::Up => "up",
-            Pull::Down => "down",
-        }
-    }
-}
-
-/// A GPIO pin of the MCU, such as `PA0` or `PC13`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct PinId {
-    /// Port letter, `'A'`..=`'E'` or `'H'`.
-    pub port: char,
-    /// Pin number in the port, 0–15.
-    pub number: u8,
-}
-
-impl std::fmt::Display for PinId {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "P{}{}", self.port, self.number)
-    }
-}
-
-impl std::str::FromStr for PinId {
-    type Err = String;
-
-    /// Parses `PA0` … `PE15`, `PH0`, `PH1` (case-insensitive); the error
-    /// says what is wrong.
-    fn from_str(s: &str) -> std::result::Result<PinId, String> {
-        let upper = s.trim().to_ascii_uppercase();
-        let shape = || {
-            format!("`{s}` is not a pin name: expected `P<port><number>` such as `PA0` or `PC13` (ports A–E and H, pins 0–15)")
-        };
-        let rest = upper.strip_prefix('P').ok_or_else(shape)?;
-        let mut chars = rest.chars();
-        let port = chars.next().ok_or_else(shape)?;
-        let digits = chars.as_str();
-        if digits.is_empty() || digits.len() > 2 || !digits.bytes().all(|b| b.is_ascii_digit()) {
-            return Err(shape());
-        }
-        let number: u8 = digits.parse().map_err(|_| shape())?;
-        if !matches!(port, 'A'..='E' | 'H') {
-            return Err(format!(
-                "`{s}`: the STM32F411 has no GPIO port {port} (ports A–E and H)"
-            ));
-        }
-        if number > 15 {
-            return Err(format!("`{s}`: a port has pins 0–15"));
-        }
-        if port == 'H' && number > 1 {
-            return Err(format!(
-                "`{s}`: port H of the STM32F411 has only PH0 and PH1"
-            ));
-        }
-        Ok(PinId { port, number })
-    }
-}
-
 /// Why an input's changes are or are not latched between samples by an
-/// edge interrupt (EXTI line `pin.number`, both edges), which is what
-/// detects lost edges (docs/semantics.md, `LostEdge`).
+/// edge interrupt (both edges of its EXTI line, [`boards::Chip::exti_line`]),
+/// which is what detects lost edges (docs/semantics.md, `LostEdge`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EdgeLatch {
     /// Every change is counted; more than one between two samples is a
@@ -533,8 +463,12 @@ pub struct OutputPin {
 /// The `[board]` section: the MCU and the pin of each signal.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Board {
-    /// The chip, as probe-rs names it (default `STM32F411RETx`).
+    /// The chip, as probe-rs names it (default `STM32F411RETx`,
+    /// [`boards::DEFAULT_CHIP`]).
     pub chip: String,
+    /// What the board data knows about that chip: its pins, the EXTI rule,
+    /// the watchdog.
+    pub mcu: &'static boards::Chip,
     /// Pin of each input, by input index (`None`: not wired, reads 0).
     pub inputs: Vec<Option<InputPin>>,
     /// Pin of each output, by output index (`None`: not driven).

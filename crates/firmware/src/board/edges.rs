@@ -10,7 +10,7 @@
 //! frame), two edges of one line merge into one pending bit: a lost edge
 //! can then go unreported, never be reported falsely.
 
-use super::pins::Io;
+use super::pins::{pin_id, Io};
 use core::cell::{Cell, RefCell};
 use cortex_m::peripheral::NVIC;
 use critical_section::{CriticalSection, Mutex};
@@ -23,13 +23,13 @@ use stm32f4xx_hal::pac::{Interrupt, EXTI};
 /// Changes per input since the last sample.
 pub type Changes = ChangeCounts<{ input::COUNT }>;
 
-/// The EXTI line of each edge-latched input.
+/// The EXTI line of each edge-latched input (`MCU.exti_line`: its number).
 const fn latched_lines() -> [Option<u8>; input::COUNT] {
     let mut lines = [None; input::COUNT];
     let mut i = 0;
     while i < input::COUNT {
         if let (Some(pin), true) = (INPUT_PINS[i], EDGE_LATCHED[i]) {
-            lines[i] = Some(pin.pin);
+            lines[i] = Some(firmware::MCU.exti_line(pin_id(pin)));
         }
         i += 1;
     }

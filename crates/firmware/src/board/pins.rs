@@ -4,20 +4,28 @@
 //!
 //! Every pin of every port goes through [`Io::claim`]; which input or
 //! output (if any) it carries is looked up at compile time (`Slot`), so an
-//! unused pin costs nothing and stays in its reset state. The debug pins
-//! PA13/PA14 (SWD) and PH0 (HSE input) are never offered: validation
+//! unused pin costs nothing and stays in its reset state. The pins the
+//! firmware keeps for itself (`MCU.reserved`, the board data's: PA13/PA14
+//! for SWD, PH0 for the HSE clock input) are never offered: validation
 //! refuses them too, and a const assertion below makes a hand-edited pin
 //! map fail to build.
 
+use boards::PinId;
 use firmware::levels;
 use firmware::program::board::{self, INPUT_PINS, OUTPUT_PINS};
 use firmware::program::{input, output, INPUT_WORDS};
+use firmware::MCU;
 use stm32f4xx_hal::gpio::{
     self, gpioa, gpiob, gpioc, gpiod, gpioe, gpioh, Edge, ErasedPin, ExtiPin, Input, Output,
     PinMode, PinState, PushPull,
 };
 use stm32f4xx_hal::pac::EXTI;
 use stm32f4xx_hal::syscfg::SysCfg;
+
+/// The pin of a pin-map entry, by name.
+pub const fn pin_id(pin: board::Pin) -> PinId {
+    PinId::new(pin.port as char, pin.pin)
+}
 
 /// The index of the signal wired to port `port`, pin `n` in `pins`.
 const fn find(pins: &[Option<board::Pin>], port: char, n: u8) -> Option<usize> {
@@ -33,51 +41,58 @@ const fn find(pins: &[Option<board::Pin>], port: char, n: u8) -> Option<usize> {
     None
 }
 
-/// Whether the pin map uses port `port`, pin `n`.
-const fn used(port: char, n: u8) -> bool {
-    find(&INPUT_PINS, port, n).is_some() || find(&OUTPUT_PINS, port, n).is_some()
+/// How many entries of `pins` are port `port`, pin `n`.
+const fn count(pins: &[Option<board::Pin>], port: char, n: u8) -> usize {
+    let mut count = 0;
+    let mut i = 0;
+    while i < pins.len() {
+        if let Some(p) = pins[i] {
+            if p.port == port as u8 && p.pin == n {
+                count += 1;
+            }
+        }
+        i += 1;
+    }
+    count
+}
+
+/// How many signals of the pin map port `port`, pin `n` carries.
+const fn uses(port: char, n: u8) -> usize {
+    count(&INPUT_PINS, port, n) + count(&OUTPUT_PINS, port, n)
+}
+
+/// Whether the pin map gives a pin the firmware keeps for itself
+/// (`MCU.reserved`) to a signal.
+const fn a_reserved_pin_used() -> bool {
+    let mut r = 0;
+    while r < MCU.reserved.len() {
+        let pin = MCU.reserved[r].pin;
+        if uses(pin.port, pin.number) > 0 {
+            return true;
+        }
+        r += 1;
+    }
+    false
 }
 
 const _: () = assert!(
-    !used('A', 13) && !used('A', 14),
-    "PA13/PA14 carry SWD (flashing and the defmt log): the pin map may not use them"
-);
-const _: () = assert!(
-    !used('H', 0),
-    "PH0 is the HSE clock input: the pin map may not use it"
+    !a_reserved_pin_used(),
+    "the pin map uses a pin the firmware keeps: PA13/PA14 carry SWD (flashing and the defmt log), PH0 is the HSE clock input"
 );
 
-/// Whether some pin carries two signals.
+/// Whether some pin of the chip's ports carries two signals.
 const fn a_pin_twice() -> bool {
-    let mut port = b'A';
-    while port <= b'H' {
+    let mut p = 0;
+    while p < MCU.ports.len() {
+        let port = &MCU.ports[p];
         let mut n = 0;
-        while n < 16 {
-            let mut uses = 0;
-            let mut i = 0;
-            while i < INPUT_PINS.len() {
-                if let Some(p) = INPUT_PINS[i] {
-                    if p.port == port && p.pin == n {
-                        uses += 1;
-                    }
-                }
-                i += 1;
-            }
-            let mut o = 0;
-            while o < OUTPUT_PINS.len() {
-                if let Some(p) = OUTPUT_PINS[o] {
-                    if p.port == port && p.pin == n {
-                        uses += 1;
-                    }
-                }
-                o += 1;
-            }
-            if uses > 1 {
+        while n < port.pins {
+            if uses(port.letter, n) > 1 {
                 return true;
             }
             n += 1;
         }
-        port += 1;
+        p += 1;
     }
     false
 }
@@ -147,7 +162,7 @@ impl Io {
             outputs: [const { None }; output::COUNT],
         };
         let Ports { a, b, c, d, e, h } = ports;
-        // PA13/PA14 (SWD) are not offered.
+        // PA13/PA14 (SWD, `MCU.reserved`) are not offered.
         claim_pins!(
             io,
             a,
@@ -185,7 +200,7 @@ impl Io {
                 pe15
             ]
         );
-        // PH0 (HSE input) is not offered.
+        // PH0 (HSE input, `MCU.reserved`) is not offered.
         claim_pins!(io, h, [ph1]);
         io
     }

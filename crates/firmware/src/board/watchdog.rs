@@ -6,9 +6,11 @@ use stm32f4xx_hal::pac::{DBGMCU, IWDG, RCC};
 use stm32f4xx_hal::prelude::*;
 use stm32f4xx_hal::watchdog::IndependentWatchdog;
 
-/// Starts the watchdog with `timeout_ms` (below 32 768 ms); it is frozen
-/// while a debugger halts the core, so a breakpoint does not reset the
-/// board.
+/// Starts the watchdog with `timeout_ms` (at most
+/// `MCU.watchdog.max_timeout_ms`, 32 767 ms: the board data's
+/// `boards::Watchdog`, which also gives the timeout for a scan period);
+/// it is frozen while a debugger halts the core, so a breakpoint does not
+/// reset the board.
 pub fn start(iwdg: IWDG, dbgmcu: &DBGMCU, timeout_ms: u32) -> IndependentWatchdog {
     let mut watchdog = IndependentWatchdog::new(iwdg);
     watchdog.stop_on_debug(dbgmcu, true);

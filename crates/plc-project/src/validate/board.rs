@@ -14,126 +14,47 @@
 //! string is the pin with every option at its default: `pull = "none"`,
 //! `active_low = false`. Outputs are push-pull and take no `pull`.
 //!
-//! - `chip` must be an STM32F411 (the firmware's HAL); its package letter
-//!   (`R`: 64 pins, `C`: 48 pins) limits the pins that exist.
+//! What the chip has and the firmware may use is the board data's (crate
+//! `boards`, one `boards::Chip` per supported chip); this module applies
+//! it to the section:
+//!
+//! - `chip` must name a supported chip (`boards::chip_of`: an STM32F411,
+//!   the firmware's HAL); its package letter (`R`: 64 pins, `C`: 48 pins)
+//!   limits the pins that exist (`boards::Package`).
 //! - Every key names a declared input (under `inputs`) or output (under
 //!   `outputs`); a pin is `P<port><n>`, ports A–E and H, pins 0–15 (port H:
-//!   PH0 and PH1), case-insensitive. PA13/PA14 (SWD, which flashes the board
-//!   and carries the log) and PH0 (the HSE clock input) are refused.
+//!   PH0 and PH1), case-insensitive (`boards::Chip::pin`). PA13/PA14 (SWD,
+//!   which flashes the board and carries the log) and PH0 (the HSE clock
+//!   input) are refused (`boards::Chip::reserved`).
 //! - No pin carries two signals; `pull` is `up`, `down` or `none`.
 //! - `scan_period_ms` is at most [`MAX_BOARD_SCAN_PERIOD_MS`] (the
-//!   watchdog waits 4 periods and at most 32.7 s).
+//!   watchdog waits 4 periods and at most 32.7 s:
+//!   `boards::Watchdog::max_scan_period_ms`).
 //! - Warnings: an input without a pin (the firmware reads 0), an output
 //!   without a pin (computed, not driven), Nucleo-F411RE pins that are
 //!   wired to something else by default (PA2/PA3, PC14/PC15, PC13 as an
-//!   output), and an input whose EXTI line is taken.
+//!   output: `boards::DevBoard::note`, for a chip the board carries), and
+//!   an input whose EXTI line is taken.
 //!
 //! **Edge latching** ([`EdgeLatch`]): the firmware counts the changes of an
 //! input between two samples with an interrupt on both edges of EXTI line
-//! *n* (the pin number); more than one change is a lost edge (docs/semantics.md,
-//! `LostEdge`). A line listens to one port, so the first input in
-//! declaration order with pin number *n* owns it and a later one on
-//! another port is not latched (a warning). Debounced inputs
+//! *n* (the pin number, `boards::Chip::exti_line`); more than one change is
+//! a lost edge (docs/semantics.md, `LostEdge`). A line listens to one port,
+//! so the first input in declaration order with pin number *n* owns it and
+//! a later one on another port is not latched (a warning). Debounced inputs
 //! (`debounce_scans > 1`) are not latched either: their filter drops short
 //! pulses on purpose, so a pulse between samples is not an error there.
 
 use super::super::model::*;
 use super::super::parse::{Name, RawBoard, RawInputPin, RawOutputPin, RawPin};
 use super::Validator;
+use boards::{Chip, Package};
 use des::error::Result;
 use std::collections::HashMap;
 use std::ops::Range;
 use toml::Spanned;
 
-/// The chip when `[board]` names none: the Nucleo-F411RE's.
-pub const DEFAULT_CHIP: &str = "STM32F411RETx";
-
-/// Longest scan period a board project may have: the firmware's
-/// independent watchdog waits 4 periods for a scan to complete and
-/// cannot wait longer than 32.7 s.
-pub const MAX_BOARD_SCAN_PERIOD_MS: u32 = 8000;
-
-/// A pin the board firmware cannot give to a signal, and why.
-fn reserved(pin: PinId) -> Option<&'static str> {
-    match (pin.port, pin.number) {
-        ('A', 13) => Some(
-            "PA13 is SWDIO of the debug port: the probe (the Nucleo's ST-LINK) flashes the board and reads the defmt log through it",
-        ),
-        ('A', 14) => Some(
-            "PA14 is SWCLK of the debug port: the probe (the Nucleo's ST-LINK) flashes the board and reads the defmt log through it",
-        ),
-        ('H', 0) => Some(
-            "PH0 is OSC_IN: the firmware clocks the chip from the ST-LINK's 8 MHz clock on PH0 (HSE bypass)",
-        ),
-        _ => None,
-    }
-}
-
-/// The package of an STM32F411 from its part name (the letter after
-/// `STM32F411`), as far as it limits the pins.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Package {
-    /// `R`: LQFP64 (the Nucleo-F411RE): ports A–C, PD2, PH0–1.
-    Pins64,
-    /// `C`: UFQFPN48 / WLCSP49 ("Black Pill"): ports A and B without
-    /// PB11, PC13–15, PH0–1.
-    Pins48,
-    /// `V` or unknown: every pin of ports A–E and H exists.
-    Full,
-}
-
-impl Package {
-    fn of(chip: &str) -> Package {
-        match chip.as_bytes().get(9).map(u8::to_ascii_uppercase) {
-            Some(b'R') => Package::Pins64,
-            Some(b'C') => Package::Pins48,
-            _ => Package::Full,
-        }
-    }
-
-    /// `None` when the package has `pin`, otherwise what it has instead.
-    fn lacks(self, pin: PinId) -> Option<&'static str> {
-        let has = match self {
-            Package::Full => true,
-            Package::Pins64 => match pin.port {
-                'A' | 'B' | 'C' | 'H' => true,
-                'D' => pin.number == 2,
-                _ => false,
-            },
-            Package::Pins48 => match pin.port {
-                'A' | 'H' => true,
-                'B' => pin.number != 11,
-                'C' => pin.number >= 13,
-                _ => false,
-            },
-        };
-        match (has, self) {
-            (true, _) | (false, Package::Full) => None,
-            (false, Package::Pins64) => Some("the 64-pin package has ports A–C, PD2, PH0 and PH1"),
-            (false, Package::Pins48) => {
-                Some("the 48-pin package has port A, port B without PB11, PC13–PC15, PH0 and PH1")
-            }
-        }
-    }
-}
-
-/// What the Nucleo-F411RE has on `pin` that a project should know about,
-/// if anything (warnings only, for the 64-pin chip: other boards with it
-/// differ).
-fn nucleo_note(pin: PinId, output: bool) -> Option<&'static str> {
-    match (pin.port, pin.number) {
-        ('A', 2) | ('A', 3) => Some(
-            "carries USART2 to the ST-LINK virtual COM port on a Nucleo-F411RE and reaches the headers only after changing solder bridges (UM1724)",
-        ),
-        ('C', 14) | ('C', 15) => Some(
-            "is wired to the 32.768 kHz crystal X2 on a Nucleo-F411RE and is not on the headers by default (UM1724)",
-        ),
-        ('C', 13) if output => Some(
-            "is the user button B1 on a Nucleo-F411RE: pressing it shorts the output to ground",
-        ),
-        _ => None,
-    }
-}
+pub use boards::{DEFAULT_CHIP, MAX_BOARD_SCAN_PERIOD_MS};
 
 /// Who already uses a pin.
 struct PinUse {
@@ -157,32 +78,37 @@ impl Validator<'_> {
         let header = raw.span();
         let decl = raw.get_ref();
 
-        let chip = match &decl.chip {
-            None => DEFAULT_CHIP.to_owned(),
-            Some(chip) => {
-                if !chip.get_ref().to_ascii_uppercase().starts_with("STM32F411") {
-                    return Err(self.error(
-                        &chip.span(),
-                        format!(
-                            "chip `{}` is not supported: the board firmware is written for the STM32F411 (probe-rs names such as `STM32F411RETx`, the Nucleo-F411RE's, or `STM32F411CEUx`)",
-                            chip.get_ref()
-                        ),
-                    ));
-                }
-                chip.get_ref().clone()
-            }
+        let chip = decl
+            .chip
+            .as_ref()
+            .map_or(DEFAULT_CHIP, |c| c.get_ref().as_str());
+        let Some(mcu) = boards::chip_of(chip) else {
+            // Only a chip the project names can be unsupported.
+            let span = decl.chip.as_ref().map_or(header.clone(), |c| c.span());
+            return Err(self.error(
+                &span,
+                format!(
+                    "chip `{chip}` is not supported: the board firmware is written for the STM32F411 (probe-rs names such as `STM32F411RETx`, the Nucleo-F411RE's, or `STM32F411CEUx`)"
+                ),
+            ));
         };
-        let package = Package::of(&chip);
-        // The Nucleo-F411RE carries the 64-pin package.
-        let nucleo = package == Package::Pins64;
+        let chip = chip.to_owned();
+        let package = mcu.package(&chip);
+        // Warnings about default wiring for a board that carries the chip.
+        let dev_board = boards::dev_board_of(&chip);
 
         if let Some(period) = scan_period {
-            if *period.get_ref() > i64::from(MAX_BOARD_SCAN_PERIOD_MS) {
+            let watchdog = &mcu.watchdog;
+            let max = watchdog.max_scan_period_ms();
+            if *period.get_ref() > i64::from(max) {
                 return Err(self.error(
                     &period.span(),
                     format!(
-                        "a project with a [board] needs scan_period_ms ≤ {MAX_BOARD_SCAN_PERIOD_MS}, found {}: the board's watchdog restarts it when no scan completes within 4 periods, and it cannot wait longer than 32.7 s",
-                        period.get_ref()
+                        "a project with a [board] needs scan_period_ms ≤ {max}, found {}: the board's watchdog restarts it when no scan completes within {} periods, and it cannot wait longer than {}.{} s",
+                        period.get_ref(),
+                        watchdog.periods,
+                        watchdog.max_timeout_ms / 1000,
+                        watchdog.max_timeout_ms % 1000 / 100
                     ),
                 ));
             }
@@ -217,9 +143,9 @@ impl Validator<'_> {
                     *active_low,
                 ),
             };
-            let pin = self.pin(pin_name, &pin_span, package, &chip)?;
+            let pin = self.pin(pin_name, &pin_span, mcu, package, &chip)?;
             self.claim_pin(&mut used, pin, &pin_span, "input", name.get_ref())?;
-            if let Some(note) = nucleo_note(pin, false).filter(|_| nucleo) {
+            if let Some(note) = dev_board.and_then(|b| b.note(pin, false)) {
                 self.warn(
                     &pin_span,
                     format!("input `{}`: {pin} {note}", name.get_ref()),
@@ -244,9 +170,9 @@ impl Validator<'_> {
                     (pin.get_ref().as_str(), pin.span(), *active_low)
                 }
             };
-            let pin = self.pin(pin_name, &pin_span, package, &chip)?;
+            let pin = self.pin(pin_name, &pin_span, mcu, package, &chip)?;
             self.claim_pin(&mut used, pin, &pin_span, "output", name.get_ref())?;
-            if let Some(note) = nucleo_note(pin, true).filter(|_| nucleo) {
+            if let Some(note) = dev_board.and_then(|b| b.note(pin, true)) {
                 self.warn(
                     &pin_span,
                     format!("output `{}`: {pin} {note}", name.get_ref()),
@@ -261,14 +187,14 @@ impl Validator<'_> {
 
         // Edge latching: one port per EXTI line, the first input in
         // declaration order wins.
-        let mut line_owner: [Option<(usize, PinId)>; 16] = [None; 16];
+        let mut line_owner: Vec<Option<(usize, PinId)>> = vec![None; usize::from(mcu.exti_lines)];
         for (i, slot) in input_pins.iter_mut().enumerate() {
             let Some(p) = slot else { continue };
             if inputs[i].debounce_scans > 1 {
                 p.edge_latch = EdgeLatch::Debounced;
                 continue;
             }
-            let line = usize::from(p.pin.number);
+            let line = usize::from(mcu.exti_line(p.pin));
             match line_owner[line] {
                 None => line_owner[line] = Some((i, p.pin)),
                 Some((owner, owner_pin)) => {
@@ -311,6 +237,7 @@ impl Validator<'_> {
 
         Ok(Some(Board {
             chip,
+            mcu,
             inputs: input_pins,
             outputs: output_pins,
             line: self.line(&header),
@@ -348,31 +275,39 @@ impl Validator<'_> {
     }
 
     fn pull(&self, pull: Option<&Name>) -> Result<Pull> {
-        match pull {
-            None => Ok(Pull::None),
-            Some(p) => match p.get_ref().as_str() {
-                "none" => Ok(Pull::None),
-                "up" => Ok(Pull::Up),
-                "down" => Ok(Pull::Down),
-                other => Err(self.error(
-                    &p.span(),
-                    format!("pull must be \"up\", \"down\" or \"none\", found {other:?}"),
-                )),
-            },
-        }
+        let Some(p) = pull else {
+            return Ok(Pull::None);
+        };
+        Pull::from_name(p.get_ref()).ok_or_else(|| {
+            self.error(
+                &p.span(),
+                format!(
+                    "pull must be \"up\", \"down\" or \"none\", found {:?}",
+                    p.get_ref()
+                ),
+            )
+        })
     }
 
-    /// Parses a pin name and checks that the chip has it and that the
-    /// firmware may use it.
-    fn pin(&self, name: &str, span: &Range<usize>, package: Package, chip: &str) -> Result<PinId> {
-        let pin: PinId = name.parse().map_err(|e: String| self.error(span, e))?;
-        if let Some(why) = reserved(pin) {
+    /// Parses a pin name and checks that the chip has it, that the
+    /// package of the part `chip` bonds it out and that the firmware may
+    /// use it.
+    fn pin(
+        &self,
+        name: &str,
+        span: &Range<usize>,
+        mcu: &'static Chip,
+        package: Option<&Package>,
+        chip: &str,
+    ) -> Result<PinId> {
+        let pin = mcu.pin(name).map_err(|e| self.error(span, e.to_string()))?;
+        if let Some(why) = mcu.reserved(pin) {
             return Err(self.error(span, format!("{pin} cannot carry a signal: {why}")));
         }
-        if let Some(has) = package.lacks(pin) {
+        if let Some(package) = package.filter(|p| !p.has(pin)) {
             return Err(self.error(
                 span,
-                format!("{pin} is not bonded out on the {chip}: {has}"),
+                format!("{pin} is not bonded out on the {chip}: {}", package.summary),
             ));
         }
         Ok(pin)
