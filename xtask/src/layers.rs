@@ -1239,7 +1239,7 @@ mod tests {
         assert!(
             failure.starts_with(
                 "crates/plc-project/Cargo.toml: `plc-project` (front end) depends on `codegen` \
-                 (backend) in [dependencies]; there it may use des, executor."
+                 (backend) in [dependencies]; there it may use boards, des, executor."
             ),
             "{failure}"
         );
@@ -1260,7 +1260,7 @@ mod tests {
     fn a_build_dependency_is_not_a_normal_one() {
         // The firmware's build script may use codegen; its code may not.
         let failure = one_failure("firmware", "codegen", None);
-        assert!(failure.contains("there it may use executor."), "{failure}");
+        assert!(failure.contains("there it may use boards, executor."), "{failure}");
     }
 
     #[test]
