@@ -51,8 +51,9 @@ fn conveyor_crate(name: &str, extra_plant: Option<&str>) -> tempfile::TempDir {
         Path::new("Cargo.toml"),
         &format!(
             "[package]\nname = {name:?}\nversion = \"0.0.0\"\nedition = \"2021\"\npublish = false\n\n\
-             [dependencies]\nexecutor = {{ path = {:?} }}\n\n\
-             [build-dependencies]\ncodegen = {{ path = {:?}, default-features = false }}\n\n[workspace]\n",
+             [dependencies]\nboards = {{ path = {:?} }}\nexecutor = {{ path = {:?} }}\n\n\
+             [build-dependencies]\ncodegen = {{ path = {:?} }}\n\n[workspace]\n",
+            repo().join("crates/boards"),
             repo().join("crates/executor"),
             repo().join("crates/codegen")
         ),

@@ -164,7 +164,7 @@ const LAYERS: &[Layer] = &[
         stage: Stage::Tooling,
         normal: &["codegen", "des", "iec-export", "plc-project"],
         build: &["codegen", "des", "plc-project"],
-        dev: &["executor", "host-sim", "iec-st"],
+        dev: &["boards", "executor", "host-sim", "iec-st"],
     },
     Layer {
         name: "xtask",
@@ -1260,7 +1260,10 @@ mod tests {
     fn a_build_dependency_is_not_a_normal_one() {
         // The firmware's build script may use codegen; its code may not.
         let failure = one_failure("firmware", "codegen", None);
-        assert!(failure.contains("there it may use boards, executor."), "{failure}");
+        assert!(
+            failure.contains("there it may use boards, executor."),
+            "{failure}"
+        );
     }
 
     #[test]

@@ -1,8 +1,8 @@
 //! Board data: what the PLC toolchain knows about the MCUs and boards the
 //! board firmware runs on, in one place, as const data.
 //!
-//! - pins by name ([`PinId`], `PC13`) and the bias resistor of an input
-//!   ([`Pull`]);
+//! - pins by name ([`PinId`], `PC13`), the bias resistor of an input
+//!   ([`Pull`]) and a signal's pin in a generated pin map ([`SignalPin`]);
 //! - each supported chip ([`Chip`], [`CHIPS`]: today the [`STM32F411`]):
 //!   its GPIO ports, which pins each package bonds out ([`Package`]), the
 //!   pins the firmware keeps for itself ([`Reserved`]: SWD, the clock
@@ -49,7 +49,7 @@ mod stm32f411;
 pub use chip::{Chip, Package, PinError, PinErrorKind, Port, Reserved, Watchdog};
 pub use dev_board::{DevBoard, PinNote};
 pub use nucleo_f411re::NUCLEO_F411RE;
-pub use pin::{NotAPinName, PinId, Pull};
+pub use pin::{NotAPinName, PinId, Pull, SignalPin};
 pub use stm32f411::STM32F411;
 
 /// Every chip the board firmware is written for.

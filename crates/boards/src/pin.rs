@@ -132,3 +132,17 @@ mod tests {
         assert_eq!(Pull::default(), Pull::None);
     }
 }
+
+/// A signal's pin in a generated pin map: the pin, its bias resistor and
+/// how the signal maps onto its level. Generated files hold these as
+/// data; the firmware configures its pins from them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SignalPin {
+    /// The pin.
+    pub pin: PinId,
+    /// Internal bias resistor ([`Pull::None`] for outputs, which are
+    /// push-pull).
+    pub pull: Pull,
+    /// The signal is 1 while the pin is low.
+    pub active_low: bool,
+}

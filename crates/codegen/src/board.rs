@@ -33,10 +33,10 @@ fn pull_variant(pull: Pull) -> &'static str {
     }
 }
 
-/// `Some(Pin { … })` for the generated tables.
+/// `Some(SignalPin { … })` for the generated tables.
 fn pin_literal(pin: PinId, pull: Pull, active_low: bool) -> String {
     format!(
-        "Some(Pin {{ port: b'{}', pin: {}, pull: {}, active_low: {active_low} }})",
+        "Some(SignalPin {{ pin: PinId::new('{}', {}), pull: {}, active_low: {active_low} }})",
         pin.port,
         pin.number,
         pull_variant(pull)
@@ -95,23 +95,8 @@ pub fn board_module(project: &Project) -> String {
         "/// The chip the pins belong to, as probe-rs names it.\npub const CHIP: &str = {:?};",
         board.chip
     );
-    out.push_str(
-        "/// Internal bias resistor of an input pin.\n\
-         #[derive(Debug, Clone, Copy, PartialEq, Eq)]\n\
-         pub enum Pull {\n\
-         /// Floating: the wiring sets the level.\nNone,\n\
-         /// Pulled up to VDD.\nUp,\n\
-         /// Pulled down to ground.\nDown,\n\
-         }\n\
-         /// A GPIO pin and how a signal maps onto its level.\n\
-         #[derive(Debug, Clone, Copy, PartialEq, Eq)]\n\
-         pub struct Pin {\n\
-         /// Port letter as ASCII, `b'A'`..=`b'E'` or `b'H'`.\npub port: u8,\n\
-         /// Pin number in the port, 0-15; also its EXTI line.\npub pin: u8,\n\
-         /// Internal pull resistor (`Pull::None` for outputs, which are push-pull).\npub pull: Pull,\n\
-         /// The signal is 1 while the pin is low.\npub active_low: bool,\n\
-         }\n",
-    );
+    // The types are the board data crate's: a generated file is data.
+    out.push_str("pub use boards::{PinId, Pull, SignalPin};\n");
 
     // Inputs.
     let mut doc = String::new();
@@ -137,7 +122,7 @@ pub fn board_module(project: &Project) -> String {
     }
     let _ = writeln!(
         out,
-        "/// Pin of each input, by input index (`None`: not wired, the firmware\n/// reads 0):\n{doc}pub const INPUT_PINS: [Option<Pin>; super::input::COUNT] = [{}];",
+        "/// Pin of each input, by input index (`None`: not wired, the firmware\n/// reads 0):\n{doc}pub const INPUT_PINS: [Option<SignalPin>; super::input::COUNT] = [{}];",
         items.join(", ")
     );
 
@@ -165,7 +150,7 @@ pub fn board_module(project: &Project) -> String {
     }
     let _ = writeln!(
         out,
-        "/// Pin of each output, by output index (`None`: computed, not driven):\n{doc}pub const OUTPUT_PINS: [Option<Pin>; super::output::COUNT] = [{}];",
+        "/// Pin of each output, by output index (`None`: computed, not driven):\n{doc}pub const OUTPUT_PINS: [Option<SignalPin>; super::output::COUNT] = [{}];",
         items.join(", ")
     );
 

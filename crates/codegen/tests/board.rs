@@ -282,8 +282,9 @@ fn the_generated_pin_map_compiles_into_the_program_and_reads_back() {
     );
     for expected in [
         "pub const CHIP: &str = \"STM32F411CEUx\";",
-        "pub const INPUT_PINS: [Option<Pin>; super::input::COUNT] = [Some(Pin { port: b'A', pin: 0, pull: Pull::Up, active_low: true }), None, Some(Pin { port: b'H', pin: 1, pull: Pull::None, active_low: false })];",
-        "pub const OUTPUT_PINS: [Option<Pin>; super::output::COUNT] = [None, Some(Pin { port: b'B', pin: 12, pull: Pull::None, active_low: true })];",
+        "pub use boards::{PinId, Pull, SignalPin};",
+        "pub const INPUT_PINS: [Option<SignalPin>; super::input::COUNT] = [Some(SignalPin { pin: PinId::new('A', 0), pull: Pull::Up, active_low: true }), None, Some(SignalPin { pin: PinId::new('H', 1), pull: Pull::None, active_low: false })];",
+        "pub const OUTPUT_PINS: [Option<SignalPin>; super::output::COUNT] = [None, Some(SignalPin { pin: PinId::new('B', 12), pull: Pull::None, active_low: true })];",
         "pub const EDGE_LATCHED: [bool; super::input::COUNT] = [true, false, true];",
         "/// - 1 `part`: not wired, reads 0",
         "/// - 0 `lamp`: not driven",

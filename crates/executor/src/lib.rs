@@ -244,6 +244,7 @@
 extern crate alloc;
 
 mod bits;
+pub mod compiled;
 mod controller;
 pub mod image;
 mod inputs;

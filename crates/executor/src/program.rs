@@ -342,6 +342,14 @@ pub struct SupervisorTable<'a> {
     pub rows: Rows<'a>,
 }
 
+/// The row of defined-bits of `len` (at most 32) local events, event `k`
+/// asked of `defined(k)`: what [`Program::enabled`] is for supervisors
+/// that are code.
+#[inline]
+pub(crate) fn enabled_by_steps(len: u8, defined: impl Fn(Index) -> bool) -> u32 {
+    (0..u16::from(len.min(32))).fold(0, |row, k| row | u32::from(defined(k)) << k)
+}
+
 /// Supervisor dynamics plus the static description: what a
 /// [`crate::Controller`] runs.
 pub trait Program {
@@ -359,16 +367,12 @@ pub trait Program {
     /// [`Program::next_state`] for each event; tables read their row of
     /// defined-bits.
     fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
-        (0..u16::from(len.min(32))).fold(0, |row, k| {
-            let defined = self
-                .next_state(supervisor, state, from.wrapping_add(k))
-                .is_some();
-            row | u32::from(defined) << k
+        enabled_by_steps(len, |k| {
+            self.next_state(supervisor, state, from.wrapping_add(k))
+                .is_some()
         })
     }
 
-    /// Recomputes the program image's checksum and compares it with the
-    /// one recorded at generation; `false` means corrupt.
     /// The transition table of supervisor `supervisor`, part of the
     /// program image ([`crate::image`]); `None` past the last table, and
     /// for every supervisor of a program whose supervisors are code.

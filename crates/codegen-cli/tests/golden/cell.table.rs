@@ -9,7 +9,7 @@ use executor::program::{
 };
 
 #[allow(unused_imports)]
-use executor::program::Program;
+use executor::compiled::{Compiled, ProgramData};
 use executor::table::{Rows, SupervisorTable};
 
 /// Inputs, in declaration order.
@@ -1420,30 +1420,7 @@ pub type Memory = executor::memory::StaticMemory<
 pub mod board {
     /// The chip the pins belong to, as probe-rs names it.
     pub const CHIP: &str = "STM32F411RETx";
-
-    /// Internal bias resistor of an input pin.
-    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-    pub enum Pull {
-        /// Floating: the wiring sets the level.
-        None,
-        /// Pulled up to VDD.
-        Up,
-        /// Pulled down to ground.
-        Down,
-    }
-
-    /// A GPIO pin and how a signal maps onto its level.
-    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-    pub struct Pin {
-        /// Port letter as ASCII, `b'A'`..=`b'E'` or `b'H'`.
-        pub port: u8,
-        /// Pin number in the port, 0-15; also its EXTI line.
-        pub pin: u8,
-        /// Internal pull resistor (`Pull::None` for outputs, which are push-pull).
-        pub pull: Pull,
-        /// The signal is 1 while the pin is low.
-        pub active_low: bool,
-    }
+    pub use boards::{PinId, Pull, SignalPin};
 
     /// Pin of each input, by input index (`None`: not wired, the firmware
     /// reads 0):
@@ -1466,118 +1443,99 @@ pub mod board {
     /// - 16 `ra_inlet_b_open`: PC0, no pull, active high
     /// - 17 `rb_inlet_a_open`: PC1, no pull, active high
     /// - 18 `rb_inlet_b_open`: PC4, no pull, active high
-    pub const INPUT_PINS: [Option<Pin>; super::input::COUNT] = [
-        Some(Pin {
-            port: b'C',
-            pin: 13,
+    pub const INPUT_PINS: [Option<SignalPin>; super::input::COUNT] = [
+        Some(SignalPin {
+            pin: PinId::new('C', 13),
             pull: Pull::Up,
             active_low: true,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 12,
+        Some(SignalPin {
+            pin: PinId::new('C', 12),
             pull: Pull::Up,
             active_low: true,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 14,
+        Some(SignalPin {
+            pin: PinId::new('B', 14),
             pull: Pull::Up,
             active_low: true,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 0,
+        Some(SignalPin {
+            pin: PinId::new('A', 0),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 1,
+        Some(SignalPin {
+            pin: PinId::new('A', 1),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 4,
+        Some(SignalPin {
+            pin: PinId::new('A', 4),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 2,
+        Some(SignalPin {
+            pin: PinId::new('C', 2),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 3,
+        Some(SignalPin {
+            pin: PinId::new('C', 3),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 5,
+        Some(SignalPin {
+            pin: PinId::new('C', 5),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 6,
+        Some(SignalPin {
+            pin: PinId::new('C', 6),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 7,
+        Some(SignalPin {
+            pin: PinId::new('C', 7),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 8,
+        Some(SignalPin {
+            pin: PinId::new('C', 8),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 9,
+        Some(SignalPin {
+            pin: PinId::new('C', 9),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 10,
+        Some(SignalPin {
+            pin: PinId::new('C', 10),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 11,
+        Some(SignalPin {
+            pin: PinId::new('C', 11),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 15,
+        Some(SignalPin {
+            pin: PinId::new('A', 15),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 0,
+        Some(SignalPin {
+            pin: PinId::new('C', 0),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 1,
+        Some(SignalPin {
+            pin: PinId::new('C', 1),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 4,
+        Some(SignalPin {
+            pin: PinId::new('C', 4),
             pull: Pull::None,
             active_low: false,
         }),
@@ -1608,148 +1566,124 @@ pub mod board {
     /// - 21 `rb_tc_on`: PB13, push-pull, active high
     /// - 22 `rb_tc_cool`: PB15, push-pull, active high
     /// - 23 `rb_drain`: PD2, push-pull, active high
-    pub const OUTPUT_PINS: [Option<Pin>; super::output::COUNT] = [
-        Some(Pin {
-            port: b'A',
-            pin: 5,
+    pub const OUTPUT_PINS: [Option<SignalPin>; super::output::COUNT] = [
+        Some(SignalPin {
+            pin: PinId::new('A', 5),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 6,
+        Some(SignalPin {
+            pin: PinId::new('A', 6),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 7,
+        Some(SignalPin {
+            pin: PinId::new('A', 7),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 8,
+        Some(SignalPin {
+            pin: PinId::new('A', 8),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 9,
+        Some(SignalPin {
+            pin: PinId::new('A', 9),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 10,
+        Some(SignalPin {
+            pin: PinId::new('A', 10),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 11,
+        Some(SignalPin {
+            pin: PinId::new('A', 11),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 12,
+        Some(SignalPin {
+            pin: PinId::new('A', 12),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 0,
+        Some(SignalPin {
+            pin: PinId::new('B', 0),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 1,
+        Some(SignalPin {
+            pin: PinId::new('B', 1),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 2,
+        Some(SignalPin {
+            pin: PinId::new('B', 2),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 3,
+        Some(SignalPin {
+            pin: PinId::new('B', 3),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 4,
+        Some(SignalPin {
+            pin: PinId::new('B', 4),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 5,
+        Some(SignalPin {
+            pin: PinId::new('B', 5),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 6,
+        Some(SignalPin {
+            pin: PinId::new('B', 6),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 7,
+        Some(SignalPin {
+            pin: PinId::new('B', 7),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 8,
+        Some(SignalPin {
+            pin: PinId::new('B', 8),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 9,
+        Some(SignalPin {
+            pin: PinId::new('B', 9),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 10,
+        Some(SignalPin {
+            pin: PinId::new('B', 10),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 11,
+        Some(SignalPin {
+            pin: PinId::new('B', 11),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 12,
+        Some(SignalPin {
+            pin: PinId::new('B', 12),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 13,
+        Some(SignalPin {
+            pin: PinId::new('B', 13),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 15,
+        Some(SignalPin {
+            pin: PinId::new('B', 15),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'D',
-            pin: 2,
+        Some(SignalPin {
+            pin: PinId::new('D', 2),
             pull: Pull::None,
             active_low: false,
         }),
@@ -1904,32 +1838,14 @@ const TABLES: [SupervisorTable<'static>; 2] = [
 /// `executor::image`.
 pub const IMAGE_CRC: u32 = 0xc07b24e7;
 
-/// The program: the configuration and the tables above, as constants the
-/// compiler can see through (a zero-sized type rather than a `static` holding them).
+/// The program's data: the configuration and the tables above, as constants
+/// the compiler can see through (`executor::compiled`).
 pub struct Tables;
-impl Program for Tables {
-    fn config(&self) -> Config<'_> {
-        CONFIG
-    }
-
-    #[inline]
-    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
-        TABLES.get(supervisor as usize)?.next_state(state, local)
-    }
-
-    #[inline]
-    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
-        TABLES.get(supervisor as usize).map_or(0, |t| t.enabled(state, from, len))
-    }
-
-    fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {
-        TABLES.get(supervisor as usize).copied()
-    }
-
-    fn recorded_crc(&self) -> u32 {
-        IMAGE_CRC
-    }
+impl ProgramData for Tables {
+    const CONFIG: Config<'static> = CONFIG;
+    const IMAGE_CRC: u32 = IMAGE_CRC;
+    const TABLES: &'static [SupervisorTable<'static>] = &TABLES;
 }
 
 /// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.
-pub static PROGRAM: Tables = Tables;
+pub static PROGRAM: Compiled<Tables> = Compiled::new();

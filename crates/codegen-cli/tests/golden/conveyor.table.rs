@@ -9,7 +9,7 @@ use executor::program::{
 };
 
 #[allow(unused_imports)]
-use executor::program::Program;
+use executor::compiled::{Compiled, ProgramData};
 use executor::table::{Rows, SupervisorTable};
 
 /// Inputs, in declaration order.
@@ -337,45 +337,20 @@ pub type Memory = executor::memory::StaticMemory<
 pub mod board {
     /// The chip the pins belong to, as probe-rs names it.
     pub const CHIP: &str = "STM32F411RETx";
-
-    /// Internal bias resistor of an input pin.
-    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-    pub enum Pull {
-        /// Floating: the wiring sets the level.
-        None,
-        /// Pulled up to VDD.
-        Up,
-        /// Pulled down to ground.
-        Down,
-    }
-
-    /// A GPIO pin and how a signal maps onto its level.
-    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-    pub struct Pin {
-        /// Port letter as ASCII, `b'A'`..=`b'E'` or `b'H'`.
-        pub port: u8,
-        /// Pin number in the port, 0-15; also its EXTI line.
-        pub pin: u8,
-        /// Internal pull resistor (`Pull::None` for outputs, which are push-pull).
-        pub pull: Pull,
-        /// The signal is 1 while the pin is low.
-        pub active_low: bool,
-    }
+    pub use boards::{PinId, Pull, SignalPin};
 
     /// Pin of each input, by input index (`None`: not wired, the firmware
     /// reads 0):
     /// - 0 `ls`: PA0, no pull, active high
     /// - 1 `reset`: PC13, pull-up, active low
-    pub const INPUT_PINS: [Option<Pin>; super::input::COUNT] = [
-        Some(Pin {
-            port: b'A',
-            pin: 0,
+    pub const INPUT_PINS: [Option<SignalPin>; super::input::COUNT] = [
+        Some(SignalPin {
+            pin: PinId::new('A', 0),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 13,
+        Some(SignalPin {
+            pin: PinId::new('C', 13),
             pull: Pull::Up,
             active_low: true,
         }),
@@ -383,10 +358,9 @@ pub mod board {
 
     /// Pin of each output, by output index (`None`: computed, not driven):
     /// - 0 `belt`: PA5, push-pull, active high
-    pub const OUTPUT_PINS: [Option<Pin>; super::output::COUNT] = [
-        Some(Pin {
-            port: b'A',
-            pin: 5,
+    pub const OUTPUT_PINS: [Option<SignalPin>; super::output::COUNT] = [
+        Some(SignalPin {
+            pin: PinId::new('A', 5),
             pull: Pull::None,
             active_low: false,
         }),
@@ -440,32 +414,14 @@ const TABLES: [SupervisorTable<'static>; 1] = [
 /// `executor::image`.
 pub const IMAGE_CRC: u32 = 0xe405f2dc;
 
-/// The program: the configuration and the tables above, as constants the
-/// compiler can see through (a zero-sized type rather than a `static` holding them).
+/// The program's data: the configuration and the tables above, as constants
+/// the compiler can see through (`executor::compiled`).
 pub struct Tables;
-impl Program for Tables {
-    fn config(&self) -> Config<'_> {
-        CONFIG
-    }
-
-    #[inline]
-    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
-        TABLES.get(supervisor as usize)?.next_state(state, local)
-    }
-
-    #[inline]
-    fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
-        TABLES.get(supervisor as usize).map_or(0, |t| t.enabled(state, from, len))
-    }
-
-    fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {
-        TABLES.get(supervisor as usize).copied()
-    }
-
-    fn recorded_crc(&self) -> u32 {
-        IMAGE_CRC
-    }
+impl ProgramData for Tables {
+    const CONFIG: Config<'static> = CONFIG;
+    const IMAGE_CRC: u32 = IMAGE_CRC;
+    const TABLES: &'static [SupervisorTable<'static>] = &TABLES;
 }
 
 /// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.
-pub static PROGRAM: Tables = Tables;
+pub static PROGRAM: Compiled<Tables> = Compiled::new();

@@ -9,8 +9,7 @@ use executor::program::{
 };
 
 #[allow(unused_imports)]
-use executor::program::Program;
-use executor::table::SupervisorTable;
+use executor::compiled::{Compiled, ProgramData};
 
 /// Inputs, in declaration order.
 #[allow(dead_code)]
@@ -538,30 +537,7 @@ pub type Memory = executor::memory::StaticMemory<
 pub mod board {
     /// The chip the pins belong to, as probe-rs names it.
     pub const CHIP: &str = "STM32F411RETx";
-
-    /// Internal bias resistor of an input pin.
-    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-    pub enum Pull {
-        /// Floating: the wiring sets the level.
-        None,
-        /// Pulled up to VDD.
-        Up,
-        /// Pulled down to ground.
-        Down,
-    }
-
-    /// A GPIO pin and how a signal maps onto its level.
-    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-    pub struct Pin {
-        /// Port letter as ASCII, `b'A'`..=`b'E'` or `b'H'`.
-        pub port: u8,
-        /// Pin number in the port, 0-15; also its EXTI line.
-        pub pin: u8,
-        /// Internal pull resistor (`Pull::None` for outputs, which are push-pull).
-        pub pull: Pull,
-        /// The signal is 1 while the pin is low.
-        pub active_low: bool,
-    }
+    pub use boards::{PinId, Pull, SignalPin};
 
     /// Pin of each input, by input index (`None`: not wired, the firmware
     /// reads 0):
@@ -574,58 +550,49 @@ pub mod board {
     /// - 6 `t1_depart`: PB5, no pull, active high
     /// - 7 `t2_depart`: PB4, no pull, active high
     /// - 8 `reset`: PC13, pull-up, active low
-    pub const INPUT_PINS: [Option<Pin>; super::input::COUNT] = [
-        Some(Pin {
-            port: b'A',
-            pin: 0,
+    pub const INPUT_PINS: [Option<SignalPin>; super::input::COUNT] = [
+        Some(SignalPin {
+            pin: PinId::new('A', 0),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 1,
+        Some(SignalPin {
+            pin: PinId::new('A', 1),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 4,
+        Some(SignalPin {
+            pin: PinId::new('A', 4),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 0,
+        Some(SignalPin {
+            pin: PinId::new('B', 0),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 10,
+        Some(SignalPin {
+            pin: PinId::new('A', 10),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 3,
+        Some(SignalPin {
+            pin: PinId::new('B', 3),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 5,
+        Some(SignalPin {
+            pin: PinId::new('B', 5),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 4,
+        Some(SignalPin {
+            pin: PinId::new('B', 4),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 13,
+        Some(SignalPin {
+            pin: PinId::new('C', 13),
             pull: Pull::Up,
             active_low: true,
         }),
@@ -636,28 +603,24 @@ pub mod board {
     /// - 1 `t2_enable`: PA9, push-pull, active high
     /// - 2 `section_busy`: PA5, push-pull, active high
     /// - 3 `crane1_load`: PC7, push-pull, active high
-    pub const OUTPUT_PINS: [Option<Pin>; super::output::COUNT] = [
-        Some(Pin {
-            port: b'A',
-            pin: 8,
+    pub const OUTPUT_PINS: [Option<SignalPin>; super::output::COUNT] = [
+        Some(SignalPin {
+            pin: PinId::new('A', 8),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 9,
+        Some(SignalPin {
+            pin: PinId::new('A', 9),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 5,
+        Some(SignalPin {
+            pin: PinId::new('A', 5),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 7,
+        Some(SignalPin {
+            pin: PinId::new('C', 7),
             pull: Pull::None,
             active_low: false,
         }),
@@ -819,14 +782,14 @@ pub mod logic {
 /// See `executor::image`.
 pub const IMAGE_CRC: u32 = 0x88c7f913;
 
-/// The program: supervisors as minimised boolean functions.
+/// The program's data: the configuration above, and the supervisors as
+/// minimised boolean functions (`executor::compiled`).
 pub struct Logic;
-impl Program for Logic {
-    fn config(&self) -> Config<'_> {
-        CONFIG
-    }
+impl ProgramData for Logic {
+    const CONFIG: Config<'static> = CONFIG;
+    const IMAGE_CRC: u32 = IMAGE_CRC;
 
-    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
+    fn next_state(supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
             supervisor::SUP_CRANE1 => {
                 logic::sup_sup_crane1::sup_sup_crane1_step(state, local)
@@ -837,15 +800,7 @@ impl Program for Logic {
             _ => None,
         }
     }
-
-    fn table(&self, _supervisor: Index) -> Option<SupervisorTable<'_>> {
-        None
-    }
-
-    fn recorded_crc(&self) -> u32 {
-        IMAGE_CRC
-    }
 }
 
 /// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.
-pub static PROGRAM: Logic = Logic;
+pub static PROGRAM: Compiled<Logic> = Compiled::new();

@@ -9,8 +9,7 @@ use executor::program::{
 };
 
 #[allow(unused_imports)]
-use executor::program::Program;
-use executor::table::SupervisorTable;
+use executor::compiled::{Compiled, ProgramData};
 
 /// Inputs, in declaration order.
 #[allow(dead_code)]
@@ -451,30 +450,7 @@ pub type Memory = executor::memory::StaticMemory<
 pub mod board {
     /// The chip the pins belong to, as probe-rs names it.
     pub const CHIP: &str = "STM32F411RETx";
-
-    /// Internal bias resistor of an input pin.
-    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-    pub enum Pull {
-        /// Floating: the wiring sets the level.
-        None,
-        /// Pulled up to VDD.
-        Up,
-        /// Pulled down to ground.
-        Down,
-    }
-
-    /// A GPIO pin and how a signal maps onto its level.
-    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-    pub struct Pin {
-        /// Port letter as ASCII, `b'A'`..=`b'E'` or `b'H'`.
-        pub port: u8,
-        /// Pin number in the port, 0-15; also its EXTI line.
-        pub pin: u8,
-        /// Internal pull resistor (`Pull::None` for outputs, which are push-pull).
-        pub pull: Pull,
-        /// The signal is 1 while the pin is low.
-        pub active_low: bool,
-    }
+    pub use boards::{PinId, Pull, SignalPin};
 
     /// Pin of each input, by input index (`None`: not wired, the firmware
     /// reads 0):
@@ -484,40 +460,34 @@ pub mod board {
     /// - 3 `part`: PA0, no pull, active high
     /// - 4 `top_ls`: PB5, pull-up, active low
     /// - 5 `bottom_ls`: PB4, pull-up, active low
-    pub const INPUT_PINS: [Option<Pin>; super::input::COUNT] = [
-        Some(Pin {
-            port: b'C',
-            pin: 13,
+    pub const INPUT_PINS: [Option<SignalPin>; super::input::COUNT] = [
+        Some(SignalPin {
+            pin: PinId::new('C', 13),
             pull: Pull::Up,
             active_low: true,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 10,
+        Some(SignalPin {
+            pin: PinId::new('A', 10),
             pull: Pull::Up,
             active_low: true,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 3,
+        Some(SignalPin {
+            pin: PinId::new('B', 3),
             pull: Pull::Up,
             active_low: true,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 0,
+        Some(SignalPin {
+            pin: PinId::new('A', 0),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 5,
+        Some(SignalPin {
+            pin: PinId::new('B', 5),
             pull: Pull::Up,
             active_low: true,
         }),
-        Some(Pin {
-            port: b'B',
-            pin: 4,
+        Some(SignalPin {
+            pin: PinId::new('B', 4),
             pull: Pull::Up,
             active_low: true,
         }),
@@ -528,28 +498,24 @@ pub mod board {
     /// - 1 `part_hold`: PA8, push-pull, active high
     /// - 2 `up_sol`: PA9, push-pull, active high
     /// - 3 `down_sol`: PC7, push-pull, active high
-    pub const OUTPUT_PINS: [Option<Pin>; super::output::COUNT] = [
-        Some(Pin {
-            port: b'A',
-            pin: 5,
+    pub const OUTPUT_PINS: [Option<SignalPin>; super::output::COUNT] = [
+        Some(SignalPin {
+            pin: PinId::new('A', 5),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 8,
+        Some(SignalPin {
+            pin: PinId::new('A', 8),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'A',
-            pin: 9,
+        Some(SignalPin {
+            pin: PinId::new('A', 9),
             pull: Pull::None,
             active_low: false,
         }),
-        Some(Pin {
-            port: b'C',
-            pin: 7,
+        Some(SignalPin {
+            pin: PinId::new('C', 7),
             pull: Pull::None,
             active_low: false,
         }),
@@ -617,28 +583,20 @@ pub mod matches {
 /// See `executor::image`.
 pub const IMAGE_CRC: u32 = 0xbad64e86;
 
-/// The program: supervisors as `match` statements.
+/// The program's data: the configuration above, and the supervisors as
+/// `match` statements (`executor::compiled`).
 pub struct Match;
-impl Program for Match {
-    fn config(&self) -> Config<'_> {
-        CONFIG
-    }
+impl ProgramData for Match {
+    const CONFIG: Config<'static> = CONFIG;
+    const IMAGE_CRC: u32 = IMAGE_CRC;
 
-    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
+    fn next_state(supervisor: Index, state: u32, local: Index) -> Option<u32> {
         match supervisor {
             supervisor::PRESS => matches::sup_press(state, local),
             _ => None,
         }
     }
-
-    fn table(&self, _supervisor: Index) -> Option<SupervisorTable<'_>> {
-        None
-    }
-
-    fn recorded_crc(&self) -> u32 {
-        IMAGE_CRC
-    }
 }
 
 /// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.
-pub static PROGRAM: Match = Match;
+pub static PROGRAM: Compiled<Match> = Compiled::new();

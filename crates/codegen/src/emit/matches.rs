@@ -54,7 +54,7 @@ impl Emitter<'_> {
         let _ = writeln!(self.out, "}}");
         let _ = writeln!(
             self.out,
-            "{crc_doc}\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program: supervisors as `match` statements.\npub struct Match;\nimpl Program for Match {{\n    fn config(&self) -> Config<'_> {{ CONFIG }}\n    fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n    fn table(&self, _supervisor: Index) -> Option<SupervisorTable<'_>> {{ None }}\n    fn recorded_crc(&self) -> u32 {{ IMAGE_CRC }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Match = Match;",
+            "{crc_doc}\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program's data: the configuration above, and the supervisors as\n/// `match` statements (`executor::compiled`).\npub struct Match;\nimpl ProgramData for Match {{\n    const CONFIG: Config<'static> = CONFIG;\n    const IMAGE_CRC: u32 = IMAGE_CRC;\n    fn next_state(supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Compiled<Match> = Compiled::new();",
             arms.join("\n")
         );
         stats

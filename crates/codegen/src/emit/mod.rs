@@ -300,11 +300,9 @@ fn write_program(project: &Project, lowered: &Lowered) -> Unformatted {
     };
     let uses = match lowered {
         Lowered::Table(_) => {
-            "use executor::program::Program;\nuse executor::table::{Rows, SupervisorTable};"
+            "use executor::compiled::{Compiled, ProgramData};\nuse executor::table::{Rows, SupervisorTable};"
         }
-        Lowered::Logic(_) | Lowered::Match(_) => {
-            "use executor::program::Program;\nuse executor::table::SupervisorTable;"
-        }
+        Lowered::Logic(_) | Lowered::Match(_) => "use executor::compiled::{Compiled, ProgramData};",
     };
     let _ = writeln!(
         e.out,

@@ -10,7 +10,7 @@
 //! frame), two edges of one line merge into one pending bit: a lost edge
 //! can then go unreported, never be reported falsely.
 
-use super::pins::{pin_id, Io};
+use super::pins::Io;
 use core::cell::{Cell, RefCell};
 use cortex_m::peripheral::NVIC;
 use critical_section::{CriticalSection, Mutex};
@@ -29,7 +29,7 @@ const fn latched_lines() -> [Option<u8>; input::COUNT] {
     let mut i = 0;
     while i < input::COUNT {
         if let (Some(pin), true) = (INPUT_PINS[i], EDGE_LATCHED[i]) {
-            lines[i] = Some(firmware::MCU.exti_line(pin_id(pin)));
+            lines[i] = Some(firmware::MCU.exti_line(pin.pin));
         }
         i += 1;
     }

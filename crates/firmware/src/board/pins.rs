@@ -10,7 +10,6 @@
 //! refuses them too, and a const assertion below makes a hand-edited pin
 //! map fail to build.
 
-use boards::PinId;
 use firmware::levels;
 use firmware::program::board::{self, INPUT_PINS, OUTPUT_PINS};
 use firmware::program::{input, output, INPUT_WORDS};
@@ -22,17 +21,12 @@ use stm32f4xx_hal::gpio::{
 use stm32f4xx_hal::pac::EXTI;
 use stm32f4xx_hal::syscfg::SysCfg;
 
-/// The pin of a pin-map entry, by name.
-pub const fn pin_id(pin: board::Pin) -> PinId {
-    PinId::new(pin.port as char, pin.pin)
-}
-
 /// The index of the signal wired to port `port`, pin `n` in `pins`.
-const fn find(pins: &[Option<board::Pin>], port: char, n: u8) -> Option<usize> {
+const fn find(pins: &[Option<board::SignalPin>], port: char, n: u8) -> Option<usize> {
     let mut i = 0;
     while i < pins.len() {
         if let Some(p) = pins[i] {
-            if p.port == port as u8 && p.pin == n {
+            if p.pin.port == port && p.pin.number == n {
                 return Some(i);
             }
         }
@@ -42,12 +36,12 @@ const fn find(pins: &[Option<board::Pin>], port: char, n: u8) -> Option<usize> {
 }
 
 /// How many entries of `pins` are port `port`, pin `n`.
-const fn count(pins: &[Option<board::Pin>], port: char, n: u8) -> usize {
+const fn count(pins: &[Option<board::SignalPin>], port: char, n: u8) -> usize {
     let mut count = 0;
     let mut i = 0;
     while i < pins.len() {
         if let Some(p) = pins[i] {
-            if p.port == port as u8 && p.pin == n {
+            if p.pin.port == port && p.pin.number == n {
                 count += 1;
             }
         }
