@@ -4,11 +4,12 @@
 //! each component, plant components first (in command-line order), then
 //! the supervisors.
 
+use super::error::CliError;
 use super::key::Key;
 use super::output::{outln, Out};
 use super::{load, Outcome, Role};
 use des::ops::{self, BlockingWitness, UncontrollableWitness};
-use des::{Automaton, Error};
+use des::Automaton;
 use std::path::PathBuf;
 
 /// An uncontrollable event the supervisor disables, and where.
@@ -84,7 +85,7 @@ pub fn run(
     sup_files: &[PathBuf],
     json: bool,
     out: &mut Out,
-) -> Result<Outcome, Error> {
+) -> Result<Outcome, CliError> {
     let components = load(plant_files, Role::Plant)?;
     let component_refs: Vec<&Automaton> = components.iter().collect();
     let plant = ops::sync(&component_refs)?;

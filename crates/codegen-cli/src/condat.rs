@@ -5,12 +5,13 @@
 //! the state names `synth` gives (plant components first, then the
 //! specifications).
 
+use super::error::CliError;
 use super::key::{plant_states_per_supervisor_state, Key};
 use super::output::{outln, Out};
 use super::{load, Outcome, Role};
 use des::formats;
 use des::ops;
-use des::{Automaton, Error};
+use des::Automaton;
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, serde::Serialize)]
@@ -22,7 +23,7 @@ struct Row {
     plant: Vec<Key>,
 }
 
-pub fn run(plants: &[PathBuf], sup: &Path, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+pub fn run(plants: &[PathBuf], sup: &Path, json: bool, out: &mut Out) -> Result<Outcome, CliError> {
     let plants = load(plants, Role::Plant)?;
     let refs: Vec<&Automaton> = plants.iter().collect();
     let plant = ops::sync(&refs)?;

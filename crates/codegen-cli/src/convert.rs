@@ -1,9 +1,9 @@
 //! `codegen convert`: between model formats.
 
+use super::error::CliError;
 use super::output::{outln, Out};
 use super::{load_components, Outcome};
 use des::formats::{self, Kind};
-use des::Error;
 use std::path::PathBuf;
 
 /// Arguments of `codegen convert`.
@@ -42,7 +42,7 @@ impl From<KindArg> for Kind {
     }
 }
 
-pub fn run(args: &ConvertArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+pub fn run(args: &ConvertArgs, json: bool, out: &mut Out) -> Result<Outcome, CliError> {
     let mut components = load_components(&args.input, args.component.as_deref())?;
     if let Some(kind) = args.kind {
         for c in &mut components {

@@ -7,6 +7,7 @@
 //! needs minutes for a few hundred states with thousands of edges; the
 //! message says what to do instead (see `codegen dot --help`).
 
+use super::error::CliError;
 use super::output::{outln, Out};
 use super::{load_components, Outcome};
 use des::dot::{to_dot_with, DotOptions, Layout};
@@ -102,7 +103,7 @@ impl DotArgs {
     }
 }
 
-pub fn run(args: &DotArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+pub fn run(args: &DotArgs, json: bool, out: &mut Out) -> Result<Outcome, CliError> {
     let components = load_components(&args.file, args.component.as_deref())?;
     for c in &components {
         check_size(args, c)?;
@@ -126,7 +127,7 @@ pub fn run(args: &DotArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> 
     }
     let [(component, dot)] = graphs.as_slice() else {
         let names: Vec<&str> = components.iter().map(|c| c.automaton.name()).collect();
-        return Err(Error::Incompatible(format!(
+        return Err(CliError::Usage(format!(
             "{}: holds {} automata ({}), and Graphviz reads one graph per file: \
              choose one with --component NAME, or write each to its own file with \
              --output-dir DIR",
@@ -146,12 +147,12 @@ pub fn run(args: &DotArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> 
 }
 
 /// Refuses automata beyond `--max-states`, saying what to do instead.
-fn check_size(args: &DotArgs, c: &Component) -> Result<(), Error> {
+fn check_size(args: &DotArgs, c: &Component) -> Result<(), CliError> {
     let a = &c.automaton;
     if args.max_states == 0 || a.num_states() <= args.max_states {
         return Ok(());
     }
-    Err(Error::Incompatible(format!(
+    Err(CliError::Usage(format!(
         "{}: `{}` has {} states and {} transitions, more than --max-states {} \
          (Graphviz `dot` takes minutes on graphs this size): draw it anyway with \
          --max-states {} (or 0), with --quick (a layered drawing in seconds) or \
@@ -192,12 +193,12 @@ fn write_dir(
     graphs: &[(&Component, String)],
     json: bool,
     out: &mut Out,
-) -> Result<Outcome, Error> {
+) -> Result<Outcome, CliError> {
     let mut files: BTreeMap<String, &str> = BTreeMap::new();
     for (c, _) in graphs {
         let name = c.automaton.name();
         if let Some(other) = files.insert(file_name(name), name) {
-            return Err(Error::Incompatible(format!(
+            return Err(CliError::Usage(format!(
                 "components `{other}` and `{name}` would both be written to {}; \
                  write them one at a time with --component NAME -o FILE",
                 dir.join(file_name(name)).display()

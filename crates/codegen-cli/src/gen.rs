@@ -1,5 +1,6 @@
 //! `codegen gen`: the generated Rust source of a project, for humans.
 
+use super::error::CliError;
 use super::output::{outln, Out};
 use super::progress::Spinner;
 use super::Outcome;
@@ -46,7 +47,7 @@ fn is_project(path: &Path) -> bool {
         .is_some_and(|n| n.ends_with(".plc.toml"))
 }
 
-pub fn run(args: &GenArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+pub fn run(args: &GenArgs, json: bool, out: &mut Out) -> Result<Outcome, CliError> {
     if !is_project(&args.project) {
         return automaton_stats(args, json, out);
     }
@@ -88,9 +89,9 @@ pub fn run(args: &GenArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> 
 
 /// `--stats` of a plain automaton file: the table each automaton would
 /// get as a supervisor of a project.
-fn automaton_stats(args: &GenArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+fn automaton_stats(args: &GenArgs, json: bool, out: &mut Out) -> Result<Outcome, CliError> {
     if !args.stats || !matches!(args.backend, BackendArg::Table) {
-        return Err(Error::Incompatible(format!(
+        return Err(CliError::Usage(format!(
             "{}: not a project file (`*.plc.toml`); automaton files only take `--stats` with the table backend",
             args.project.display()
         )));

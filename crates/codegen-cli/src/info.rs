@@ -1,10 +1,10 @@
 //! `codegen info`: sizes and properties of automata.
 
+use super::error::CliError;
 use super::output::{outln, Out};
 use super::{Outcome, Size};
 use des::formats;
 use des::ops;
-use des::Error;
 use std::path::PathBuf;
 
 #[derive(Debug, serde::Serialize)]
@@ -23,7 +23,7 @@ struct Info {
     nonblocking: bool,
 }
 
-pub fn run(files: &[PathBuf], json: bool, out: &mut Out) -> Result<Outcome, Error> {
+pub fn run(files: &[PathBuf], json: bool, out: &mut Out) -> Result<Outcome, CliError> {
     let mut infos = Vec::new();
     for file in files {
         for c in formats::read_file(file)? {

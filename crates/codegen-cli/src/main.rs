@@ -10,6 +10,7 @@ mod check;
 mod condat;
 mod convert;
 mod dot;
+mod error;
 mod gen;
 mod info;
 mod key;
@@ -23,7 +24,8 @@ mod wiring;
 
 use clap::{Parser, Subcommand};
 use des::formats::{self, Component, Kind};
-use des::{Automaton, Error};
+use des::Automaton;
+use error::CliError;
 use output::{warn, Out};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -167,7 +169,7 @@ impl Role {
 
 /// Loads the automata of `paths` that play `role`: every automaton of a
 /// single-automaton file, the components of matching kind of a module.
-pub fn load(paths: &[PathBuf], role: Role) -> Result<Vec<Automaton>, Error> {
+pub fn load(paths: &[PathBuf], role: Role) -> Result<Vec<Automaton>, CliError> {
     let mut out = Vec::new();
     for path in paths {
         let components = formats::read_file(path)?;
@@ -187,7 +189,7 @@ pub fn load(paths: &[PathBuf], role: Role) -> Result<Vec<Automaton>, Error> {
                 .map(|c| c.automaton),
         );
         if out.len() == before {
-            return Err(Error::Incompatible(format!(
+            return Err(CliError::Usage(format!(
                 "{}: no component to use as {role:?} (the file has: {})",
                 path.display(),
                 if kinds.is_empty() {
@@ -202,7 +204,7 @@ pub fn load(paths: &[PathBuf], role: Role) -> Result<Vec<Automaton>, Error> {
 }
 
 /// Reads `path` and keeps the component called `name`, or all.
-pub fn load_components(path: &Path, name: Option<&str>) -> Result<Vec<Component>, Error> {
+pub fn load_components(path: &Path, name: Option<&str>) -> Result<Vec<Component>, CliError> {
     let components = formats::read_file(path)?;
     let Some(name) = name else {
         return Ok(components);
@@ -216,7 +218,7 @@ pub fn load_components(path: &Path, name: Option<&str>) -> Result<Vec<Component>
         .filter(|c| c.automaton.name() == name)
         .collect();
     if chosen.is_empty() {
-        return Err(Error::Incompatible(format!(
+        return Err(CliError::Usage(format!(
             "{}: no component `{name}` (components: {})",
             path.display(),
             names.join(", ")

@@ -20,6 +20,7 @@
 //! for a net whose file does not say which transitions a supervisor can
 //! prevent or see ([`super::net_control`]).
 
+use super::error::CliError;
 use super::net_control::ControlArgs;
 use super::output::{outln, Out};
 use super::Outcome;
@@ -162,7 +163,7 @@ struct TransitionInfo {
 }
 
 /// Runs a `petri` command.
-pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome, CliError> {
     match command {
         PetriCommand::Info {
             net,
@@ -179,7 +180,7 @@ pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome,
             control,
         } => {
             let net = control.read_net(net)?;
-            let r = reach::reachability(&net, *max_states)?;
+            let r = reach::reachability(&net, *max_states).map_err(CliError::max_states)?;
             let component = formats::Component {
                 kind: formats::Kind::Plant,
                 automaton: r.automaton,
@@ -230,13 +231,18 @@ pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome,
             )?;
             let cmp = match &r {
                 Ok(_) => petri::compare::against_supcon(&plant, &cs, &s, *max_states)?,
-                Err(stopped) => Err(Stopped::Limit(format!(
-                    "the closed loop was not explored ({})",
-                    match stopped {
-                        Stopped::Unbounded(_) => "it is unbounded",
-                        Stopped::Limit(_) => "it is beyond the limit",
-                    }
-                ))),
+                Err(stopped) => Err(Stopped::Limit {
+                    max_states: *max_states,
+                    message: format!(
+                        "the closed loop was not explored ({})",
+                        match stopped {
+                            Stopped::Unbounded(_) => "it is unbounded",
+                            Stopped::Limit { .. } | Stopped::Overflow(_) => {
+                                "it is beyond the limit"
+                            }
+                        }
+                    ),
+                }),
             };
             synth_report(&plant, &cs, &enforced, &s, &r, &cmp, output, json, out)
         }
@@ -257,7 +263,7 @@ pub fn run(command: &PetriCommand, json: bool, out: &mut Out) -> Result<Outcome,
     }
 }
 
-fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+fn info(net: &PetriNet, max_states: usize, json: bool, out: &mut Out) -> Result<Outcome, CliError> {
     let explored = reach::explore(
         net,
         reach::Limits::states(max_states),
@@ -509,7 +515,7 @@ fn synth_report(
     output: &std::path::Path,
     json: bool,
     out: &mut Out,
-) -> Result<Outcome, Error> {
+) -> Result<Outcome, CliError> {
     let ids: Vec<&str> = plant.transitions().iter().map(|t| t.id.as_str()).collect();
     let dead: Vec<DeadInfo> = match r {
         Ok(r) => r

@@ -1,5 +1,6 @@
 //! `codegen st` and `codegen plcopen`: a project for industrial PLCs.
 
+use super::error::CliError;
 use super::output::{outln, warn, Out};
 use super::Outcome;
 use des::Error;
@@ -56,15 +57,20 @@ struct Stats {
     renamed: usize,
 }
 
-pub fn run(args: &PlcArgs, flavour: Flavour, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+pub fn run(
+    args: &PlcArgs,
+    flavour: Flavour,
+    json: bool,
+    out: &mut Out,
+) -> Result<Outcome, CliError> {
     if args.ladder && flavour == Flavour::St {
-        return Err(Error::Incompatible(
+        return Err(CliError::Usage(
             "--ladder is for `codegen plcopen`: ladder diagrams are graphical, PLCopen XML holds them"
                 .into(),
         ));
     }
     if args.configuration && flavour == Flavour::PlcOpen {
-        return Err(Error::Incompatible(
+        return Err(CliError::Usage(
             "--configuration is for `codegen st`: PLCopen XML always holds its configuration and task"
                 .into(),
         ));

@@ -1,12 +1,13 @@
 //! `codegen synth`: supervisor synthesis from plants and specifications.
 
+use super::error::CliError;
 use super::output::{outln, Out};
 use super::progress::Spinner;
 use super::{load, Outcome, Role, Size};
 use des::formats::{self, Component, Kind};
 use des::ops::synthesis::Synthesis;
 use des::ops::{self, ComposeOptions, SynthesisOptions};
-use des::{Automaton, Error};
+use des::Automaton;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -91,7 +92,7 @@ fn state_name_key(plants: &[Automaton], specs: &[Automaton]) -> Vec<String> {
     key
 }
 
-pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliError> {
     let start = Instant::now();
     let mut t = Timings::default();
     let spinner = Spinner::new("loading");
@@ -116,7 +117,7 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, Error
         supervisor: mut sup,
         supcon_size,
         timings,
-    } = ops::synthesize(&plants, &specs, options)?;
+    } = ops::synthesize(&plants, &specs, options).map_err(CliError::max_states)?;
     t.compose_plant = timings.compose_plant.as_secs_f64() * 1e3;
     t.compose_spec = timings.compose_spec.as_secs_f64() * 1e3;
     t.supcon = timings.supcon.as_secs_f64() * 1e3;

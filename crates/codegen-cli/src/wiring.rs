@@ -1,14 +1,14 @@
 //! `codegen wiring`: which pin carries each signal of a project's
 //! `[board]` section, as a Markdown table (or JSON rows).
 
+use super::error::CliError;
 use super::output::{warn, Out};
 use super::Outcome;
 use codegen::board::{wiring_rows, wiring_table};
-use des::Error;
 use plc_project as project;
 use std::path::Path;
 
-pub fn run(path: &Path, json: bool, out: &mut Out) -> Result<Outcome, Error> {
+pub fn run(path: &Path, json: bool, out: &mut Out) -> Result<Outcome, CliError> {
     let project = project::load(path)?;
     for w in &project.warnings {
         warn(format_args!(
@@ -19,7 +19,7 @@ pub fn run(path: &Path, json: bool, out: &mut Out) -> Result<Outcome, Error> {
         ));
     }
     let (Some(board), Some(rows)) = (&project.board, wiring_rows(&project)) else {
-        return Err(Error::Incompatible(format!(
+        return Err(CliError::Usage(format!(
             "{}: the project has no [board] section (see docs/board.md)",
             path.display()
         )));

@@ -32,27 +32,29 @@
 
 use crate::backend::Backend;
 use crate::emit::{generate, Generated};
-use des::error::{Error, Result};
+use crate::error::{Error, Result};
 use plc_project as project;
 pub use plc_project::paths::{printable_path, UnprintablePath};
 use std::path::{Path, PathBuf};
 
 /// The `cargo:rerun-if-changed` line of every file of a project (the
 /// project file `project` first), or an error naming the first file that
-/// cannot be printed.
+/// cannot be printed ([`Error::UnprintableProject`],
+/// [`Error::UnprintableModel`]).
 pub fn rerun_lines(project: &Path, files: &[PathBuf]) -> Result<Vec<String>> {
     files
         .iter()
         .map(|file| match printable_path(file) {
             Ok(text) => Ok(format!("cargo:rerun-if-changed={text}")),
-            Err(reason) if file == project => Err(Error::Incompatible(format!(
-                "the project file {file:?} cannot be named to cargo (`cargo:rerun-if-changed`): \
-                 {reason}; rename it"
-            ))),
-            Err(reason) => Err(Error::Incompatible(format!(
-                "{project:?}: the model file {file:?} cannot be named to cargo \
-                 (`cargo:rerun-if-changed`): {reason}; rename it"
-            ))),
+            Err(reason) if file == project => Err(Error::UnprintableProject {
+                file: file.clone(),
+                reason,
+            }),
+            Err(reason) => Err(Error::UnprintableModel {
+                project: project.to_path_buf(),
+                file: file.clone(),
+                reason,
+            }),
         })
         .collect()
 }
@@ -132,9 +134,9 @@ impl Build {
     pub fn generate(self) -> Result<(PathBuf, Generated)> {
         let out_dir = match self.out_dir {
             Some(d) => d,
-            None => std::env::var_os("OUT_DIR").map(PathBuf::from).ok_or_else(|| {
-                Error::Incompatible("OUT_DIR is not set: call Build::generate from a build script or set out_dir".into())
-            })?,
+            None => std::env::var_os("OUT_DIR")
+                .map(PathBuf::from)
+                .ok_or(Error::NoOutDir)?,
         };
         let project = project::load(&self.project)?;
         // Every line is checked before any is printed: a refused path
@@ -157,7 +159,7 @@ impl Build {
         let path = out_dir.join(format!("{name}.rs"));
         let unchanged = std::fs::read_to_string(&path).is_ok_and(|old| old == generated.code);
         if !unchanged {
-            std::fs::write(&path, &generated.code).map_err(|e| Error::io(&path, e))?;
+            std::fs::write(&path, &generated.code).map_err(|e| des::Error::io(&path, e))?;
         }
         Ok((path, generated))
     }
@@ -177,7 +179,8 @@ impl Build {
 
 #[cfg(test)]
 mod tests {
-    use super::{output_stem, rerun_lines, warning_line};
+    use super::{output_stem, rerun_lines, warning_line, UnprintablePath};
+    use crate::Error;
     use std::path::{Path, PathBuf};
 
     #[test]
@@ -204,16 +207,32 @@ mod tests {
             project.clone(),
             PathBuf::from("plant/a\ncargo:rustc-cfg=x.toml"),
         ];
+        let err = rerun_lines(&project, &files).unwrap_err();
+        assert!(
+            matches!(
+                &err,
+                Error::UnprintableModel { project: p, file, reason: UnprintablePath::Control('\n') }
+                    if *p == project && *file == files[1]
+            ),
+            "{err:?}"
+        );
         assert_eq!(
-            rerun_lines(&project, &files).unwrap_err().to_string(),
+            err.to_string(),
             "\"p.plc.toml\": the model file \"plant/a\\ncargo:rustc-cfg=x.toml\" cannot be named \
              to cargo (`cargo:rerun-if-changed`): it holds the control character U+000A; rename it"
         );
         let project = PathBuf::from("p\r.plc.toml");
+        let err = rerun_lines(&project, std::slice::from_ref(&project)).unwrap_err();
+        assert!(
+            matches!(
+                &err,
+                Error::UnprintableProject { file, reason: UnprintablePath::Control('\r') }
+                    if *file == project
+            ),
+            "{err:?}"
+        );
         assert_eq!(
-            rerun_lines(&project, std::slice::from_ref(&project))
-                .unwrap_err()
-                .to_string(),
+            err.to_string(),
             "the project file \"p\\r.plc.toml\" cannot be named to cargo \
              (`cargo:rerun-if-changed`): it holds the control character U+000D; rename it"
         );

@@ -9,6 +9,8 @@
 //! - [`emit`]: the generated Rust source; [`build`]: the build-script API.
 //! - [`board`]: the `[board]` pin map as generated Rust and as a wiring
 //!   table.
+//! - [`Error`]: what generation refuses, a variant each, wrapping the
+//!   automaton layer's [`des::Error`] for invalid projects and models.
 //!
 //! The automata and their operations are the [`des`] crate's; the front end
 //! that reads projects is [`plc_project`]; the IEC 61131-3 export is the
@@ -21,4 +23,7 @@ pub mod backend;
 pub mod board;
 pub mod build;
 pub mod emit;
+mod error;
 pub mod lower;
+
+pub use error::{Error, Result};

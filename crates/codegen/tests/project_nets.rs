@@ -107,6 +107,11 @@ fn every_net_rule_rejects_its_violation_at_the_offending_line() {
             "net `u`: ",
         ),
         (
+            format!("[plc]\nname = \"x\"\n{EVENTS}[[net]] # <-\nname = \"two\"\nfile = \"nets/two.toml\"\nmax_markings = 2\n"),
+            "net `two`: the reachability graph of `two` exceeds the limit of 2 states (raise it with \
+             `max_markings`); a net runs with a counter per place, so it must be bounded",
+        ),
+        (
             "[plc]\nname = \"x\"\n[events]\ngo = { controllable = true }\n[[net]]\nname = \"u\"\nfile = \"nets/unbounded.toml\"\nmax_markings = 0 # <-\n".to_owned(),
             "max_markings must be a positive number of markings",
         ),
@@ -167,12 +172,23 @@ fn nets_run_on_the_table_backend_only() {
         codegen::backend::Backend::Logic,
         codegen::backend::Backend::Match,
     ] {
-        let msg = codegen::emit::generate(&p, backend, "")
-            .unwrap_err()
-            .to_string();
+        let err = codegen::emit::generate(&p, backend, "").unwrap_err();
+        assert!(
+            matches!(
+                &err,
+                codegen::Error::TableOnly { location, net, backend: b }
+                    if location.line == 8 && net == "two" && *b == backend
+            ),
+            "{err:?}"
+        );
+        let msg = err.to_string();
         assert!(msg.contains("t.plc.toml:8:"), "{msg}");
         assert!(
-            msg.contains("Petri nets run on the table backend only"),
+            msg.ends_with(&format!(
+                ": net `two`: Petri nets run on the table backend only, not the {} backend \
+                 (use `--backend table`)",
+                backend.name()
+            )),
             "{msg}"
         );
     }

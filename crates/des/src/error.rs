@@ -154,6 +154,20 @@ pub enum Error {
     /// does not hold (e.g. a specification event the plant does not know).
     #[error("{0}")]
     Incompatible(String),
+    /// A composition or a reachability graph grew past its bound on states
+    /// (or past what that bound allows of the token counts, firings and
+    /// state names kept with a graph), and was given up before it exhausted
+    /// memory. The message names what grew and the limit it reached; how a
+    /// user raises the bound (a command-line flag, a project key) is for
+    /// the caller to add, which is why this is a variant of its own.
+    #[error("{message}")]
+    StateLimit {
+        /// The bound on states in force: what raising lets the operation
+        /// go further.
+        max_states: usize,
+        /// What exceeded it and which limit it reached.
+        message: String,
+    },
 }
 
 impl Error {

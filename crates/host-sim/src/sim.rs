@@ -25,6 +25,10 @@ pub enum SimError {
     /// The project or a model file is invalid.
     #[error(transparent)]
     Model(#[from] des::Error),
+    /// The project cannot be lowered for the backend (a net on a backend
+    /// other than tables, the logic backend not in this build, …).
+    #[error(transparent)]
+    Lowering(#[from] codegen::Error),
     /// A name that is not in the project.
     #[error("`{0}` is not {1} of the project")]
     Unknown(String, &'static str),
@@ -257,5 +261,33 @@ impl Sim {
             .output(name)
             .ok_or_else(|| SimError::Unknown(name.to_owned(), "an output"))?;
         Ok(self.controller.outputs()[o])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_project_the_backend_cannot_lower_is_generations_refusal() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../models/petri/mixers.plc.toml");
+        let err = Sim::load(&path, Backend::Match)
+            .err()
+            .expect("nets run on the table backend only");
+        assert!(
+            matches!(
+                err,
+                SimError::Lowering(codegen::Error::TableOnly {
+                    backend: Backend::Match,
+                    ..
+                })
+            ),
+            "{err:?}"
+        );
+        assert!(
+            err.to_string()
+                .contains("Petri nets run on the table backend only, not the match backend"),
+            "{err}"
+        );
     }
 }

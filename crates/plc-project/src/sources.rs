@@ -233,15 +233,21 @@ impl Loader<'_> {
                 }
             },
         };
-        let reach = reach::reachability(&net, max).map_err(|e| match e {
-            Error::Incompatible(message) => self.error(
+        // The exploration's refusals name no file: they are located here,
+        // at the `[[net]]` entry, once.
+        let reach = reach::reachability(&net, max).map_err(|e| {
+            let hint = match &e {
+                Error::StateLimit { .. } => " (raise it with `max_markings`)",
+                Error::Incompatible(_) => "",
+                _ => return e,
+            };
+            self.error(
                 &raw.span(),
                 format!(
-                    "net `{}`: {message}; a net runs with a counter per place, so it must be bounded",
+                    "net `{}`: {e}{hint}; a net runs with a counter per place, so it must be bounded",
                     r.name.get_ref()
                 ),
-            ),
-            other => other,
+            )
         })?;
         Ok(LoadedNet {
             net,
@@ -368,13 +374,19 @@ impl Loader<'_> {
                 ..ops::ComposeOptions::default()
             },
         };
+        // Synthesis's refusals name no file: they are located here, at
+        // `synthesize`, once.
         let automaton = ops::synthesize(&plant_automata, &spec_automata, options)
-            .map_err(|e| match e {
-                Error::Incompatible(message) => self.error(
+            .map_err(|e| {
+                let hint = match &e {
+                    Error::StateLimit { .. } => " (raise it with `max_states` in `synthesize`)",
+                    Error::Incompatible(_) => "",
+                    _ => return e,
+                };
+                self.error(
                     &synth.span(),
-                    format!("cannot synthesise the supervisor: {message}"),
-                ),
-                other => other,
+                    format!("cannot synthesise the supervisor: {e}{hint}"),
+                )
             })?
             .supervisor;
         if automaton.is_empty() {

@@ -140,7 +140,9 @@ fn check_error(e: &des::Error, text: &str, path: &Path) {
         Error::Io { path, .. } | Error::UnknownFormat { path } => {
             assert!(!path.as_os_str().is_empty(), "{message}");
         }
-        Error::Incompatible(_) => panic!("an error that names no file: {message}"),
+        Error::Incompatible(_) | Error::StateLimit { .. } => {
+            panic!("an error that names no file: {message}")
+        }
     }
 }
 

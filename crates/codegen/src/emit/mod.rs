@@ -20,8 +20,8 @@ mod table;
 
 use crate::backend::table::{EncodedTable, Layout};
 use crate::backend::Backend;
+use crate::error::{Error, Result};
 use crate::lower::{ConfigPools, ImageCheck, Lowered, ScanSets};
-use des::error::{Error, Result};
 use executor::program as ex;
 use plc_project::ident::sanitize;
 use plc_project::{Project, SupervisorSource};
@@ -338,11 +338,7 @@ fn write_program(project: &Project, lowered: &Lowered) -> Unformatted {
 /// blank line between items. Comments other than doc comments are lost
 /// on the way, which is why the emitters write none.
 fn format_rust(text: &str) -> Result<String> {
-    let file = syn::parse_file(text).map_err(|err| {
-        Error::Incompatible(format!(
-            "internal error: generated code does not parse ({err}); please report it with the project file"
-        ))
-    })?;
+    let file = syn::parse_file(text).map_err(|source| Error::Unparsable { source })?;
     Ok(separate_items(&prettyplease::unparse(&file)))
 }
 
@@ -423,6 +419,19 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Code that does not parse is the emitters' fault, said as such.
+    #[test]
+    fn unparsable_code_is_an_internal_error() {
+        let err = format_rust("pub fn (").unwrap_err();
+        assert!(matches!(err, Error::Unparsable { .. }), "{err:?}");
+        let message = err.to_string();
+        assert!(
+            message.starts_with("internal error: generated code does not parse (")
+                && message.ends_with("); please report it with the project file"),
+            "{message}"
+        );
     }
 
     #[test]

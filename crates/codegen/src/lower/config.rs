@@ -2,8 +2,8 @@
 //! fixed-size records plus shared pools addressed by spans, laid out in a
 //! fixed order (the spans and the image CRC depend on it).
 
+use crate::error::Error;
 use des::automaton::StateId;
-use des::error::{Error, Result};
 use executor::program::{self as ex, Config, Index, Span};
 use plc_project::{Action, Drive, Project, Trigger, Unexpected};
 
@@ -64,16 +64,27 @@ pub struct ConfigPools {
     pub state_map: Vec<ex::StateMapEntry>,
 }
 
-fn index(value: usize, what: &str) -> Result<Index> {
-    Index::try_from(value).map_err(|_| {
-        Error::Incompatible(format!("too many {what} for the executor (at most 65535)"))
-    })
+/// Why a project cannot be laid out, before [`ConfigPools::from_project`]
+/// names the project file in the [`Error`] (once, for all of them).
+#[derive(Debug)]
+enum Refusal {
+    /// Too many of these for a 16-bit index.
+    TooMany(&'static str),
+    /// This supervisor has no initial state.
+    NoInitialState(String),
+}
+
+/// A lay-out step's result.
+type Result<T> = std::result::Result<T, Refusal>;
+
+fn index(value: usize, what: &'static str) -> Result<Index> {
+    Index::try_from(value).map_err(|_| Refusal::TooMany(what))
 }
 
 /// Appends `items` to `pool` and returns their span; an empty list is
 /// always [`Span::EMPTY`], so every empty span has one form (the generated
 /// code writes it that way, and the image CRC covers span starts).
-fn push_span<T: Clone>(pool: &mut Vec<T>, items: &[T], what: &str) -> Result<Span> {
+fn push_span<T: Clone>(pool: &mut Vec<T>, items: &[T], what: &'static str) -> Result<Span> {
     if items.is_empty() {
         return Ok(Span::EMPTY);
     }
@@ -90,16 +101,17 @@ struct MaskPool {
     /// Words per set.
     words: usize,
     pool: Vec<u32>,
-    /// What the members are, for errors (`"input"`, `"event"`).
-    members: &'static str,
+    /// What the sets and their words are, for errors (`"input masks"`,
+    /// `"input words"`).
+    names: (&'static str, &'static str),
 }
 
 impl MaskPool {
-    fn new(members: &'static str, count: usize) -> MaskPool {
+    fn new(names: (&'static str, &'static str), count: usize) -> MaskPool {
         MaskPool {
             words: ex::words(count),
             pool: Vec::new(),
-            members,
+            names,
         }
     }
 
@@ -120,26 +132,31 @@ impl MaskPool {
                 self.pool.len() - self.words
             }
         };
-        let pool = format!("{} masks", self.members);
-        index(at + self.words, &pool)?;
-        Ok(Span::new(
-            index(at, &pool)?,
-            index(self.words, &format!("{} words", self.members))?,
-        ))
+        let (masks, words) = self.names;
+        index(at + self.words, masks)?;
+        Ok(Span::new(index(at, masks)?, index(self.words, words)?))
     }
 }
 
 impl ConfigPools {
     /// Lays out `project`.
-    pub fn from_project(project: &Project) -> Result<ConfigPools> {
+    pub fn from_project(project: &Project) -> crate::Result<ConfigPools> {
         super::count_pass();
         // A pool beyond 16-bit indices has no one line to blame: name the
         // project file.
-        Self::lay_out(project).map_err(|e| match e {
-            Error::Incompatible(message) => {
-                Error::Incompatible(format!("{}: {message}", project.path.display()))
+        Self::lay_out(project).map_err(|refusal| {
+            let project = project.path.clone();
+            match refusal {
+                Refusal::TooMany(what) => Error::TooMany {
+                    project,
+                    what,
+                    limit: usize::from(Index::MAX),
+                },
+                Refusal::NoInitialState(supervisor) => Error::NoInitialState {
+                    project,
+                    supervisor,
+                },
             }
-            e => e,
         })
     }
 
@@ -227,7 +244,7 @@ impl ConfigPools {
 }
 
 /// `list` as executor indices.
-fn to_indices(list: &[usize], what: &str) -> Result<Vec<Index>> {
+fn to_indices(list: &[usize], what: &'static str) -> Result<Vec<Index>> {
     list.iter().map(|&i| index(i, what)).collect()
 }
 
@@ -244,9 +261,8 @@ struct SupervisorShape {
 fn supervisor_shapes(project: &Project) -> Result<Vec<SupervisorShape>> {
     let mut shapes = Vec::new();
     for s in &project.supervisors {
-        let initial = s.automaton.initial().ok_or_else(|| {
-            Error::Incompatible(format!("supervisor `{}` has no initial state", s.name))
-        })?;
+        let initial = s.automaton.initial();
+        let initial = initial.ok_or_else(|| Refusal::NoInitialState(s.name.clone()))?;
         shapes.push(SupervisorShape {
             states: s.automaton.num_states() as u32,
             initial: initial.0,
@@ -326,8 +342,8 @@ impl<'p> Layout<'p> {
     fn new(project: &'p Project) -> Layout<'p> {
         Layout {
             project,
-            input_masks: MaskPool::new("input", project.inputs.len()),
-            event_masks: MaskPool::new("event", project.events.len()),
+            input_masks: MaskPool::new(("input masks", "input words"), project.inputs.len()),
+            event_masks: MaskPool::new(("event masks", "event words"), project.events.len()),
             event_lists: Vec::new(),
             actions: Vec::new(),
             memberships: Vec::new(),

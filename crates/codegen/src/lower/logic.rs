@@ -4,7 +4,9 @@
 use super::config::ConfigPools;
 use super::table_only;
 use crate::backend::logic::{Encoding, LogicError, LogicSupervisor, Minimisation, Settings};
-use des::error::{Error, Location, Result};
+use crate::backend::Backend;
+use crate::error::{Error, Result};
+use des::error::Location;
 use des::ops::Progress;
 use executor::image::config_crc;
 use executor::program::{Config, Index, Program};
@@ -13,7 +15,7 @@ use plc_project::Project;
 
 /// A project as CMSSM logic (the minimised covers evaluated directly),
 /// runnable on the host. States are binary codes equal to the state
-/// indices, so traces match [`TableImage`].
+/// indices, so traces match [`TableImage`](super::TableImage).
 #[derive(Debug, Clone)]
 pub struct LogicImage {
     /// The configuration.
@@ -33,7 +35,7 @@ impl LogicImage {
     /// [`LogicImage::new`], telling `progress` which supervisor and phase
     /// it is working on.
     pub fn with_progress(project: &Project, progress: &dyn Progress) -> Result<LogicImage> {
-        table_only(project, "logic")?;
+        table_only(project, Backend::Logic)?;
         let pools = ConfigPools::from_project(project)?;
         let supervisors = project
             .supervisors
@@ -51,13 +53,7 @@ impl LogicImage {
                     &settings,
                     progress,
                 )
-                .map_err(|e| match e {
-                    LogicError::Unavailable => Error::Incompatible(e.to_string()),
-                    e => Error::model(
-                        Location::new(&project.path, s.line, 0),
-                        format!("supervisor `{}`: {e}", s.name),
-                    ),
-                })
+                .map_err(|e| refusal(e, Location::new(&project.path, s.line, 0), &s.name))
             })
             .collect::<Result<Vec<_>>>()?;
         let crc = config_crc(&pools.config());
@@ -66,6 +62,20 @@ impl LogicImage {
             supervisors,
             crc,
         })
+    }
+}
+
+/// The logic backend's refusal of `supervisor` (its entry at `location`):
+/// a build without the minimiser is no fault of the supervisor's, so it
+/// has no location.
+fn refusal(error: LogicError, location: Location, supervisor: &str) -> Error {
+    match error {
+        LogicError::Unavailable => Error::LogicUnavailable,
+        source => Error::Logic {
+            location,
+            supervisor: supervisor.to_owned(),
+            source,
+        },
     }
 }
 
@@ -97,5 +107,32 @@ impl Program for LogicImage {
 
     fn recorded_crc(&self) -> u32 {
         self.crc
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::backend::logic::UNAVAILABLE;
+
+    #[test]
+    fn a_build_without_the_minimiser_is_no_supervisors_fault() {
+        let at = Location::new("p.plc.toml", 7, 0);
+        let err = refusal(LogicError::Unavailable, at.clone(), "cell");
+        assert!(matches!(err, Error::LogicUnavailable), "{err:?}");
+        assert_eq!(err.to_string(), UNAVAILABLE);
+        let err = refusal(LogicError::Empty("cell".into()), at, "cell");
+        assert!(
+            matches!(
+                &err,
+                Error::Logic { location, supervisor, source: LogicError::Empty(_) }
+                    if location.line == 7 && supervisor == "cell"
+            ),
+            "{err:?}"
+        );
+        assert_eq!(
+            err.to_string(),
+            "p.plc.toml:7: supervisor `cell`: supervisor `cell` has no states"
+        );
     }
 }

@@ -6,7 +6,8 @@
 use super::config::ConfigPools;
 use super::table_only;
 use crate::backend::table::EncodedTable;
-use des::error::Result;
+use crate::backend::Backend;
+use crate::error::Result;
 use executor::image::config_crc;
 use executor::program::{Config, Index, Program};
 use executor::table::SupervisorTable;
@@ -27,7 +28,7 @@ pub struct MatchImage {
 impl MatchImage {
     /// Lowers `project` (refused if it has Petri nets: [`table_only`]).
     pub fn new(project: &Project) -> Result<MatchImage> {
-        table_only(project, "match")?;
+        table_only(project, Backend::Match)?;
         let pools = ConfigPools::from_project(project)?;
         let automata = project
             .supervisors

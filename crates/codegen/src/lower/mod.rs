@@ -31,7 +31,8 @@ pub use matches::MatchImage;
 pub use table::TableImage;
 
 use crate::backend::Backend;
-use des::error::{Error, Location, Result};
+use crate::error::{Error, Result};
+use des::error::Location;
 use des::ops::Progress;
 use executor::program::{Config, Index, Program};
 use executor::table::SupervisorTable;
@@ -144,18 +145,16 @@ impl Program for Lowered {
 }
 
 /// Refuses a project with Petri nets on a backend other than the table
-/// backend, at the first net's line: a net's groups run in the net
-/// layout of the executor's tables (its counters are not an automaton the
-/// logic and `match` backends could write as code).
-pub fn table_only(project: &Project, backend: &str) -> Result<()> {
+/// backend ([`Error::TableOnly`]), at the first net's line: a net's groups
+/// run in the net layout of the executor's tables (its counters are not
+/// an automaton the logic and `match` backends could write as code).
+pub fn table_only(project: &Project, backend: Backend) -> Result<()> {
     match project.nets.first() {
-        None => Ok(()),
-        Some(net) => Err(Error::model(
-            Location::new(&project.path, net.line, 0),
-            format!(
-                "net `{}`: Petri nets run on the table backend only, not the {backend} backend (use `--backend table`)",
-                net.name
-            ),
-        )),
+        Some(net) if backend != Backend::Table => Err(Error::TableOnly {
+            location: Location::new(&project.path, net.line, 0),
+            net: net.name.clone(),
+            backend,
+        }),
+        _ => Ok(()),
     }
 }

@@ -3,7 +3,7 @@
 
 use super::config::ConfigPools;
 use crate::backend::table::EncodedTable;
-use des::error::Result;
+use crate::error::Result;
 use executor::image::table_image_crc;
 use executor::program::{Config, Index, Program};
 use executor::table::SupervisorTable;

@@ -47,8 +47,8 @@ pub struct ComposeOptions<'a> {
 /// benchmark (phil10 composes 59,047 states) and reached in under a second
 /// on a quiet machine (0.7 s), so that a composition that explodes (30 independent two-state
 /// plants: 2^30 states) is refused at once with the limit named, instead
-/// of exhausting memory minutes later. Tools let a user raise it
-/// (`--max-states`).
+/// of exhausting memory minutes later. Beyond it a composition is
+/// [`Error::StateLimit`]; how a user raises it is the caller's to say.
 pub const DEFAULT_MAX_STATES: usize = 500_000;
 
 impl Default for ComposeOptions<'_> {
@@ -303,10 +303,13 @@ pub fn compose(
             }
             let (target, fresh) = store.intern(&next);
             if fresh && store.len() > options.max_states {
-                return Err(Error::Incompatible(format!(
-                    "composition `{name}` exceeds the limit of {} states (raise it with --max-states, or `max_states` in a project's `synthesize`)",
-                    options.max_states
-                )));
+                return Err(Error::StateLimit {
+                    max_states: options.max_states,
+                    message: format!(
+                        "composition `{name}` exceeds the limit of {} states",
+                        options.max_states
+                    ),
+                });
             }
             for &(j, _) in &moved {
                 next[j] = current[j];
@@ -488,6 +491,16 @@ mod tests {
             max_states: 3,
             ..ComposeOptions::default()
         };
-        assert!(compose(&[&m1, &m2], Composition::Sync, options).is_err());
+        let err = compose(&[&m1, &m2], Composition::Sync, options)
+            .expect_err("four product states, a limit of 3");
+        assert!(
+            matches!(err, Error::StateLimit { max_states: 3, .. }),
+            "{err:?}"
+        );
+        // The bound is named; how to raise it is the caller's to say.
+        assert_eq!(
+            err.to_string(),
+            "composition `M1||M2` exceeds the limit of 3 states"
+        );
     }
 }

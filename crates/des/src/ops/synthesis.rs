@@ -87,7 +87,8 @@ fn compose_all(parts: &[Automaton], options: ComposeOptions<'_>) -> Result<Autom
 ///
 /// Errors: [`Error::Incompatible`](crate::Error::Incompatible) when the
 /// automata disagree on an event's controllability, a specification event
-/// is not in the plant's alphabet, no plant is given, or a composition
+/// is not in the plant's alphabet or no plant is given;
+/// [`Error::StateLimit`](crate::Error::StateLimit) when a composition
 /// exceeds `options.compose.max_states`.
 pub fn synthesize(
     plants: &[Automaton],

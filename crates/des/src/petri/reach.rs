@@ -174,21 +174,48 @@ pub enum Stopped {
     /// The net is unbounded: the message names the place that grows and
     /// a firing sequence.
     Unbounded(String),
-    /// A limit was reached: the message names it.
-    Limit(String),
+    /// A limit that the bound on states sets was reached ([`Limits`]: the
+    /// markings, or the token counts, firings or name bytes it allows):
+    /// a larger bound may give the graph.
+    Limit {
+        /// The bound on states in force ([`Limits::markings`]).
+        max_states: usize,
+        /// What exceeded which limit.
+        message: String,
+    },
+    /// A place would hold more than 2^32 − 1 tokens, the most a marking
+    /// holds, whatever the bound: the message names the place and the
+    /// firing sequence.
+    Overflow(String),
 }
 
 impl std::fmt::Display for Stopped {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Stopped::Unbounded(m) | Stopped::Limit(m) => f.write_str(m),
+            Stopped::Unbounded(m) | Stopped::Limit { message: m, .. } | Stopped::Overflow(m) => {
+                f.write_str(m)
+            }
         }
     }
 }
 
+/// A limit of the bound on states becomes [`Error::StateLimit`] (the
+/// caller says how to raise the bound); the others
+/// [`Error::Incompatible`].
 impl From<Stopped> for Error {
     fn from(stopped: Stopped) -> Error {
-        Error::Incompatible(stopped.to_string())
+        match stopped {
+            Stopped::Limit {
+                max_states,
+                message,
+            } => Error::StateLimit {
+                max_states,
+                message,
+            },
+            Stopped::Unbounded(message) | Stopped::Overflow(message) => {
+                Error::Incompatible(message)
+            }
+        }
     }
 }
 
@@ -296,7 +323,12 @@ pub fn explore(
     }
     let places = net.places().len();
     let max_states = limits.markings;
-    let limit = |what: String| Ok(Err(Stopped::Limit(what)));
+    let limit = |message: String| {
+        Ok(Err(Stopped::Limit {
+            max_states,
+            message,
+        }))
+    };
     if places > limits.token_counts {
         return limit(cells_limit(net, &limits));
     }
@@ -567,7 +599,7 @@ fn token_limit(
         u64::from(m[p]) - u64::from(consumed) + u64::from(w) > u64::from(u32::MAX)
     });
     let place = over.map_or("a place", |&(p, _)| net.places()[p].id.as_str());
-    Stopped::Limit(format!(
+    Stopped::Overflow(format!(
         "net `{}`: place `{place}` would hold more than 2^32 − 1 tokens (the most a marking \
          holds) after the firing sequence {}",
         net.name(),
@@ -683,10 +715,39 @@ transitions = [
 
     #[test]
     fn a_graph_beyond_the_limit_is_refused_naming_it() {
-        let err = reachability(&net(MIXERS), 15).unwrap_err().to_string();
+        let err = reachability(&net(MIXERS), 15).unwrap_err();
+        assert!(
+            matches!(err, Error::StateLimit { max_states: 15, .. }),
+            "{err:?}"
+        );
         assert_eq!(
-            err,
+            err.to_string(),
             "the reachability graph of `mixers` exceeds the limit of 15 states"
+        );
+    }
+
+    #[test]
+    fn a_place_past_its_counter_is_no_limit_a_bound_raises() {
+        let n = net(r#"name = "full"
+places = [{ id = "p", tokens = 4294967295 }]
+transitions = [{ id = "t", controllable = true, input = { p = 1 }, output = { p = 2 } }]
+"#);
+        let stopped = explore(
+            &n,
+            Limits::states(10),
+            Marked::Initial,
+            Region::All,
+            Beyond::Drop,
+        )
+        .unwrap()
+        .unwrap_err();
+        assert!(matches!(stopped, Stopped::Overflow(_)), "{stopped:?}");
+        let err = reachability(&n, 10).unwrap_err();
+        assert!(matches!(err, Error::Incompatible(_)), "{err:?}");
+        assert_eq!(
+            err.to_string(),
+            "net `full`: place `p` would hold more than 2^32 − 1 tokens (the most a marking \
+             holds) after the firing sequence t"
         );
     }
 
@@ -809,6 +870,20 @@ transitions = [{ id = "move", controllable = true, input = { src = 1 }, output =
             "the reachability graph of `wide` would hold more than 1024 token counts \
              (markings × 108 places; the limit with 100 states)"
         );
+        assert!(matches!(
+            explore(
+                &n,
+                limits(16 * 64, 1000, 100_000),
+                Marked::Initial,
+                Region::All,
+                Beyond::Drop
+            )
+            .unwrap(),
+            Err(Stopped::Limit {
+                max_states: 100,
+                ..
+            })
+        ));
         assert_eq!(run(limits(16 * 108, 1000, 100_000)), Ok(16));
         // 16 markings, 4 toggles each: 64 firings.
         assert_eq!(
