@@ -6,8 +6,8 @@
 
 use codegen::backend::Backend;
 use host_sim::boiler::{
-    self, Action, BoilerController, BoilerParams, BoilerPlant, Checker, ControllerScan,
-    Disturbance, Input, Inputs, Invariants, Outputs, PlantError, Rule, Run, Script, Selector,
+    self, Action, BoilerController, BoilerError, BoilerParams, BoilerPlant, Checker,
+    ControllerScan, Disturbance, Input, Inputs, Invariants, Outputs, Rule, Run, Script, Selector,
     SensorFault, Violation,
 };
 use host_sim::{Lockstep, Sim};
@@ -662,7 +662,7 @@ impl BoilerController for Reference {
         SCAN_MS as u32
     }
 
-    fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, PlantError> {
+    fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, BoilerError> {
         let t = self.time_ms;
         self.time_ms += SCAN_MS;
         let prev = self.prev.replace(*inputs).unwrap_or(*inputs);
@@ -1096,7 +1096,7 @@ fn a_project_without_the_boiler_signals_is_refused_by_name() {
     let mut plant = fresh();
     let err = boiler::run(&mut sim, &mut plant, &Script::new(), 1_000).unwrap_err();
     let text = err.to_string();
-    assert!(matches!(err, PlantError::MissingSignals { .. }));
+    assert!(matches!(err, BoilerError::MissingSignals { .. }));
     for name in [
         "conveyor",
         "input `sel_high`",

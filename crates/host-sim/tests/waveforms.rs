@@ -9,7 +9,7 @@ mod common;
 
 use codegen::backend::Backend;
 use common::waveform::{Sample, Waveform};
-use host_sim::boiler::{self, scenarios, BoilerParams, BoilerPlant, Input, Output, PlantError};
+use host_sim::boiler::{self, scenarios, BoilerError, BoilerParams, BoilerPlant, Input, Output};
 use host_sim::{inputs, replay, Sim};
 use plc_project::Project;
 use vcd::{Value, VarType};
@@ -107,7 +107,7 @@ fn a_boiler_waveform_adds_the_plants_temperatures_flames_and_selector() {
     boiler::waveform::write(&mut buf, sim.project(), &run).unwrap();
     let w = Waveform::parse(&buf);
 
-    type Quantity = fn(&boiler::PlantState) -> f64;
+    type Quantity = fn(&boiler::BoilerState) -> f64;
     let reals: [(&str, Quantity); 4] = [
         ("bath_c", |p| p.bath_c),
         ("flue_c", |p| p.flue_c),
@@ -179,6 +179,6 @@ fn a_boiler_waveform_needs_a_project_with_the_boilers_signals() {
     let run = boiler::run(&mut sim, &mut plant, &script, duration / 10).unwrap();
     let (press, _, _) = press_cycle();
     let err = boiler::waveform::write(Vec::new(), &press, &run).unwrap_err();
-    assert!(matches!(err, PlantError::MissingSignals { .. }), "{err}");
+    assert!(matches!(err, BoilerError::MissingSignals { .. }), "{err}");
     assert!(err.to_string().contains("input `sel_high`"), "{err}");
 }

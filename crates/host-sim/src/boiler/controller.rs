@@ -3,7 +3,7 @@
 //! reference or deliberately broken controller).
 
 use super::signals::{Input, Inputs, IoMap, Output, Outputs};
-use super::PlantError;
+use super::BoilerError;
 use crate::lockstep::Lockstep;
 use crate::sim::Sim;
 use crate::trace::TraceRow;
@@ -21,7 +21,7 @@ pub trait BoilerController {
     }
 
     /// One scan with the input image `inputs`.
-    fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, PlantError>;
+    fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, BoilerError>;
 
     /// The controller hangs for `ms` right after the scan it just ran (no
     /// scans, outputs held), which delays its next scan
@@ -75,7 +75,7 @@ pub struct Plc<'a> {
 impl<'a> Plc<'a> {
     /// `sim` as a boiler controller, or the list of boiler signals its
     /// project lacks.
-    pub fn new(sim: &'a mut Sim) -> Result<Plc<'a>, PlantError> {
+    pub fn new(sim: &'a mut Sim) -> Result<Plc<'a>, BoilerError> {
         let io = IoMap::new(sim.project())?;
         Ok(Plc {
             target: Target::Sim(sim),
@@ -85,7 +85,7 @@ impl<'a> Plc<'a> {
 
     /// Both backends of a project in lockstep (every scan compared) as a
     /// boiler controller.
-    pub fn lockstep(ls: &'a mut Lockstep) -> Result<Plc<'a>, PlantError> {
+    pub fn lockstep(ls: &'a mut Lockstep) -> Result<Plc<'a>, BoilerError> {
         let io = IoMap::new(ls.project())?;
         Ok(Plc {
             target: Target::Lockstep(ls),
@@ -106,7 +106,7 @@ impl<'a> Plc<'a> {
         }
     }
 
-    fn scan_row(&mut self, inputs: &Inputs) -> Result<TraceRow, PlantError> {
+    fn scan_row(&mut self, inputs: &Inputs) -> Result<TraceRow, BoilerError> {
         Ok(match &mut self.target {
             Target::Sim(sim) => {
                 for input in Input::ALL {
@@ -133,7 +133,7 @@ impl BoilerController for Plc<'_> {
         self.io.debounce()
     }
 
-    fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, PlantError> {
+    fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, BoilerError> {
         // A fault may start as the scan starts (an overrun after a stall)
         // and end in it (a reset edge), so the records do not tell: a
         // fault entered counts.

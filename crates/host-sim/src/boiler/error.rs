@@ -6,7 +6,7 @@ use crate::sim::SimError;
 /// A problem running a plant against a controller, checking a record or
 /// writing it out.
 #[derive(Debug, thiserror::Error)]
-pub enum PlantError {
+pub enum BoilerError {
     /// The project lacks some of the boiler's signals.
     #[error("project `{project}` lacks the boiler's {}", missing.join(", "))]
     MissingSignals {

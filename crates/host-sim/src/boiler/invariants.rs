@@ -67,7 +67,7 @@
 //! Level rules (2, 4, 5, 8) are reported once per episode, at its first
 //! scan; edge rules at every offending edge.
 
-use super::error::PlantError;
+use super::error::BoilerError;
 use super::signals::{Input, Inputs, IoMap, Output, Outputs};
 use crate::inputs::InputRow;
 use crate::trace::TraceRow;
@@ -285,7 +285,10 @@ impl Checker {
 
     /// A checker for raw rows of `project` (its boiler signals found by
     /// name, its debouncing replayed).
-    pub fn for_project(project: &Project, rules: Invariants) -> Result<ProjectChecker, PlantError> {
+    pub fn for_project(
+        project: &Project,
+        rules: Invariants,
+    ) -> Result<ProjectChecker, BoilerError> {
         let io = IoMap::new(project)?;
         let checker = Checker::with_debounce(rules, io.debounce());
         Ok(ProjectChecker { io, checker })
@@ -637,7 +640,7 @@ impl ProjectChecker {
         time_ms: u64,
         inputs: &[bool],
         outputs: &[bool],
-    ) -> Result<(), PlantError> {
+    ) -> Result<(), BoilerError> {
         let inputs = self.io.inputs_of(inputs)?;
         let outputs = self.io.outputs_of(outputs)?;
         self.checker.observe(time_ms, &inputs, &outputs);
@@ -667,7 +670,7 @@ pub fn check_rows<'r>(
     project: &Project,
     rules: Invariants,
     rows: impl IntoIterator<Item = (u64, &'r [bool], &'r [bool])>,
-) -> Result<Vec<Violation>, PlantError> {
+) -> Result<Vec<Violation>, BoilerError> {
     let mut checker = Checker::for_project(project, rules)?;
     for (time_ms, inputs, outputs) in rows {
         checker.observe(time_ms, inputs, outputs)?;
@@ -682,9 +685,9 @@ pub fn check_replay(
     rules: Invariants,
     inputs: &[InputRow],
     trace: &[TraceRow],
-) -> Result<Vec<Violation>, PlantError> {
+) -> Result<Vec<Violation>, BoilerError> {
     if inputs.len() != trace.len() {
-        return Err(PlantError::RowCount {
+        return Err(BoilerError::RowCount {
             inputs: inputs.len(),
             trace: trace.len(),
         });

@@ -16,7 +16,7 @@
 //! - [`invariants`]: the safety checker ([`Checker`]).
 //! - [`scenarios`]: the named scenarios of `host-sim boiler`.
 //! - [`svg`]: a picture of a run; [`waveform`]: its VCD.
-//! - [`error`]: what can go wrong ([`PlantError`]).
+//! - [`error`]: what can go wrong ([`BoilerError`]).
 //!
 //! [`run`] and [`run_with`] are the [`closed_loop`] with the boiler's
 //! script ([`Action::Stall`] hangs the controller), a
@@ -49,11 +49,11 @@ pub mod waveform;
 pub mod wiring;
 
 pub use controller::{BoilerController, ControllerScan, Plc};
-pub use error::PlantError;
+pub use error::BoilerError;
 pub use invariants::{
     check_replay, check_rows, Checker, Invariants, ProjectChecker, Rule, Violation,
 };
-pub use physics::{BoilerParams, BoilerPlant, Disturbance, PlantState};
+pub use physics::{BoilerParams, BoilerPlant, BoilerState, Disturbance};
 pub use record::{Run, RunRow};
 pub use script::{Action, Script};
 pub use signals::{Input, Inputs, IoMap, Output, Outputs, Selector};
@@ -69,7 +69,7 @@ pub fn run(
     plant: &mut BoilerPlant,
     script: &Script,
     duration_ms: u64,
-) -> Result<Run, PlantError> {
+) -> Result<Run, BoilerError> {
     run_with(&mut Plc::new(sim)?, plant, script, duration_ms)
 }
 
@@ -81,7 +81,7 @@ pub fn run_with<C: BoilerController + ?Sized>(
     plant: &mut BoilerPlant,
     script: &Script,
     duration_ms: u64,
-) -> Result<Run, PlantError> {
+) -> Result<Run, BoilerError> {
     let period = Controller::<BoilerPlant>::scan_period_ms(controller).max(1);
     let mut rows = Vec::with_capacity((duration_ms / period) as usize + 1);
     closed_loop::run(controller, plant, script.actions(), duration_ms, &mut rows)?;
@@ -96,7 +96,7 @@ pub fn run_with<C: BoilerController + ?Sized>(
 /// its sensor faults, and the true state in every row.
 impl Plant for BoilerPlant {
     type Action = Action;
-    type State = PlantState;
+    type State = BoilerState;
     type Inputs = Inputs;
     type Report = ControllerScan;
 
@@ -115,7 +115,7 @@ impl Plant for BoilerPlant {
         }
     }
 
-    fn state(&self) -> PlantState {
+    fn state(&self) -> BoilerState {
         BoilerPlant::state(self)
     }
 
@@ -130,13 +130,13 @@ impl Plant for BoilerPlant {
 
 /// Every boiler controller runs in the closed loop as it is.
 impl<C: BoilerController + ?Sized> Controller<BoilerPlant> for C {
-    type Error = PlantError;
+    type Error = BoilerError;
 
     fn scan_period_ms(&self) -> u64 {
         u64::from(BoilerController::scan_period_ms(self))
     }
 
-    fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, PlantError> {
+    fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, BoilerError> {
         BoilerController::scan(self, inputs)
     }
 

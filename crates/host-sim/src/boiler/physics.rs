@@ -156,7 +156,7 @@ pub enum Disturbance {
 
 /// The true physical state at one instant, for timelines and plots.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PlantState {
+pub struct BoilerState {
     /// Plant time.
     pub time_ms: u64,
     /// Bath temperature (°C).
@@ -269,8 +269,8 @@ impl BoilerPlant {
     }
 
     /// The physical state now.
-    pub fn state(&self) -> PlantState {
-        PlantState {
+    pub fn state(&self) -> BoilerState {
+        BoilerState {
             time_ms: self.time_ms,
             bath_c: self.bath_c,
             flue_c: self.flue_c,

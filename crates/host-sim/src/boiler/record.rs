@@ -3,7 +3,7 @@
 //! timelines and plots.
 
 use super::invariants::{Checker, Invariants, Violation};
-use super::physics::PlantState;
+use super::physics::BoilerState;
 use super::signals::{Input, Inputs, IoMap, Output, Outputs};
 use crate::inputs::InputRow;
 use crate::trace::field;
@@ -29,7 +29,7 @@ pub struct RunRow {
     /// The controller left fault mode in this scan and re-initialised.
     pub reinitialised: bool,
     /// The true plant state when the inputs were read.
-    pub plant: PlantState,
+    pub plant: BoilerState,
 }
 
 impl RunRow {

@@ -5,7 +5,7 @@
 //! in closed loop with the boiler plant exactly when it declares all of
 //! them. Other inputs and outputs of the project are left alone.
 
-use super::error::PlantError;
+use super::error::BoilerError;
 use plc_project::Project;
 
 /// One of the boiler's PLC inputs.
@@ -279,7 +279,7 @@ pub struct IoMap {
 impl IoMap {
     /// Looks every boiler signal up in `project` by name; the error lists
     /// all the missing ones.
-    pub fn new(project: &Project) -> Result<IoMap, PlantError> {
+    pub fn new(project: &Project) -> Result<IoMap, BoilerError> {
         let mut missing = Vec::new();
         let mut inputs = [0; Input::ALL.len()];
         let mut debounce = [0; Input::ALL.len()];
@@ -300,7 +300,7 @@ impl IoMap {
             }
         }
         if !missing.is_empty() {
-            return Err(PlantError::MissingSignals {
+            return Err(BoilerError::MissingSignals {
                 project: project.name.clone(),
                 missing,
             });
@@ -331,7 +331,7 @@ impl IoMap {
     }
 
     /// The boiler inputs in a raw image of the project.
-    pub fn inputs_of(&self, raw: &[bool]) -> Result<Inputs, PlantError> {
+    pub fn inputs_of(&self, raw: &[bool]) -> Result<Inputs, BoilerError> {
         check_width(raw, self.input_count, "input")?;
         let mut image = Inputs::default();
         for input in Input::ALL {
@@ -352,7 +352,7 @@ impl IoMap {
     }
 
     /// The boiler outputs in a raw output image of the project.
-    pub fn outputs_of(&self, raw: &[bool]) -> Result<Outputs, PlantError> {
+    pub fn outputs_of(&self, raw: &[bool]) -> Result<Outputs, BoilerError> {
         check_width(raw, self.output_count, "output")?;
         let mut image = Outputs::default();
         for output in Output::ALL {
@@ -362,11 +362,11 @@ impl IoMap {
     }
 }
 
-fn check_width(raw: &[bool], expected: usize, what: &'static str) -> Result<(), PlantError> {
+fn check_width(raw: &[bool], expected: usize, what: &'static str) -> Result<(), BoilerError> {
     if raw.len() == expected {
         Ok(())
     } else {
-        Err(PlantError::ImageWidth {
+        Err(BoilerError::ImageWidth {
             what,
             expected,
             got: raw.len(),

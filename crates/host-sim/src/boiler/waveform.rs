@@ -13,7 +13,7 @@
 //! viewer draws, and a slow temperature then changes, and is written,
 //! only now and then instead of every scan.
 
-use super::error::PlantError;
+use super::error::BoilerError;
 use super::record::Run;
 use super::signals::{Input, IoMap, Output};
 use crate::vcd::{write_scans, Quantity, Samples, Scan};
@@ -24,7 +24,7 @@ use vcd::Value;
 /// Writes the VCD of `run`, a run of `project`, to `out`. The project's
 /// inputs and outputs other than the boiler's, which a run neither drives
 /// nor records, are `x`.
-pub fn write(out: impl Write, project: &Project, run: &Run) -> Result<(), PlantError> {
+pub fn write(out: impl Write, project: &Project, run: &Run) -> Result<(), BoilerError> {
     let io = IoMap::new(project)?;
     let scans: Vec<Scan<'_>> = run
         .rows
@@ -48,7 +48,7 @@ pub fn write(out: impl Write, project: &Project, run: &Run) -> Result<(), PlantE
             }
         })
         .collect();
-    let real = |f: fn(&super::PlantState) -> f64| {
+    let real = |f: fn(&super::BoilerState) -> f64| {
         Samples::Real(run.rows.iter().map(|r| hundredths(f(&r.plant))).collect())
     };
     let plant = [
