@@ -4,6 +4,7 @@
 //! tables kept outside the image.
 
 use super::config::ConfigPools;
+use super::table::{self, encode_supervisor};
 use super::table_only;
 use crate::backend::table::EncodedTable;
 use crate::backend::Backend;
@@ -30,14 +31,7 @@ impl MatchImage {
     pub fn new(project: &Project) -> Result<MatchImage> {
         table_only(project, Backend::Match)?;
         let pools = ConfigPools::from_project(project)?;
-        let automata = project
-            .supervisors
-            .iter()
-            .map(|s| {
-                let local: Vec<_> = s.local_events.iter().map(|&(_, id)| id).collect();
-                EncodedTable::encode(&s.automaton, &local)
-            })
-            .collect();
+        let automata = project.supervisors.iter().map(encode_supervisor).collect();
         let crc = config_crc(&pools.config());
         Ok(MatchImage {
             pools,
@@ -54,17 +48,12 @@ impl Program for MatchImage {
 
     #[inline]
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
-        self.automata
-            .get(usize::from(supervisor))?
-            .view()
-            .next_state(state, local)
+        table::next_state(&self.automata, supervisor, state, local)
     }
 
     #[inline]
     fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
-        self.automata
-            .get(usize::from(supervisor))
-            .map_or(0, |t| t.view().enabled(state, from, len))
+        table::enabled(&self.automata, supervisor, state, from, len)
     }
 
     /// None: the supervisors are code, outside the image.

@@ -7,7 +7,7 @@ use crate::error::Result;
 use executor::image::table_image_crc;
 use executor::program::{Config, Index, Program};
 use executor::table::SupervisorTable;
-use plc_project::Project;
+use plc_project::{Project, Supervisor};
 
 /// A project as bit-packed tables, runnable on the host.
 #[derive(Debug, Clone)]
@@ -27,10 +27,7 @@ impl TableImage {
         let tables: Vec<EncodedTable> = project
             .supervisors
             .iter()
-            .map(|s| {
-                let local: Vec<_> = s.local_events.iter().map(|&(_, id)| id).collect();
-                EncodedTable::encode(&s.automaton, &local)
-            })
+            .map(encode_supervisor)
             .chain(
                 project
                     .nets
@@ -49,6 +46,42 @@ impl TableImage {
     }
 }
 
+/// The table of supervisor `s`: its automaton, events in local order.
+pub(super) fn encode_supervisor(s: &Supervisor) -> EncodedTable {
+    let local: Vec<_> = s.local_events.iter().map(|&(_, id)| id).collect();
+    EncodedTable::encode(&s.automaton, &local)
+}
+
+/// δ of supervisor `supervisor` read from `tables` ([`Program::next_state`]
+/// of every lowered form that runs tables on the host).
+#[inline]
+pub(super) fn next_state(
+    tables: &[EncodedTable],
+    supervisor: Index,
+    state: u32,
+    local: Index,
+) -> Option<u32> {
+    tables
+        .get(usize::from(supervisor))?
+        .view()
+        .next_state(state, local)
+}
+
+/// The row of defined-bits of supervisor `supervisor` read from `tables`
+/// ([`Program::enabled`]); 0 past the last table.
+#[inline]
+pub(super) fn enabled(
+    tables: &[EncodedTable],
+    supervisor: Index,
+    state: u32,
+    from: Index,
+    len: u8,
+) -> u32 {
+    tables
+        .get(usize::from(supervisor))
+        .map_or(0, |t| t.view().enabled(state, from, len))
+}
+
 impl Program for TableImage {
     fn config(&self) -> Config<'_> {
         self.pools.config()
@@ -56,17 +89,12 @@ impl Program for TableImage {
 
     #[inline]
     fn next_state(&self, supervisor: Index, state: u32, local: Index) -> Option<u32> {
-        self.tables
-            .get(supervisor as usize)?
-            .view()
-            .next_state(state, local)
+        next_state(&self.tables, supervisor, state, local)
     }
 
     #[inline]
     fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
-        self.tables
-            .get(supervisor as usize)
-            .map_or(0, |t| t.view().enabled(state, from, len))
+        enabled(&self.tables, supervisor, state, from, len)
     }
 
     fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {
