@@ -20,7 +20,7 @@
 //!   expiries happen (checked by coverage assertions).
 
 use codegen::backend::Backend;
-use codegen::lower::{LogicImage, TableImage};
+use codegen::lower::{LogicImage, Supervisors, TableImage};
 use des::{EventId, StateId};
 use executor::memory::Memory;
 use executor::program::{Config, Index, Program};
@@ -509,10 +509,12 @@ fn check<P: Program + 'static, M: Memory>(g: Generated<P, M>) {
         "{what}: event names"
     );
     // Automata, then the groups of every Petri net.
+    let image = TableImage::new(p).unwrap();
+    let supervisors = Supervisors::new(p, &image.pools.nets);
     assert_eq!(
         owned(g.supervisors),
-        (0..p.executor_supervisors())
-            .map(|j| p.supervisor_name(j))
+        (0..supervisors.len())
+            .map(|j| supervisors.name(j))
             .collect::<Vec<_>>(),
         "{what}: supervisor names"
     );
@@ -523,7 +525,7 @@ fn check<P: Program + 'static, M: Memory>(g: Generated<P, M>) {
             p.outputs.len(),
             p.timers.len(),
             p.events.len(),
-            p.executor_supervisors()
+            supervisors.len()
         ],
         "{what}: COUNT constants"
     );
@@ -539,7 +541,6 @@ fn check<P: Program + 'static, M: Memory>(g: Generated<P, M>) {
     }
 
     // Configuration and CRC against the run-time image.
-    let image = TableImage::new(p).unwrap();
     // `Config` has no `PartialEq`; its `Debug` text shows every field.
     let runtime_config = format!("{:?}", image.config());
     assert_eq!(format!("{:?}", g.config), runtime_config, "{what}: CONFIG");
@@ -594,7 +595,8 @@ fn check<P: Program + 'static, M: Memory>(g: Generated<P, M>) {
         for k in 0..SCANS {
             let states = controller.states().to_vec();
             let (time, raw) = stimulus.next(&mut rng, &states, faulted);
-            let ours = TraceRow::from_record(&controller.scan(time as u32, raw), time, p);
+            let record = controller.scan(time as u32, raw);
+            let ours = TraceRow::from_record(&record, time, supervisors);
             let theirs = sim.scan_with(time, raw).unwrap();
             assert_eq!(
                 &ours, theirs,

@@ -83,12 +83,13 @@ pub fn observe_sim(sim: &Sim) -> Observed {
 }
 
 /// The states of `Observed` from a PLC's automaton states and net
-/// markings (place by place), the markings packed as the executor packs
-/// them.
+/// markings (place by place), the markings packed as lowering lays the
+/// nets out.
 pub fn pack_states(project: &Project, automata: &[u32], markings: &[Vec<u32>]) -> Vec<u32> {
     let mut states = automata.to_vec();
     for (n, net) in project.nets.iter().enumerate() {
-        states.extend((0..net.groups()).map(|g| net.pack(g, &markings[n])));
+        let layout = codegen::lower::NetLayout::of(net);
+        states.extend((0..layout.groups()).map(|g| layout.pack(g, &markings[n])));
     }
     states
 }

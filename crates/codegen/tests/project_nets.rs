@@ -3,7 +3,7 @@
 
 mod common;
 
-use codegen::lower::TableImage;
+use codegen::lower::{NetGroups, NetLayout, Supervisors, TableImage};
 use common::{assert_errors_at_marked_lines, load_err, load_ok};
 use executor::memory::HeapMemory;
 use executor::{Controller, Program};
@@ -28,24 +28,27 @@ fn a_net_with_constraints_runs_as_counters_with_its_control_place() {
     assert_eq!(net.control_places, 1);
     // free ≤ 2 (2 bits), busy ≤ 1, the control place ≤ 1: 4 bits, one group.
     assert_eq!(net.bounds, [2, 1, 1]);
-    assert_eq!(net.group_bits, [4]);
+    assert_eq!(net.widths(), [2, 1, 1]);
     assert_eq!(net.events, [0, 1]);
     assert_eq!(p.outputs[0].drive, Drive::Places(vec![(0, vec![1])]));
-    assert_eq!(p.executor_supervisors(), 1);
-    assert_eq!(p.supervisor_name(0), "two");
+    let image = TableImage::new(&p).unwrap();
+    let layout = &image.pools.nets[0];
+    assert_eq!(layout.group_bits, [4]);
+    let supervisors = Supervisors::new(&p, &image.pools.nets);
+    assert_eq!(supervisors.len(), 1);
+    assert_eq!(supervisors.name(0), "two");
     assert_eq!(
-        p.state_name(0, net.pack(0, net.net.initial())),
+        supervisors.state_name(0, layout.pack(0, net.net.initial())),
         "2·free + c1"
     );
 
     // Run it: `go` once (the control place allows one busy machine),
     // then nothing until `done`.
-    let image = TableImage::new(&p).unwrap();
     let mut c = Controller::new(&image, HeapMemory::for_config(&image.config())).unwrap();
     let r = c.scan(0, &[false]);
     assert_eq!(r.executed, [0]);
     assert_eq!(r.outputs, [true]);
-    assert_eq!(p.state_name(0, r.states[0]), "free + busy");
+    assert_eq!(supervisors.state_name(0, r.states[0]), "free + busy");
     let r = c.scan(10, &[false]);
     assert!(
         r.executed.is_empty(),
@@ -53,7 +56,7 @@ fn a_net_with_constraints_runs_as_counters_with_its_control_place() {
     );
     let r = c.scan(20, &[true]);
     assert_eq!(r.executed, [1, 0], "done, then go again");
-    assert_eq!(p.state_name(0, r.states[0]), "free + busy");
+    assert_eq!(supervisors.state_name(0, r.states[0]), "free + busy");
 }
 
 #[test]
@@ -139,6 +142,19 @@ fn every_net_rule_rejects_its_violation_at_the_offending_line() {
             format!("[plc]\nname = \"x\"\n{EVENTS}[outputs]\nlamp = {{}}\n[[net]]\nname = \"lamp\" # <-\nfile = \"nets/two.toml\"\n"),
             "lamp",
         ),
+        // A net reserves its group names, however many groups it packs into.
+        (
+            format!("[plc]\nname = \"x\"\n{EVENTS}[outputs]\ntwo_1 = {{}}\n[[net]]\nname = \"two\" # <-\nfile = \"nets/two.toml\"\n"),
+            "net `two` reserves `two.1`, `two.2`, … for its groups, and output `two_1` (line 9) becomes one of their identifiers",
+        ),
+        (
+            "[plc]\nname = \"x\"\n[inputs]\nfinished = {}\n\"two.2\" = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"finished\" }\n[[net]]\nname = \"two\" # <-\nfile = \"nets/two.toml\"\n".to_owned(),
+            "net `two` reserves `two.1`, `two.2`, … for its groups, and input `two.2` (line 5) becomes one of their identifiers",
+        ),
+        (
+            format!("[plc]\nname = \"x\"\n{EVENTS}{net}[[net]]\nname = \"two.12\" # <-\nfile = \"nets/two.toml\"\n"),
+            "net name `two.12` becomes the identifier `TWO_12`, which net `two`",
+        ),
     ];
     assert_errors_at_marked_lines(cases);
 }
@@ -160,7 +176,8 @@ fn an_inadmissible_constraint_is_refused_in_its_file_or_transformed() {
     assert_eq!(c.scan(0, &[false]).executed, [0]);
     let r = c.scan(10, &[false]);
     assert_eq!(r.executed, [0]);
-    assert_eq!(p.state_name(0, r.states[0]), "2·busy");
+    let supervisors = Supervisors::new(&p, &image.pools.nets);
+    assert_eq!(supervisors.state_name(0, r.states[0]), "2·busy");
 }
 
 #[test]
@@ -219,21 +236,25 @@ fn net_state_names_read_back_whatever_the_place_ids() {
     let p = load_ok(&format!(
         "[plc]\nname = \"x\"\n{EVENTS}[[net]]\nname = \"odd\"\nfile = \"nets/odd_ids.toml\"\n"
     ));
-    let net = &p.nets[0];
+    let layout = NetLayout::of(&p.nets[0]);
+    let net = NetGroups {
+        net: &p.nets[0],
+        layout: &layout,
+    };
     let markings: [&[u32]; 4] = [&[1, 0, 0, 0], &[0, 2, 1, 0], &[1, 0, 0, 1], &[0, 0, 0, 0]];
     let mut names = std::collections::HashSet::new();
     for m in markings {
-        let state = net.pack(0, m);
+        let state = layout.pack(0, m);
         let name = net.state_name(0, state);
         assert_eq!(net.parse_state(0, &name), Some(state), "{name}");
         assert!(names.insert(name.clone()), "{name} twice");
     }
     assert_eq!(
-        net.state_name(0, net.pack(0, &[0, 2, 1, 0])),
+        net.state_name(0, layout.pack(0, &[0, 2, 1, 0])),
         "2·\"0\" + \"2·x\""
     );
     assert_eq!(
-        net.state_name(0, net.pack(0, &[1, 0, 0, 1])),
+        net.state_name(0, layout.pack(0, &[1, 0, 0, 1])),
         "\"a + b\" + \"q\\\"\""
     );
     assert_eq!(net.parse_state(0, "\"a + b"), None, "an open quote");

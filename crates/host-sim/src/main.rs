@@ -342,7 +342,7 @@ fn boiler(
     }
 
     let mut buf = Vec::new();
-    boiler::waveform::write(&mut buf, sim.project(), &run).map_err(|e| e.to_string())?;
+    boiler::waveform::write(&mut buf, sim.supervisors(), &run).map_err(|e| e.to_string())?;
     write(vcd_path, &buf)?;
     note!("wrote {}", vcd_path.display());
     if let Some(path) = svg {

@@ -53,11 +53,12 @@ impl GuidedInputs {
         }
         if !faulted && rng.one_in(4) {
             let states = self.sim.controller().states();
+            let supervisors = self.sim.supervisors();
             let feasible: Vec<usize> = (0..project.events.len())
                 .filter(|&e| {
                     let ev = &project.events[e];
                     matches!(ev.trigger, Trigger::Rising(_) | Trigger::Falling(_))
-                        && project.event_feasible(e, states)
+                        && supervisors.event_feasible(e, states)
                 })
                 .collect();
             if !feasible.is_empty() {

@@ -5,6 +5,7 @@ use crate::partial::Partial;
 use crate::sim::{Sim, SimError};
 use crate::trace::{self, TraceRow};
 use crate::vcd::Waveform;
+use codegen::lower::Supervisors;
 use std::path::Path;
 
 /// Runs `rows` through `sim` (one scan per row at the row's time) and
@@ -58,13 +59,16 @@ pub fn stream(
 ) -> Result<Totals, String> {
     let file = crate::inputs::open(inputs)?;
     let project = sim.project().clone();
+    let nets = sim.nets().to_vec();
     let rows = InputRows::new(file, inputs, &project).map_err(|e| e.to_string())?;
     let mut trace_file = Partial::create(out)?;
     trace_file.line(&trace::header(&project))?;
     let mut vcd_file = vcd.map(Partial::create).transpose()?;
     let vcd_error = |e: std::io::Error| format!("{}: {e}", vcd.unwrap_or(out).display());
     let mut waveform = match &mut vcd_file {
-        Some(file) => Some(Waveform::new(file, &project).map_err(vcd_error)?),
+        Some(file) => {
+            Some(Waveform::new(file, Supervisors::new(&project, &nets)).map_err(vcd_error)?)
+        }
         None => None,
     };
     sim.retain_trace(false);
@@ -115,7 +119,7 @@ mod tests {
         let out = dir.path().join("t.csv");
         let mut sim = Sim::load(&project, Backend::Table).unwrap();
         let mut waveform = Vec::new();
-        crate::vcd::write(&mut waveform, sim.project(), &rows, &traced).unwrap();
+        crate::vcd::write(&mut waveform, sim.supervisors(), &rows, &traced).unwrap();
         let vcd = dir.path().join("t.vcd");
         let totals = stream(&mut sim, &inputs, &out, Some(&vcd)).unwrap();
         assert_eq!(std::fs::read_to_string(&out).unwrap(), expected);

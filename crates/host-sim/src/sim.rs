@@ -11,7 +11,7 @@
 
 use crate::trace::TraceRow;
 use codegen::backend::Backend;
-use codegen::lower::Lowered;
+use codegen::lower::{Lowered, NetLayout, Supervisors};
 use executor::memory::HeapMemory;
 use executor::pacing::{Pacer, ScanStart};
 use executor::program::Program;
@@ -53,6 +53,9 @@ pub enum SimError {
 /// A controller on a virtual clock, with its trace.
 pub struct Sim {
     project: Project,
+    /// The layout of each net in the program (a copy of the lowered
+    /// one's, so that a scan's record and the names can be read together).
+    nets: Vec<NetLayout>,
     controller: Controller<Lowered, HeapMemory>,
     inputs: Vec<bool>,
     /// The controller's clock: when its last scan, or the stall after it,
@@ -83,6 +86,7 @@ impl Sim {
             .expect("memory is sized from the program's own configuration");
         Ok(Sim {
             inputs: vec![false; project.inputs.len()],
+            nets: controller.program().pools().nets.clone(),
             project,
             controller,
             clock_ms: 0,
@@ -104,6 +108,17 @@ impl Sim {
     /// The project.
     pub fn project(&self) -> &Project {
         &self.project
+    }
+
+    /// The executor's supervisors of the program, named (the automata,
+    /// then the Petri nets' groups).
+    pub fn supervisors(&self) -> Supervisors<'_> {
+        Supervisors::new(&self.project, &self.nets)
+    }
+
+    /// The layout of each Petri net in the program.
+    pub fn nets(&self) -> &[NetLayout] {
+        &self.nets
     }
 
     /// The lowered configuration the controller runs: timing and limits
@@ -208,7 +223,8 @@ impl Sim {
             });
         }
         let record = self.controller.scan(time_ms as u32, raw);
-        let row = TraceRow::from_record(&record, time_ms, &self.project);
+        let supervisors = Supervisors::new(&self.project, &self.nets);
+        let row = TraceRow::from_record(&record, time_ms, supervisors);
         if !self.retain_trace {
             self.trace.clear();
         }
@@ -247,11 +263,11 @@ impl Sim {
 
     /// The current state (name) of supervisor `name`.
     pub fn state(&self, name: &str) -> Result<String, SimError> {
-        let j = self
-            .project
-            .executor_supervisor(name)
+        let supervisors = self.supervisors();
+        let j = supervisors
+            .find(name)
             .ok_or_else(|| SimError::Unknown(name.to_owned(), "a supervisor"))?;
-        Ok(self.project.state_name(j, self.controller.states()[j]))
+        Ok(supervisors.state_name(j, self.controller.states()[j]))
     }
 
     /// The current level of output `name`.

@@ -1,6 +1,7 @@
 //! Trace rows (docs/formats.md, "trace.csv"): one per scan, with names instead of
 //! indices, and their CSV form.
 
+use codegen::lower::Supervisors;
 use executor::{Fault, ScanRecord};
 use plc_project::Project;
 use std::fmt::Write as _;
@@ -41,9 +42,14 @@ pub fn fault_text(fault: Fault, project: &Project) -> String {
 }
 
 impl TraceRow {
-    /// The row for `record`, names from `project`; `time_ms` is the time
-    /// as the caller gave it (before the modulo).
-    pub fn from_record(record: &ScanRecord<'_>, time_ms: u64, project: &Project) -> TraceRow {
+    /// The row for `record`, names from `supervisors` and their project;
+    /// `time_ms` is the time as the caller gave it (before the modulo).
+    pub fn from_record(
+        record: &ScanRecord<'_>,
+        time_ms: u64,
+        supervisors: Supervisors<'_>,
+    ) -> TraceRow {
+        let project = supervisors.project();
         let event = |e: &u16| {
             project
                 .events
@@ -59,7 +65,7 @@ impl TraceRow {
                 .states
                 .iter()
                 .enumerate()
-                .map(|(j, &x)| (project.supervisor_name(j), project.state_name(j, x)))
+                .map(|(j, &x)| (supervisors.name(j), supervisors.state_name(j, x)))
                 .collect(),
             outputs: record.outputs.to_vec(),
             fault: record.fault.map(|f| fault_text(f, project)),

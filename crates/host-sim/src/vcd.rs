@@ -21,19 +21,21 @@
 
 use crate::inputs::InputRow;
 use crate::trace::TraceRow;
+use codegen::lower::Supervisors;
 use plc_project::Project;
 use std::io::{self, Write};
 use vcd::{IdCode, TimescaleUnit, Value, VarType};
 
 /// Writes the VCD of `rows` (with the raw `inputs` of each scan) to `out`;
-/// inputs of a row without an input row are `x`.
+/// inputs of a row without an input row are `x`. `supervisors` names the
+/// lowered program's supervisors (`Sim::supervisors`).
 pub fn write(
     out: impl Write,
-    project: &Project,
+    supervisors: Supervisors<'_>,
     inputs: &[InputRow],
     rows: &[TraceRow],
 ) -> io::Result<()> {
-    let mut w = Waveform::new(out, project)?;
+    let mut w = Waveform::new(out, supervisors)?;
     for (k, row) in rows.iter().enumerate() {
         w.scan(inputs.get(k), row)?;
     }
@@ -47,10 +49,11 @@ pub struct Waveform<'p, W: Write> {
 }
 
 impl<'p, W: Write> Waveform<'p, W> {
-    /// Writes the declarations of `project`'s variables to `out`.
-    pub fn new(out: W, project: &'p Project) -> io::Result<Self> {
+    /// Writes the declarations of the variables of the project whose
+    /// lowered `supervisors` these are to `out`.
+    pub fn new(out: W, supervisors: Supervisors<'p>) -> io::Result<Self> {
         Ok(Waveform {
-            writer: ScanWriter::new(out, project, &[])?,
+            writer: ScanWriter::new(out, supervisors, &[])?,
         })
     }
 
@@ -217,11 +220,12 @@ impl<W: Write> Declarations<W> {
     }
 }
 
-/// Writes `scans` of `project` to `out`, with `plant` quantities (one
-/// sample per scan each) in a `plant` scope when there are any.
+/// Writes `scans` of the project of `supervisors` to `out`, with `plant`
+/// quantities (one sample per scan each) in a `plant` scope when there are
+/// any.
 pub(crate) fn write_scans(
     out: impl Write,
-    project: &Project,
+    supervisors: Supervisors<'_>,
     scans: &[Scan<'_>],
     plant: &[Quantity],
 ) -> io::Result<()> {
@@ -236,7 +240,7 @@ pub(crate) fn write_scans(
             ),
         ));
     }
-    let mut w = ScanWriter::new(out, project, plant)?;
+    let mut w = ScanWriter::new(out, supervisors, plant)?;
     for (k, scan) in scans.iter().enumerate() {
         w.scan(
             scan,
@@ -253,6 +257,7 @@ pub(crate) fn write_scans(
 /// The declared variables and the value changes written so far.
 struct ScanWriter<'p, W: Write> {
     project: &'p Project,
+    supervisors: Supervisors<'p>,
     c: Changes<W>,
     inputs: Vec<Var>,
     outputs: Vec<Var>,
@@ -268,9 +273,11 @@ struct ScanWriter<'p, W: Write> {
 }
 
 impl<'p, W: Write> ScanWriter<'p, W> {
-    /// Writes the header: `project`'s variables and, in a `plant` scope,
-    /// one per quantity of `plant` (whose samples are not read).
-    fn new(out: W, project: &'p Project, plant: &[Quantity]) -> io::Result<Self> {
+    /// Writes the header: the variables of the project of `supervisors`
+    /// and, in a `plant` scope, one per quantity of `plant` (whose samples
+    /// are not read).
+    fn new(out: W, supervisors: Supervisors<'p>, plant: &[Quantity]) -> io::Result<Self> {
+        let project = supervisors.project();
         let mut d = Declarations {
             w: vcd::Writer::new(out),
             count: 0,
@@ -283,19 +290,16 @@ impl<'p, W: Write> ScanWriter<'p, W> {
         let outputs = d.scope("outputs", &project.outputs, |d, o| {
             d.var(VarType::Wire, 1, &o.name)
         })?;
-        let supervisors = 0..project.executor_supervisors();
-        let names = d.scope("states", supervisors.clone(), |d, j| {
-            d.var(VarType::String, 1, &project.supervisor_name(j))
+        let all = 0..supervisors.len();
+        let names = d.scope("states", all.clone(), |d, j| {
+            d.var(VarType::String, 1, &supervisors.name(j))
         })?;
-        let numbers = d.scope("state_numbers", supervisors, |d, j| {
-            let width = match project.net_group(j) {
-                Some((n, g)) => u32::from(project.nets[n].group_bits[g]),
-                None => {
-                    let states = project.supervisors[j].automaton.num_states();
-                    (states.saturating_sub(1).max(1) as u64).ilog2() + 1
-                }
-            };
-            d.var(VarType::Wire, width, &project.supervisor_name(j))
+        let numbers = d.scope("state_numbers", all, |d, j| {
+            d.var(
+                VarType::Wire,
+                supervisors.state_bits(j),
+                &supervisors.name(j),
+            )
         })?;
         let events = d.scope("events", &project.events, |d, e| {
             d.var(VarType::Wire, 1, &e.name)
@@ -314,6 +318,7 @@ impl<'p, W: Write> ScanWriter<'p, W> {
         d.w.enddefinitions()?;
         Ok(ScanWriter {
             project,
+            supervisors,
             c: Changes {
                 w: d.w,
                 now: 0,
@@ -355,13 +360,7 @@ impl<'p, W: Write> ScanWriter<'p, W> {
         }
         for (j, (_, state)) in scan.states.iter().enumerate() {
             c.set(self.names[j], Written::Text(escape(state)))?;
-            let number = match project.net_group(j) {
-                Some((n, g)) => project.nets[n].parse_state(g, state).map(u64::from),
-                None => project.supervisors[j]
-                    .automaton
-                    .state_by_name(state)
-                    .map(|s| u64::from(s.0)),
-            };
+            let number = self.supervisors.parse_state(j, state).map(u64::from);
             c.set(self.numbers[j], Written::Vector(number))?;
         }
         for name in scan.events {

@@ -1173,6 +1173,6 @@ fn the_checker_reads_a_replay_trace_like_the_closed_loop() {
     let rows = run.input_rows(&io);
     let mut replay = Sim::new(project.clone(), Backend::Logic).unwrap();
     let trace = host_sim::replay::replay(&mut replay, &rows).unwrap();
-    let found = boiler::check_replay(&project, rules, &rows, &trace).unwrap();
+    let found = boiler::check_replay(&project, &replay.config(), rules, &rows, &trace).unwrap();
     assert_eq!(found, expected);
 }

@@ -12,7 +12,7 @@
 //! hang.
 
 use codegen::backend::Backend;
-use codegen::lower::Lowered;
+use codegen::lower::{Lowered, NetLayout, Supervisors};
 use executor::memory::HeapMemory;
 use executor::pacing::{Pacer, ScanStart};
 use executor::{Controller, Program};
@@ -33,6 +33,8 @@ fn project(name: &str) -> Project {
 /// The firmware's scan loop on a simulated SysTick millisecond clock.
 struct BoardLoop {
     project: Project,
+    /// The program's net layouts, to name its supervisors.
+    nets: Vec<NetLayout>,
     controller: Controller<Lowered, HeapMemory>,
     pacer: Pacer,
     /// SysTick's millisecond count.
@@ -49,6 +51,7 @@ impl BoardLoop {
         let memory = HeapMemory::for_config(&program.config());
         BoardLoop {
             project: project.clone(),
+            nets: program.pools().nets.clone(),
             controller: Controller::new(program, memory).unwrap(),
             pacer,
             now_ms: 0,
@@ -67,7 +70,8 @@ impl BoardLoop {
             self.now_ms += 1; // wfi until the next SysTick
         };
         let record = self.controller.scan(start.time_ms, raw);
-        let row = TraceRow::from_record(&record, u64::from(start.time_ms), &self.project);
+        let supervisors = Supervisors::new(&self.project, &self.nets);
+        let row = TraceRow::from_record(&record, u64::from(start.time_ms), supervisors);
         self.trace.push(row);
         self.starts.push(start);
         self.now_ms += hang_ms;

@@ -11,18 +11,17 @@ use codegen::backend::Backend;
 use common::waveform::{Sample, Waveform};
 use host_sim::boiler::{self, scenarios, BoilerError, BoilerParams, BoilerPlant, Input, Output};
 use host_sim::{inputs, replay, Sim};
-use plc_project::Project;
 use vcd::{Value, VarType};
 
 /// The press's reviewed cycle replayed: the project, its input rows, the
 /// trace and the VCD written from them.
-fn press_cycle() -> (Project, Vec<inputs::InputRow>, Vec<host_sim::TraceRow>) {
+fn press_cycle() -> (Sim, Vec<inputs::InputRow>, Vec<host_sim::TraceRow>) {
     let mut sim = Sim::load(&common::model("press.plc.toml"), Backend::Table).unwrap();
     let path = common::model("press/cycle.inputs.csv");
     let text = std::fs::read_to_string(&path).unwrap();
     let rows = inputs::parse(&text, &path, sim.project()).unwrap();
     let trace = replay::replay(&mut sim, &rows).unwrap();
-    (sim.project().clone(), rows, trace)
+    (sim, rows, trace)
 }
 
 /// A value is written when it differs from the one before, never again
@@ -37,9 +36,10 @@ fn assert_written_on_change_only(w: &Waveform) {
 
 #[test]
 fn a_replay_waveform_shows_every_scan_of_the_trace() {
-    let (project, rows, trace) = press_cycle();
+    let (sim, rows, trace) = press_cycle();
+    let project = sim.project();
     let mut buf = Vec::new();
-    host_sim::vcd::write(&mut buf, &project, &rows, &trace).unwrap();
+    host_sim::vcd::write(&mut buf, sim.supervisors(), &rows, &trace).unwrap();
     let w = Waveform::parse(&buf);
     let top = "stamping-press";
     for (k, row) in trace.iter().enumerate() {
@@ -88,9 +88,10 @@ fn a_replay_waveform_shows_every_scan_of_the_trace() {
 
 #[test]
 fn inputs_of_scans_without_an_input_row_are_unknown() {
-    let (project, rows, trace) = press_cycle();
+    let (sim, rows, trace) = press_cycle();
+    let project = sim.project();
     let mut buf = Vec::new();
-    host_sim::vcd::write(&mut buf, &project, &rows[..3], &trace).unwrap();
+    host_sim::vcd::write(&mut buf, sim.supervisors(), &rows[..3], &trace).unwrap();
     let w = Waveform::parse(&buf);
     let path = format!("stamping-press.inputs.{}", project.inputs[0].name);
     assert_eq!(*w.at(&path, trace[3].time_ms), Sample::Bit(Value::X));
@@ -104,7 +105,7 @@ fn a_boiler_waveform_adds_the_plants_temperatures_flames_and_selector() {
     let (script, duration) = scenarios::named("main-flame-failure").unwrap();
     let run = boiler::run(&mut sim, &mut plant, &script, duration).unwrap();
     let mut buf = Vec::new();
-    boiler::waveform::write(&mut buf, sim.project(), &run).unwrap();
+    boiler::waveform::write(&mut buf, sim.supervisors(), &run).unwrap();
     let w = Waveform::parse(&buf);
 
     type Quantity = fn(&boiler::BoilerState) -> f64;
@@ -178,7 +179,7 @@ fn a_boiler_waveform_needs_a_project_with_the_boilers_signals() {
     let (script, duration) = scenarios::named("cold-start-low").unwrap();
     let run = boiler::run(&mut sim, &mut plant, &script, duration / 10).unwrap();
     let (press, _, _) = press_cycle();
-    let err = boiler::waveform::write(Vec::new(), &press, &run).unwrap_err();
+    let err = boiler::waveform::write(Vec::new(), press.supervisors(), &run).unwrap_err();
     assert!(matches!(err, BoilerError::MissingSignals { .. }), "{err}");
     assert!(err.to_string().contains("input `sel_high`"), "{err}");
 }

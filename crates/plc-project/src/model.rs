@@ -178,27 +178,10 @@ pub enum NetSource {
     },
 }
 
-/// A place's counter: which group of the net holds it, and where.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct PlaceField {
-    /// The group (an executor supervisor of the net), from 0.
-    pub group: usize,
-    /// Its lowest bit in the group's packed marking.
-    pub shift: u8,
-    /// Its width in bits (enough for the place's bound, at least 1).
-    pub width: u8,
-}
-
-impl PlaceField {
-    /// The mask of the counter's bits.
-    pub fn mask(&self) -> u32 {
-        (((1u64 << self.width) - 1) as u32) << self.shift
-    }
-}
-
-/// A Petri net run as a supervisor (`[[net]]`): its places as counters
-/// packed into groups of at most 31 bits, each group one executor
-/// supervisor, its transitions the project's events of the same names.
+/// A Petri net run as a supervisor (`[[net]]`): each place a counter
+/// wide enough for its bound ([`Net::counter_widths`]), each transition the
+/// project's event of the same name. How the counters are packed into
+/// executor supervisors is lowering's business (`codegen::lower::nets`).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Net {
     /// Its name.
@@ -208,12 +191,8 @@ pub struct Net {
     pub net: des::petri::PetriNet,
     /// The project event of each transition, in transition order.
     pub events: Vec<usize>,
-    /// The counter of each place, in place order.
-    pub fields: Vec<PlaceField>,
     /// The largest number of tokens each place reaches.
     pub bounds: Vec<u32>,
-    /// The bits of each group.
-    pub group_bits: Vec<u8>,
     /// Reachable markings of the net.
     pub markings: usize,
     /// The control places (the last ones), 0 for a net run as it is.
@@ -224,158 +203,34 @@ pub struct Net {
     pub line: u32,
 }
 
-/// Bits of a group's packed marking: the most the executor's net layout
-/// holds ([`executor::table::NET_GROUP_BITS`]).
-pub const GROUP_BITS: u32 = executor::table::NET_GROUP_BITS;
+/// The widest counter a place may need: the executor packs counters into
+/// words of this many bits ([`executor::table::NET_GROUP_BITS`]), so a
+/// counter holds at most 2^31 − 1 tokens.
+pub const COUNTER_BITS: u32 = executor::table::NET_GROUP_BITS;
 
 impl Net {
-    /// The counters of `net`'s places, whose reachable markings have
-    /// `bounds`: each wide enough for its bound and for the weight of every
-    /// arc on it (an input arc heavier than the bound is what keeps its
-    /// transition from ever firing, so its `PRE` must hold it), at least
-    /// one bit, packed in place order into groups of at most
-    /// [`GROUP_BITS`] bits; the fields and each group's bits. `Err` names
-    /// the first place that needs a wider counter.
-    pub fn pack_fields(
-        net: &des::petri::PetriNet,
-        bounds: &[u32],
-    ) -> Result<(Vec<PlaceField>, Vec<u8>), usize> {
+    /// The bits of each place's counter in `net`, whose reachable markings
+    /// have `bounds`: enough for the bound and for the weight of every arc
+    /// on the place (an input arc heavier than the bound is what keeps its
+    /// transition from ever firing, so the counter's `PRE` must hold it),
+    /// at least 1. Validation refuses a net whose counters need more than
+    /// [`COUNTER_BITS`].
+    pub fn counter_widths(net: &des::petri::PetriNet, bounds: &[u32]) -> Vec<u32> {
         let mut largest = bounds.to_vec();
         for t in net.transitions() {
             for &(p, w) in t.input.iter().chain(&t.output) {
                 largest[p] = largest[p].max(w);
             }
         }
-        let mut fields = Vec::with_capacity(bounds.len());
-        let mut group_bits: Vec<u8> = Vec::new();
-        for (p, &bound) in largest.iter().enumerate() {
-            let width = (u32::BITS - bound.leading_zeros()).max(1);
-            if width > GROUP_BITS {
-                return Err(p);
-            }
-            let fits = group_bits
-                .last()
-                .is_some_and(|&used| u32::from(used) + width <= GROUP_BITS);
-            if !fits {
-                group_bits.push(0);
-            }
-            let group = group_bits.len() - 1;
-            fields.push(PlaceField {
-                group,
-                shift: group_bits[group],
-                width: width as u8,
-            });
-            group_bits[group] += width as u8;
-        }
-        Ok((fields, group_bits))
-    }
-
-    /// Number of groups (executor supervisors).
-    pub fn groups(&self) -> usize {
-        self.group_bits.len()
-    }
-
-    /// The name of group `g`: the net's name when it has one group,
-    /// `name.1`, `name.2`, … otherwise.
-    pub fn group_name(&self, g: usize) -> String {
-        if self.groups() == 1 {
-            self.name.clone()
-        } else {
-            format!("{}.{}", self.name, g + 1)
-        }
-    }
-
-    /// The places of group `g`, in place order.
-    pub fn group_places(&self, g: usize) -> impl Iterator<Item = usize> + '_ {
-        (0..self.fields.len()).filter(move |&p| self.fields[p].group == g)
-    }
-
-    /// The transitions with an arc to a place of group `g`, in transition
-    /// order: the group's local events.
-    pub fn group_transitions(&self, g: usize) -> Vec<usize> {
-        let touches = |arcs: &[(usize, u32)]| arcs.iter().any(|&(p, _)| self.fields[p].group == g);
-        (0..self.net.transitions().len())
-            .filter(|&t| {
-                let tr = &self.net.transitions()[t];
-                touches(&tr.input) || touches(&tr.output)
-            })
-            .collect()
-    }
-
-    /// A marking packed into group `g`'s state.
-    pub fn pack(&self, g: usize, marking: &[u32]) -> u32 {
-        self.group_places(g)
-            .map(|p| (marking[p] << self.fields[p].shift) & self.fields[p].mask())
-            .fold(0, |x, bits| x | bits)
-    }
-
-    /// The marking of the net from the states of its groups, in group
-    /// order.
-    pub fn unpack(&self, groups: &[u32]) -> des::petri::Marking {
-        self.fields
+        largest
             .iter()
-            .map(|f| {
-                groups
-                    .get(f.group)
-                    .map_or(0, |&x| (x & f.mask()) >> f.shift)
-            })
+            .map(|&x| (u32::BITS - x.leading_zeros()).max(1))
             .collect()
     }
 
-    /// The state of group `g` named by [`Net::state_name`], `None` if
-    /// the name is not a marking of the group's places.
-    pub fn parse_state(&self, g: usize, name: &str) -> Option<u32> {
-        use des::petri::read_marking_term;
-        if name == "0" {
-            return Some(0);
-        }
-        let mut x = 0u32;
-        let mut rest = name;
-        loop {
-            // A count `k·` before the id, when more than one token.
-            let (count, after) = match rest.split_once('·') {
-                Some((k, after)) if !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()) => {
-                    (k.parse::<u32>().ok()?, after)
-                }
-                _ => (1, rest),
-            };
-            let (id, tail) = read_marking_term(after, " + ")?;
-            let p = self.net.place(&id)?;
-            let f = self.fields[p];
-            if f.group != g || count > f.mask() >> f.shift {
-                return None;
-            }
-            x |= count << f.shift;
-            match tail.strip_prefix(" + ") {
-                Some(next) => rest = next,
-                None if tail.is_empty() => return Some(x),
-                None => return None,
-            }
-        }
-    }
-
-    /// Group `g`'s state read as the marking of its places: `p_1 + 2·p_3`
-    /// style, `0` for no token; an id that could be misread (`a + b`, `0`)
-    /// quoted, so that [`Net::parse_state`] reads every name back.
-    pub fn state_name(&self, g: usize, state: u32) -> String {
-        let terms: Vec<String> = self
-            .group_places(g)
-            .filter_map(|p| {
-                let f = self.fields[p];
-                let count = (state & f.mask()) >> f.shift;
-                let id = des::petri::marking_term(&self.net.places()[p].id, "0");
-                match count {
-                    0 => None,
-                    1 => Some(id),
-                    k => Some(format!("{k}·{id}")),
-                }
-            })
-            .collect();
-        if terms.is_empty() {
-            "0".to_owned()
-        } else {
-            terms.join(" + ")
-        }
+    /// The bits of each of its places' counters ([`Net::counter_widths`]).
+    pub fn widths(&self) -> Vec<u32> {
+        Net::counter_widths(&self.net, &self.bounds)
     }
 }
 
@@ -542,86 +397,5 @@ impl Project {
     /// The index of the supervisor called `name`.
     pub fn supervisor(&self, name: &str) -> Option<usize> {
         self.supervisors.iter().position(|s| s.name == name)
-    }
-
-    /// The number of supervisors the executor runs: the automata, then
-    /// the groups of every net.
-    pub fn executor_supervisors(&self) -> usize {
-        self.supervisors.len() + self.nets.iter().map(Net::groups).sum::<usize>()
-    }
-
-    /// The net and group of executor supervisor `j`, `None` for an
-    /// automaton.
-    pub fn net_group(&self, j: usize) -> Option<(usize, usize)> {
-        let mut first = self.supervisors.len();
-        for (n, net) in self.nets.iter().enumerate() {
-            if (first..first + net.groups()).contains(&j) {
-                return Some((n, j - first));
-            }
-            first += net.groups();
-        }
-        None
-    }
-
-    /// The executor supervisor named `name`: an automaton's, or a net
-    /// group's ([`Net::group_name`]).
-    pub fn executor_supervisor(&self, name: &str) -> Option<usize> {
-        self.supervisor(name).or_else(|| {
-            (self.supervisors.len()..self.executor_supervisors())
-                .find(|&j| self.supervisor_name(j) == name)
-        })
-    }
-
-    /// Whether every supervisor and net group in `states` (the executor's
-    /// state vector) lets event `e` occur.
-    pub fn event_feasible(&self, e: usize, states: &[u32]) -> bool {
-        let automata = self.supervisors.iter().enumerate().all(|(j, sup)| {
-            sup.local(e).is_none_or(|(_, id)| {
-                states.get(j).is_some_and(|&x| {
-                    (x as usize) < sup.automaton.num_states()
-                        && sup.automaton.successor(StateId(x), id).is_some()
-                })
-            })
-        });
-        automata
-            && self.nets.iter().enumerate().all(|(n, net)| {
-                let first = self.group_supervisor(n, 0);
-                let groups = states.get(first..first + net.groups()).unwrap_or(&[]);
-                let marking = net.unpack(groups);
-                (0..net.events.len())
-                    .filter(|&t| net.events[t] == e)
-                    .all(|t| net.net.is_enabled(&marking, t))
-            })
-    }
-
-    /// The executor supervisor of group `g` of net `n`.
-    pub fn group_supervisor(&self, n: usize, g: usize) -> usize {
-        self.supervisors.len() + self.nets[..n].iter().map(Net::groups).sum::<usize>() + g
-    }
-
-    /// The name of executor supervisor `j` (a net group's:
-    /// [`Net::group_name`]).
-    pub fn supervisor_name(&self, j: usize) -> String {
-        match self.net_group(j) {
-            Some((n, g)) => self.nets[n].group_name(g),
-            None => self.supervisors[j].name.clone(),
-        }
-    }
-
-    /// The name of state `state` of executor supervisor `j`: an
-    /// automaton's state name (`#state` past its states), a net group's
-    /// marking.
-    pub fn state_name(&self, j: usize, state: u32) -> String {
-        match self.net_group(j) {
-            Some((n, g)) => self.nets[n].state_name(g, state),
-            None => {
-                let a = &self.supervisors[j].automaton;
-                if (state as usize) < a.num_states() {
-                    a.state_name(StateId(state)).into_owned()
-                } else {
-                    format!("#{state}")
-                }
-            }
-        }
     }
 }

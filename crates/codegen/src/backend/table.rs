@@ -7,7 +7,6 @@
 
 use des::automaton::{Automaton, EventId, StateId};
 use executor::table::{Rows, SupervisorTable};
-use plc_project::Net;
 
 /// Which target layout a table uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -116,26 +115,18 @@ impl EncodedTable {
         }
     }
 
-    /// Encodes group `g` of `net` in the net layout: one `PRE` and one
-    /// `POST` word per transition touching the group, one mask per place.
-    pub fn encode_net(net: &Net, g: usize) -> EncodedTable {
-        let bits = net.group_bits[g];
-        let word = |arcs: &[(usize, u32)]| {
-            arcs.iter()
-                .filter(|&&(p, _)| net.fields[p].group == g)
-                .fold(0u32, |x, &(p, w)| {
-                    x | (w << net.fields[p].shift) & net.fields[p].mask()
-                })
-        };
-        let transitions = net.group_transitions(g);
-        let tr = net.net.transitions();
+    /// A group of a Petri net in the net layout: `pre` and `post`, the
+    /// packed input and output arc weights of each transition touching the
+    /// group, `masks` the counter mask of each of its places, in a state of
+    /// `bits` bits (lowering packs them: `crate::lower::nets`).
+    pub fn net_group(bits: u8, pre: Vec<u32>, post: Vec<u32>, masks: Vec<u32>) -> EncodedTable {
         EncodedTable {
-            events: transitions.len() as u16,
+            events: pre.len() as u16,
             states: 1 << bits,
             state_bits: bits,
-            defined: transitions.iter().map(|&t| word(&tr[t].input)).collect(),
-            targets: transitions.iter().map(|&t| word(&tr[t].output)).collect(),
-            row_starts: net.group_places(g).map(|p| net.fields[p].mask()).collect(),
+            defined: pre,
+            targets: post,
+            row_starts: masks,
             start_bits: 0,
             layout: Layout::Net,
         }

@@ -67,8 +67,9 @@ impl Emitter<'_> {
         let outputs: Vec<&str> = p.outputs.iter().map(|x| x.name.as_str()).collect();
         let timers: Vec<&str> = p.timers.iter().map(|x| x.name.as_str()).collect();
         let events: Vec<&str> = p.events.iter().map(|x| x.name.as_str()).collect();
-        let sup_names: Vec<String> = (0..p.executor_supervisors())
-            .map(|j| p.supervisor_name(j))
+        let supervisors = self.supervisors();
+        let sup_names: Vec<String> = (0..supervisors.len())
+            .map(|j| supervisors.name(j))
             .collect();
         let sups: Vec<&str> = sup_names.iter().map(String::as_str).collect();
         self.name_module("input", "Inputs, in declaration order.", &inputs);
@@ -112,17 +113,19 @@ impl Emitter<'_> {
 #[allow(dead_code)]
 pub mod places {{"
         );
-        for (n, net) in p.nets.iter().enumerate() {
+        let supervisors = self.supervisors();
+        for n in 0..p.nets.len() {
+            let net = supervisors.net(n);
             for g in 0..net.groups() {
                 let name = net.group_name(g);
-                let places: Vec<usize> = net.group_places(g).collect();
+                let places: Vec<usize> = net.layout.group_places(g).collect();
                 let ids: Vec<String> = places
                     .iter()
-                    .map(|&q| format!("{:?}", net.net.places()[q].id))
+                    .map(|&q| format!("{:?}", net.net.net.places()[q].id))
                     .collect();
                 let masks: Vec<String> = places
                     .iter()
-                    .map(|&q| format!("{:#x}", net.fields[q].mask()))
+                    .map(|&q| format!("{:#x}", net.layout.fields[q].mask()))
                     .collect();
                 let _ = writeln!(
                     self.out,
@@ -131,7 +134,7 @@ pub mod places {{"
     /// Counter masks of {}, in the order of its places.
     pub static {}_MASKS: [u32; {}] = [{}];",
                     quoted(&name),
-                    p.group_supervisor(n, g),
+                    supervisors.group_supervisor(n, g),
                     ident(&name),
                     ids.len(),
                     ids.join(", "),
@@ -162,11 +165,11 @@ pub mod places {{"
     }
 
     fn supervisor_name(&self, s: ex::Index) -> String {
-        quoted(&self.project.supervisor_name(usize::from(s)))
+        quoted(&self.supervisors().name(usize::from(s)))
     }
 
     fn state_name(&self, s: ex::Index, state: u32) -> String {
-        quoted(&self.project.state_name(usize::from(s), state))
+        quoted(&self.supervisors().state_name(usize::from(s), state))
     }
 
     /// The input names of a mask (a span of the input masks).

@@ -21,7 +21,7 @@ mod table;
 use crate::backend::table::{EncodedTable, Layout};
 use crate::backend::Backend;
 use crate::error::{Error, Result};
-use crate::lower::{ConfigPools, ImageCheck, Lowered, ScanSets};
+use crate::lower::{ConfigPools, ImageCheck, Lowered, ScanSets, Supervisors};
 use executor::program as ex;
 use plc_project::ident::sanitize;
 use plc_project::{Project, SupervisorSource};
@@ -129,7 +129,12 @@ struct Emitter<'a> {
     out: String,
 }
 
-impl Emitter<'_> {
+impl<'a> Emitter<'a> {
+    /// The executor's supervisors, named.
+    fn supervisors(&self) -> Supervisors<'a> {
+        Supervisors::new(self.project, &self.pools.nets)
+    }
+
     /// Path of an input's index constant.
     fn input(&self, i: ex::Index) -> String {
         format!("input::{}", ident(&self.project.inputs[i as usize].name))
@@ -149,7 +154,7 @@ impl Emitter<'_> {
     fn supervisor(&self, s: ex::Index) -> String {
         format!(
             "supervisor::{}",
-            ident(&self.project.supervisor_name(usize::from(s)))
+            ident(&self.supervisors().name(usize::from(s)))
         )
     }
 

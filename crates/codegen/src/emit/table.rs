@@ -110,31 +110,35 @@ impl Emitter<'_> {
             .get(self.project.supervisors.len()..)
             .unwrap_or(&[]);
         let mut groups = nets.iter();
-        for net in &self.project.nets {
+        let supervisors = self.supervisors();
+        for n in 0..self.project.nets.len() {
+            let net = supervisors.net(n);
+            let (fields, places_of) = (&net.layout.fields, net.net.net.places());
             for g in 0..net.groups() {
                 let Some(table) = groups.next() else { break };
                 let name = net.group_name(g);
                 let id = ident(&name);
                 let places: Vec<String> = net
+                    .layout
                     .group_places(g)
                     .map(|p| {
-                        let f = net.fields[p];
+                        let f = fields[p];
                         let bits = if f.width == 1 {
                             format!("bit {}", f.shift)
                         } else {
                             format!("bits {}–{}", f.shift, f.shift + f.width - 1)
                         };
-                        format!("{} ({bits})", net.net.places()[p].id)
+                        format!("{} ({bits})", places_of[p].id)
                     })
                     .collect();
                 let transitions = net.group_transitions(g);
                 let arcs = |arcs: &[(usize, u32)]| -> String {
                     let terms: Vec<String> = arcs
                         .iter()
-                        .filter(|&&(p, _)| net.fields[p].group == g)
+                        .filter(|&&(p, _)| fields[p].group == g)
                         .map(|&(p, w)| match w {
-                            1 => net.net.places()[p].id.clone(),
-                            w => format!("{w}·{}", net.net.places()[p].id),
+                            1 => places_of[p].id.clone(),
+                            w => format!("{w}·{}", places_of[p].id),
                         })
                         .collect();
                     if terms.is_empty() {
@@ -146,7 +150,7 @@ impl Emitter<'_> {
                 let moves: Vec<String> = transitions
                     .iter()
                     .map(|&t| {
-                        let tr = &net.net.transitions()[t];
+                        let tr = &net.net.net.transitions()[t];
                         format!(
                             "/// - {}: {} → {}\n",
                             quoted(&tr.id),
@@ -179,7 +183,7 @@ impl Emitter<'_> {
                     table.events, table.state_bits
                 ));
                 stats.push(SupervisorStats {
-                    states: u32::try_from(net.markings).unwrap_or(u32::MAX),
+                    states: u32::try_from(net.net.markings).unwrap_or(u32::MAX),
                     naive_bytes: 0,
                     ..SupervisorStats::of_table(&name, table)
                 });

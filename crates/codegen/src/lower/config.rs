@@ -2,6 +2,7 @@
 //! fixed-size records plus shared pools addressed by spans, laid out in a
 //! fixed order (the spans and the image CRC depend on it).
 
+use super::nets::{NetGroups, NetLayout};
 use crate::error::Error;
 use des::automaton::StateId;
 use executor::program::{self as ex, Config, Index, Span};
@@ -62,6 +63,9 @@ pub struct ConfigPools {
     pub memberships: Vec<ex::Membership>,
     /// Pool of state-map entries.
     pub state_map: Vec<ex::StateMapEntry>,
+    /// The layout of each net, in declaration order: its groups are the
+    /// supervisors after the automata.
+    pub nets: Vec<NetLayout>,
 }
 
 /// Why a project cannot be laid out, before [`ConfigPools::from_project`]
@@ -165,14 +169,16 @@ impl ConfigPools {
     /// image CRC depend on it, and so does which error a project with
     /// several is refused with.
     fn lay_out(project: &Project) -> Result<ConfigPools> {
-        let mut layout = Layout::new(project);
-        let shapes = supervisor_shapes(project)?;
+        let nets: Vec<NetLayout> = project.nets.iter().map(NetLayout::of).collect();
+        let mut layout = Layout::new(project, &nets);
+        let shapes = supervisor_shapes(project, &nets)?;
         let members_of = memberships_by_event(project, &shapes)?;
         let events = layout.events(&members_of)?;
         let outputs = layout.outputs()?;
         let inputs = layout.inputs()?;
         let timers = layout.timers()?;
         let (debounced, debounce_mask) = layout.debounced()?;
+        let shapes_len = shapes.len();
         let supervisors = layout.supervisors(shapes)?;
         let (commands, requested) = layout.commands()?;
 
@@ -180,7 +186,7 @@ impl ConfigPools {
         index(project.outputs.len(), "outputs")?;
         index(project.timers.len(), "timers")?;
         index(project.events.len(), "events")?;
-        index(project.executor_supervisors(), "supervisors")?;
+        index(shapes_len, "supervisors")?;
         Ok(ConfigPools {
             name: project.name.clone(),
             scan_period_ms: project.scan_period_ms,
@@ -209,6 +215,7 @@ impl ConfigPools {
             actions: layout.actions,
             memberships: layout.memberships,
             state_map: layout.state_map,
+            nets,
         })
     }
 
@@ -258,7 +265,7 @@ struct SupervisorShape {
 
 /// Every executor supervisor of `project`: the automata, then the net
 /// groups, whose local events are the transitions touching the group.
-fn supervisor_shapes(project: &Project) -> Result<Vec<SupervisorShape>> {
+fn supervisor_shapes(project: &Project, nets: &[NetLayout]) -> Result<Vec<SupervisorShape>> {
     let mut shapes = Vec::new();
     for s in &project.supervisors {
         let initial = s.automaton.initial();
@@ -269,12 +276,13 @@ fn supervisor_shapes(project: &Project) -> Result<Vec<SupervisorShape>> {
             alphabet: s.local_events.iter().map(|&(e, _)| e).collect(),
         });
     }
-    for net in &project.nets {
-        for g in 0..net.groups() {
-            let transitions = net.group_transitions(g);
+    for (net, layout) in project.nets.iter().zip(nets) {
+        let groups = NetGroups { net, layout };
+        for g in 0..layout.groups() {
+            let transitions = groups.group_transitions(g);
             shapes.push(SupervisorShape {
-                states: 1 << net.group_bits[g],
-                initial: net.pack(g, net.net.initial()),
+                states: 1 << layout.group_bits[g],
+                initial: layout.pack(g, net.net.initial()),
                 alphabet: transitions.iter().map(|&t| net.events[t]).collect(),
             });
         }
@@ -329,6 +337,8 @@ fn state_entries(entries: &[(usize, Vec<StateId>)]) -> Result<Vec<ex::StateMapEn
 /// a time by [`ConfigPools::lay_out`].
 struct Layout<'p> {
     project: &'p Project,
+    /// Each net's layout.
+    nets: &'p [NetLayout],
     input_masks: MaskPool,
     event_masks: MaskPool,
     event_lists: Vec<Index>,
@@ -339,9 +349,10 @@ struct Layout<'p> {
 
 impl<'p> Layout<'p> {
     /// Empty pools for `project`.
-    fn new(project: &'p Project) -> Layout<'p> {
+    fn new(project: &'p Project, nets: &'p [NetLayout]) -> Layout<'p> {
         Layout {
             project,
+            nets,
             input_masks: MaskPool::new(("input masks", "input words"), project.inputs.len()),
             event_masks: MaskPool::new(("event masks", "event words"), project.events.len()),
             event_lists: Vec::new(),
@@ -410,9 +421,12 @@ impl<'p> Layout<'p> {
         let mut list = Vec::new();
         for &(n, ref places) in entries {
             let net = &self.project.nets[n];
+            // Net `n`'s groups follow the automata and the groups before it.
+            let first = self.project.supervisors.len()
+                + self.nets[..n].iter().map(NetLayout::groups).sum::<usize>();
             for &p in places {
-                let field = net.fields[p];
-                let j = self.project.group_supervisor(n, field.group);
+                let field = self.nets[n].fields[p];
+                let j = first + field.group;
                 for count in 1..=net.bounds[p].max(1) {
                     let supervisor = index(j, "supervisors")?;
                     list.push(ex::StateMapEntry::marked(supervisor, field.mask(), count));

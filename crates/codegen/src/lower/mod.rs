@@ -15,6 +15,9 @@
 //! [`Program`].
 //!
 //! - [`config`]: the configuration pools ([`ConfigPools`]);
+//! - [`nets`]: Petri nets' counters packed into executor supervisors
+//!   ([`NetLayout`]);
+//! - [`supervisors`]: the executor's supervisors, named ([`Supervisors`]);
 //! - `table`, `logic`, `matches`: each backend's lowered supervisors;
 //! - `figures`: the image check's and the scan sets' figures.
 
@@ -22,12 +25,16 @@ pub mod config;
 mod figures;
 mod logic;
 mod matches;
+pub mod nets;
+pub mod supervisors;
 mod table;
 
 pub use config::ConfigPools;
 pub use figures::{ImageCheck, ScanSets};
 pub use logic::LogicImage;
 pub use matches::MatchImage;
+pub use nets::{NetGroups, NetLayout, PlaceField};
+pub use supervisors::Supervisors;
 pub use table::TableImage;
 
 use crate::backend::Backend;
@@ -95,6 +102,11 @@ impl Lowered {
             Lowered::Logic(l) => &l.pools,
             Lowered::Match(m) => &m.pools,
         }
+    }
+
+    /// Its supervisors, named; `project` is the one it was lowered from.
+    pub fn supervisors<'a>(&'a self, project: &'a Project) -> Supervisors<'a> {
+        Supervisors::new(project, &self.pools().nets)
     }
 
     /// The image's size and the background check's figures.

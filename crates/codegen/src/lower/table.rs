@@ -2,6 +2,7 @@
 //! a Petri net) as a bit-packed table, under the image CRC.
 
 use super::config::ConfigPools;
+use super::nets::NetGroups;
 use crate::backend::table::EncodedTable;
 use crate::error::Result;
 use executor::image::table_image_crc;
@@ -28,12 +29,13 @@ impl TableImage {
             .supervisors
             .iter()
             .map(encode_supervisor)
-            .chain(
-                project
-                    .nets
-                    .iter()
-                    .flat_map(|net| (0..net.groups()).map(|g| EncodedTable::encode_net(net, g))),
-            )
+            .chain((0..project.nets.len()).flat_map(|n| {
+                let net = NetGroups {
+                    net: &project.nets[n],
+                    layout: &pools.nets[n],
+                };
+                (0..net.groups()).map(move |g| net.encode(g))
+            }))
             .collect();
         let views: Vec<SupervisorTable<'_>> = tables.iter().map(EncodedTable::view).collect();
         let crc = table_image_crc(&pools.config(), &views);

@@ -2,7 +2,7 @@
 //! of every scan against the source automata.
 
 use crate::reference::{
-    initial_states, pack_marking, transition_of, unpack_marking, Record, Reference,
+    groups_of, initial_states, pack_marking, transition_of, unpack_marking, Record, Reference,
 };
 use codegen::lower::{LogicImage, TableImage};
 use des::automaton::StateId;
@@ -128,7 +128,7 @@ pub(crate) fn replay(
         }
         let mut first = project.supervisors.len();
         for net in &project.nets {
-            let groups = first..first + net.groups();
+            let groups = first..first + groups_of(net);
             first = groups.end;
             let Some(t) = transition_of(net, e) else {
                 continue;

@@ -8,7 +8,7 @@ use des::automaton::{EventId, StateId};
 use des::AutomatonBuilder;
 use plc_project::{
     Action, Drive, Event, Input, Net, NetSource, Origin, Output, Project, Supervisor,
-    SupervisorSource, Timer, Trigger, Unexpected,
+    SupervisorSource, Timer, Trigger, Unexpected, COUNTER_BITS,
 };
 use proptest::collection::vec;
 use proptest::prelude::*;
@@ -616,7 +616,12 @@ pub(crate) fn add_random_nets(project: &mut Project, seed: u64) {
         }
         let net = b.build();
         let bounds = reach::reachability(&net, 100_000).expect("bounded").bounds;
-        let (fields, group_bits) = Net::pack_fields(&net, &bounds).expect("counters fit");
+        assert!(
+            Net::counter_widths(&net, &bounds)
+                .iter()
+                .all(|&w| w <= COUNTER_BITS),
+            "counters fit"
+        );
         let n = project.nets.len();
         let mapped: Vec<usize> = (0..1 + next(2)).map(|_| next(places)).collect();
         project.outputs.push(Output {
@@ -628,9 +633,7 @@ pub(crate) fn add_random_nets(project: &mut Project, seed: u64) {
         project.nets.push(Net {
             name: format!("n{k}"),
             events,
-            fields,
             bounds,
-            group_bits,
             markings: 0,
             control_places: 0,
             source: NetSource::File("random.net.toml".into()),

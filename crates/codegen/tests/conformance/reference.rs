@@ -388,20 +388,55 @@ pub(crate) fn transition_of(net: &Net, e: usize) -> Option<usize> {
     net.events.iter().position(|&g| g == e)
 }
 
+/// A place's counter in the reference's own reading of the net layout.
+struct Counter {
+    group: usize,
+    shift: u32,
+    width: u32,
+}
+
+/// `net`'s counters laid out as docs/formats.md says ("[[net]]"): in place
+/// order, each as wide as the place needs ([`Net::widths`]), a new group
+/// whenever the next counter would take a group past 31 bits. Written here
+/// again, not taken from lowering, so that the tests check its packing.
+fn counters(net: &Net) -> Vec<Counter> {
+    let mut counters: Vec<Counter> = Vec::new();
+    let (mut group, mut used) = (0, 0);
+    for width in net.widths() {
+        if used > 0 && used + width > 31 {
+            group += 1;
+            used = 0;
+        }
+        counters.push(Counter {
+            group,
+            shift: used,
+            width,
+        });
+        used += width;
+    }
+    counters
+}
+
+/// The number of groups (executor supervisors) of `net`.
+pub(crate) fn groups_of(net: &Net) -> usize {
+    counters(net).last().map_or(0, |c| c.group + 1)
+}
+
 /// `marking` as the states of `net`'s groups: each place's count at its
 /// counter's shift (docs/formats.md, "[[net]]").
 pub(crate) fn pack_marking(net: &Net, marking: &[u32]) -> Vec<u32> {
-    let mut groups = vec![0u32; net.groups()];
-    for (p, field) in net.fields.iter().enumerate() {
-        groups[field.group] |= marking[p] << field.shift;
+    let counters = counters(net);
+    let mut groups = vec![0u32; groups_of(net)];
+    for (p, c) in counters.iter().enumerate() {
+        groups[c.group] |= marking[p] << c.shift;
     }
     groups
 }
 
 /// The marking of `net` from its groups' states.
 pub(crate) fn unpack_marking(net: &Net, groups: &[u32]) -> Vec<u32> {
-    net.fields
+    counters(net)
         .iter()
-        .map(|f| (groups[f.group] >> f.shift) & ((1 << f.width) - 1))
+        .map(|c| (groups[c.group] >> c.shift) & ((1 << c.width) - 1))
         .collect()
 }

@@ -130,7 +130,7 @@ impl BoilerController for Plc<'_> {
     }
 
     fn debounce(&self) -> [u8; Input::ALL.len()] {
-        self.io.debounce()
+        self.io.debounce(&self.sim().config())
     }
 
     fn scan(&mut self, inputs: &Inputs) -> Result<ControllerScan, BoilerError> {

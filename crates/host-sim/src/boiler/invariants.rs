@@ -71,6 +71,7 @@ use super::error::BoilerError;
 use super::signals::{Input, Inputs, IoMap, Output, Outputs};
 use crate::inputs::InputRow;
 use crate::trace::TraceRow;
+use executor::program::Config;
 use plc_project::Project;
 use std::fmt;
 
@@ -283,14 +284,16 @@ impl Checker {
         }
     }
 
-    /// A checker for raw rows of `project` (its boiler signals found by
-    /// name, its debouncing replayed).
+    /// A checker for raw rows of `project` lowered as `config` (its
+    /// boiler signals found by name, its debouncing replayed as `config`
+    /// has it).
     pub fn for_project(
         project: &Project,
+        config: &Config<'_>,
         rules: Invariants,
     ) -> Result<ProjectChecker, BoilerError> {
         let io = IoMap::new(project)?;
-        let checker = Checker::with_debounce(rules, io.debounce());
+        let checker = Checker::with_debounce(rules, io.debounce(config));
         Ok(ProjectChecker { io, checker })
     }
 
@@ -664,24 +667,26 @@ impl ProjectChecker {
 }
 
 /// The violations in rows of `(time_ms, raw inputs, raw outputs)` of
-/// `project`, a controller that never leaves fault mode in them (rows
-/// with fault causes: [`check_replay`]).
+/// `project` lowered as `config`, a controller that never leaves fault
+/// mode in them (rows with fault causes: [`check_replay`]).
 pub fn check_rows<'r>(
     project: &Project,
+    config: &Config<'_>,
     rules: Invariants,
     rows: impl IntoIterator<Item = (u64, &'r [bool], &'r [bool])>,
 ) -> Result<Vec<Violation>, BoilerError> {
-    let mut checker = Checker::for_project(project, rules)?;
+    let mut checker = Checker::for_project(project, config, rules)?;
     for (time_ms, inputs, outputs) in rows {
         checker.observe(time_ms, inputs, outputs)?;
     }
     Ok(checker.finish())
 }
 
-/// The violations in a replay of `project`: the input rows and the trace
-/// they produced, scan by scan.
+/// The violations in a replay of `project` lowered as `config`: the
+/// input rows and the trace they produced, scan by scan.
 pub fn check_replay(
     project: &Project,
+    config: &Config<'_>,
     rules: Invariants,
     inputs: &[InputRow],
     trace: &[TraceRow],
@@ -692,7 +697,7 @@ pub fn check_replay(
             trace: trace.len(),
         });
     }
-    let mut checker = Checker::for_project(project, rules)?;
+    let mut checker = Checker::for_project(project, config, rules)?;
     let mut faulted = false;
     for (i, t) in inputs.iter().zip(trace) {
         if faulted && t.fault.is_none() {

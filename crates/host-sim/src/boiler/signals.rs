@@ -6,6 +6,7 @@
 //! them. Other inputs and outputs of the project are left alone.
 
 use super::error::BoilerError;
+use executor::program::Config;
 use plc_project::Project;
 
 /// One of the boiler's PLC inputs.
@@ -271,7 +272,6 @@ impl Outputs {
 pub struct IoMap {
     inputs: [usize; Input::ALL.len()],
     outputs: [usize; Output::ALL.len()],
-    debounce: [u8; Input::ALL.len()],
     input_count: usize,
     output_count: usize,
 }
@@ -282,13 +282,9 @@ impl IoMap {
     pub fn new(project: &Project) -> Result<IoMap, BoilerError> {
         let mut missing = Vec::new();
         let mut inputs = [0; Input::ALL.len()];
-        let mut debounce = [0; Input::ALL.len()];
         for input in Input::ALL {
             match project.input(input.name()) {
-                Some(i) => {
-                    inputs[input.index()] = i;
-                    debounce[input.index()] = project.inputs[i].debounce_scans;
-                }
+                Some(i) => inputs[input.index()] = i,
                 None => missing.push(format!("input `{}`", input.name())),
             }
         }
@@ -308,7 +304,6 @@ impl IoMap {
         Ok(IoMap {
             inputs,
             outputs,
-            debounce,
             input_count: project.inputs.len(),
             output_count: project.outputs.len(),
         })
@@ -324,10 +319,15 @@ impl IoMap {
         self.outputs[output as usize]
     }
 
-    /// The project's `debounce_scans` of every boiler input, by
-    /// [`Input::index`].
-    pub fn debounce(&self) -> [u8; Input::ALL.len()] {
-        self.debounce
+    /// The `debounce_scans` of every boiler input in `config` (the
+    /// lowered configuration of the project), by [`Input::index`].
+    pub fn debounce(&self, config: &Config<'_>) -> [u8; Input::ALL.len()] {
+        Input::ALL.map(|input| {
+            config
+                .inputs
+                .get(self.input(input))
+                .map_or(0, |spec| spec.debounce_scans)
+        })
     }
 
     /// The boiler inputs in a raw image of the project.

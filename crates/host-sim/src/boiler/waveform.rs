@@ -17,14 +17,16 @@ use super::error::BoilerError;
 use super::record::Run;
 use super::signals::{Input, IoMap, Output};
 use crate::vcd::{write_scans, Quantity, Samples, Scan};
-use plc_project::Project;
+use codegen::lower::Supervisors;
 use std::io::Write;
 use vcd::Value;
 
-/// Writes the VCD of `run`, a run of `project`, to `out`. The project's
-/// inputs and outputs other than the boiler's, which a run neither drives
-/// nor records, are `x`.
-pub fn write(out: impl Write, project: &Project, run: &Run) -> Result<(), BoilerError> {
+/// Writes the VCD of `run`, a run of the project whose lowered program
+/// has `supervisors` ([`crate::Sim::supervisors`]), to `out`. The
+/// project's inputs and outputs other than the boiler's, which a run
+/// neither drives nor records, are `x`.
+pub fn write(out: impl Write, supervisors: Supervisors<'_>, run: &Run) -> Result<(), BoilerError> {
+    let project = supervisors.project();
     let io = IoMap::new(project)?;
     let scans: Vec<Scan<'_>> = run
         .rows
@@ -81,7 +83,7 @@ pub fn write(out: impl Write, project: &Project, run: &Run) -> Result<(), Boiler
             samples: Samples::Text(run.rows.iter().map(|r| r.plant.selector.name()).collect()),
         },
     ];
-    write_scans(out, project, &scans, &plant)?;
+    write_scans(out, supervisors, &scans, &plant)?;
     Ok(())
 }
 

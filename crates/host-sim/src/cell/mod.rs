@@ -129,13 +129,12 @@ impl Watch {
     /// unpacked, or the state of its one automaton read as a marking
     /// name (`ma1+mb2`, `2·p`).
     pub fn marking(&self, sim: &Sim) -> Result<Vec<u32>, CellError> {
-        let project = sim.project();
+        let supervisors = sim.supervisors();
         let states = sim.controller().states();
-        if let Some(net) = project.nets.first() {
-            let first = project.group_supervisor(0, 0);
-            return Ok(net.unpack(&states[first..first + net.groups()]));
+        if let Some(layout) = sim.nets().first() {
+            return Ok(layout.unpack(&states[supervisors.net_supervisors(0)]));
         }
-        let name = project.state_name(0, states[0]);
+        let name = supervisors.state_name(0, states[0]);
         let mut marking = vec![0; self.net.places().len()];
         for term in name.split('+').map(str::trim).filter(|t| *t != "0") {
             let (count, id) = match term.split_once('·') {

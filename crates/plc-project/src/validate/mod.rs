@@ -60,6 +60,7 @@ pub(crate) fn validate(raw: RawProject, sources: Sources, file: &ProjectFile) ->
         file,
         warnings: Vec::new(),
         namespace: HashMap::new(),
+        groups: Vec::new(),
         claimed: HashMap::new(),
     };
     v.project(raw, sources)
@@ -101,6 +102,8 @@ struct Validator<'a> {
     warnings: Vec<Warning>,
     /// Every identifier claimed so far (see [`names`]).
     namespace: HashMap<String, names::Claim>,
+    /// The group names each net claimed so far reserves (see [`names`]).
+    groups: Vec<names::Claim>,
     /// Names claimed so far, by kind.
     claimed: HashMap<&'static str, usize>,
 }

@@ -14,6 +14,12 @@
 //! identifier, no two collide, and none may sanitise to `OFF`, the
 //! implicit position. State names and the project name are not
 //! identifiers (the emitter writes them as escaped string literals).
+//!
+//! A net `name` also reserves the names of its groups, `name.1`, `name.2`,
+//! … (identifiers `NAME_1`, `NAME_2`, …): lowering packs a net into as
+//! many executor supervisors as its counters need, each named so when
+//! there is more than one, so every such name is kept free whatever the
+//! count.
 
 use super::super::ident::sanitize;
 use super::super::parse::Name;
@@ -30,7 +36,7 @@ pub(crate) const RESERVED: &[&str] = &["COUNT", "NAMES"];
 /// indices are 16 bits.
 pub(crate) const MAX_PER_KIND: usize = u16::MAX as usize;
 
-/// A name declared in the shared namespace.
+/// A name declared in the shared namespace (or a net's, for its groups).
 pub(super) struct Claim {
     kind: &'static str,
     name: String,
@@ -63,6 +69,35 @@ impl Validator<'_> {
                 ),
             ));
         }
+        if let Some(net) = self
+            .groups
+            .iter()
+            .find(|net| is_group_of(&ident, &net.name))
+        {
+            return Err(self.error(
+                span,
+                format!(
+                    "{kind} name `{name}` becomes the identifier `{ident}`, which net `{n}` (line {}) reserves for its groups (`{n}.1`, `{n}.2`, …); rename one",
+                    net.line,
+                    n = net.name
+                ),
+            ));
+        }
+        if kind == "net" {
+            if let Some(c) = self
+                .namespace
+                .iter()
+                .find_map(|(id, c)| is_group_of(id, name).then_some(c))
+            {
+                return Err(self.error(
+                    span,
+                    format!(
+                        "net `{name}` reserves `{name}.1`, `{name}.2`, … for its groups, and {} `{}` (line {}) becomes one of their identifiers; rename one",
+                        c.kind, c.name, c.line
+                    ),
+                ));
+            }
+        }
         if let Some(c) = self.namespace.get(&ident) {
             let message = if c.name == name && c.kind == kind {
                 format!(
@@ -93,6 +128,13 @@ impl Validator<'_> {
             ));
         }
         let line = self.line(span);
+        if kind == "net" {
+            self.groups.push(Claim {
+                kind,
+                name: name.to_owned(),
+                line,
+            });
+        }
         self.namespace.insert(
             ident,
             Claim {
@@ -143,6 +185,20 @@ impl Validator<'_> {
     }
 }
 
+/// Whether `ident` is the identifier of a group of net `net`
+/// (`net.1`, `net.2`, …: `NET_1`, `NET_2`, …).
+fn is_group_of(ident: &str, net: &str) -> bool {
+    let Some(net) = sanitize(net) else {
+        return false;
+    };
+    ident
+        .strip_prefix(net.as_str())
+        .and_then(|rest| rest.strip_prefix('_'))
+        .is_some_and(|k| {
+            !k.is_empty() && !k.starts_with('0') && k.bytes().all(|b| b.is_ascii_digit())
+        })
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::testing::{load, HEAD};
@@ -158,5 +214,18 @@ mod tests {
             err.starts_with("dir/p.plc.toml:6:1: switch `VALVE` and output `valve` (line 4)"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn a_net_reserves_its_group_names() {
+        use super::is_group_of;
+        assert!(is_group_of("CELL_1", "cell"));
+        assert!(is_group_of("CELL_12", "cell"));
+        assert!(!is_group_of("CELL_0", "cell"));
+        assert!(!is_group_of("CELL_01", "cell"));
+        assert!(!is_group_of("CELL_", "cell"));
+        assert!(!is_group_of("CELL", "cell"));
+        assert!(!is_group_of("CELL_1A", "cell"));
+        assert!(is_group_of("_2ND_NET_3", "2nd net"));
     }
 }

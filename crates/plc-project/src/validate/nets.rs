@@ -2,19 +2,20 @@
 //! read, synthesised and explored before validation:
 //! [`super::super::sources`]).
 //!
-//! - A net's `name` joins the shared namespace ([`super::names`]), and so
-//!   does each group's name (`name.1`, `name.2`, …) when the net needs
-//!   more than one group.
+//! - A net's `name` joins the shared namespace ([`super::names`]) and
+//!   reserves the names of its groups, `name.1`, `name.2`, … (lowering
+//!   packs a net into as many groups as its counters need, so every such
+//!   name is kept free, whatever the count).
 //! - Every transition is the project event of the same name: declared in
 //!   `[events]`, controllable exactly when the transition is, and
 //!   observable (the controller fires only what it sees).
 //! - Each place becomes a counter wide enough for its bound (at least one
-//!   bit); counters are packed in place order into groups of at most 31
-//!   bits, each group one supervisor of the executor.
+//!   bit, at most [`COUNTER_BITS`]); lowering packs the counters into
+//!   executor supervisors.
 //! - A controlled net with dead markings is accepted with a warning that
 //!   names a firing sequence into one (a batch plant may end on purpose).
 
-use super::super::model::{Event, Net, NetSource, GROUP_BITS};
+use super::super::model::{Event, Net, NetSource, COUNTER_BITS};
 use super::super::parse::RawNet;
 use super::super::sources::LoadedNet;
 use super::{Declared, Validator};
@@ -97,29 +98,21 @@ impl Validator<'_> {
             transition_events.push(g);
         }
 
-        // Counters, packed in place order.
-        let (fields, group_bits) = Net::pack_fields(&net, &reach.bounds).map_err(|p| {
-            self.error(
+        // Counters: each must fit the executor's word.
+        let widths = Net::counter_widths(&net, &reach.bounds);
+        if let Some(p) = widths.iter().position(|&w| w > COUNTER_BITS) {
+            return Err(self.error(
                 &header,
                 format!(
                     "place `{}` of {described} holds up to {} tokens or has an arc that heavy: a counter holds at most {}",
                     net.places()[p].id,
                     reach.bounds[p],
-                    (1u64 << GROUP_BITS) - 1
+                    (1u64 << COUNTER_BITS) - 1
                 ),
-            )
-        })?;
+            ));
+        }
         if net.places().is_empty() {
             return Err(self.error(&header, format!("{described} has no places")));
-        }
-        if group_bits.len() > 1 {
-            for g in 0..group_bits.len() {
-                self.claim(
-                    "net",
-                    &format!("{name}.{}", g + 1),
-                    &raw.get_ref().name.span(),
-                )?;
-            }
         }
 
         if let Some(&dead) = reach.dead.first() {
@@ -146,9 +139,7 @@ impl Validator<'_> {
         Ok(Net {
             name,
             events: transition_events,
-            fields,
             bounds: reach.bounds,
-            group_bits,
             markings: reach.markings.len(),
             control_places,
             net,
