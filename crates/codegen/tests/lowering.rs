@@ -104,3 +104,27 @@ fn a_match_program_has_no_table_in_its_image() {
         }
     }
 }
+
+/// Lowering copies the declared timing unchanged: the scan period, each
+/// input's debounce scans and each timer's preset. The IEC exporter, a
+/// backend of its own that cannot use `codegen`, reads these from the
+/// project; this test is what keeps that equal to reading them from the
+/// lowered configuration (and the ST lockstep tests run both scan by scan).
+#[test]
+fn lowering_keeps_the_declared_timing_as_the_iec_exporter_reads_it() {
+    let mut timed = 0;
+    for (name, _) in PROJECTS {
+        let project = plc_project::load(&model(name)).unwrap();
+        let lowered = Lowered::new(&project, Backend::Table, &()).unwrap();
+        let config = lowered.config();
+        assert_eq!(config.scan_period_ms, project.scan_period_ms, "{name}");
+        let debounce: Vec<u8> = config.inputs.iter().map(|i| i.debounce_scans).collect();
+        let declared: Vec<u8> = project.inputs.iter().map(|i| i.debounce_scans).collect();
+        assert_eq!(debounce, declared, "{name}: debounce scans");
+        let presets: Vec<u32> = config.timers.iter().map(|t| t.preset_ms).collect();
+        let declared: Vec<u32> = project.timers.iter().map(|t| t.preset_ms).collect();
+        assert_eq!(presets, declared, "{name}: timer presets");
+        timed += presets.len() + debounce.iter().filter(|&&d| d >= 2).count();
+    }
+    assert!(timed > 0, "some project declares timers or debouncing");
+}
