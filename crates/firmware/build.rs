@@ -68,13 +68,21 @@ fn main() {
         );
         std::process::exit(1);
     }
-    if board && bare_metal {
-        require_board(&root.join(&project), &project);
-    }
-    codegen::build::Build::new(root.join(&project))
+    let build = codegen::build::Build::new(root.join(&project))
         .backend(backend)
-        .file_name("program")
-        .generate_or_exit();
+        .file_name("program");
+    let build = if board && bare_metal {
+        build.require_board()
+    } else {
+        build
+    };
+    if let Err(e) = build.generate() {
+        eprintln!("error: {e}");
+        if matches!(e, codegen::Error::NoBoard { .. }) {
+            eprintln!("note: the QEMU harness builds with --no-default-features --features qemu");
+        }
+        std::process::exit(1);
+    }
 
     // The root memory.x (found first by the linker) includes plc-layout.x.
     let layout = manifest.join(if qemu {
@@ -101,19 +109,5 @@ fn main() {
             std::process::exit(1);
         };
         copy(&root.join(scenario), &out.join("scenario.bin"));
-    }
-}
-
-/// Exits with a readable error when the project at `path` (named `name`
-/// on the command line) has no `[board]` section: the board firmware
-/// needs its pin map (validation errors are left to the generation).
-fn require_board(path: &Path, name: &str) {
-    if let Ok(project) = plc_project::load(path) {
-        if project.board.is_none() {
-            eprintln!(
-                "error: {name} has no [board] section: the board firmware needs the pin of each signal (see docs/board.md); the QEMU harness builds with --no-default-features --features qemu"
-            );
-            std::process::exit(1);
-        }
     }
 }

@@ -156,7 +156,7 @@ const LAYERS: &[Layer] = &[
         name: "firmware",
         stage: Stage::Top,
         normal: &["boards", "executor"],
-        build: &["codegen", "plc-project"],
+        build: &["codegen"],
         dev: &[],
     },
     Layer {

@@ -81,6 +81,7 @@ pub struct Build {
     backend: Backend,
     out_dir: Option<PathBuf>,
     file_name: Option<String>,
+    require_board: bool,
 }
 
 /// The default output name of a project file: its file name up to the
@@ -107,6 +108,7 @@ impl Build {
             backend: Backend::Table,
             out_dir: None,
             file_name: None,
+            require_board: false,
         }
     }
 
@@ -128,6 +130,13 @@ impl Build {
         self
     }
 
+    /// Refuses a project without a `[board]` section ([`Error::NoBoard`]):
+    /// a board firmware needs the pin of each signal.
+    pub fn require_board(mut self) -> Build {
+        self.require_board = true;
+        self
+    }
+
     /// Loads, validates and generates; writes the file only when its
     /// content changed (keeps incremental builds incremental). Returns the
     /// path written and the generation figures.
@@ -139,6 +148,11 @@ impl Build {
                 .ok_or(Error::NoOutDir)?,
         };
         let project = project::load(&self.project)?;
+        if self.require_board && project.board.is_none() {
+            return Err(Error::NoBoard {
+                project: self.project,
+            });
+        }
         // Every line is checked before any is printed: a refused path
         // fails the build without half its directives.
         let rerun = rerun_lines(&self.project, &project.files)?;

@@ -128,6 +128,16 @@ pub enum Error {
         /// The parser's complaint.
         source: syn::Error,
     },
+    /// A build that needs a pin map ([`crate::build::Build::require_board`])
+    /// of a project without a `[board]` section.
+    #[error(
+        "{}: no [board] section: the board firmware needs the pin of each signal (see docs/board.md)",
+        project.display()
+    )]
+    NoBoard {
+        /// The project file.
+        project: PathBuf,
+    },
 }
 
 /// Result with generation's [`Error`].

@@ -110,3 +110,34 @@ fn an_invalid_project_is_the_front_ends_error_unchanged() {
     );
     assert!(!dir.path().join("broken.rs").exists());
 }
+
+#[test]
+fn a_board_build_refuses_a_project_without_a_pin_map_and_writes_nothing() {
+    let out = tempfile::tempdir().unwrap();
+    let fixture =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project/press.plc.toml");
+    let err = Build::new(&fixture)
+        .out_dir(out.path())
+        .require_board()
+        .generate()
+        .unwrap_err();
+    assert!(
+        matches!(&err, Error::NoBoard { project } if *project == fixture),
+        "{err:?}"
+    );
+    assert_eq!(
+        err.to_string(),
+        format!(
+            "{}: no [board] section: the board firmware needs the pin of each signal (see docs/board.md)",
+            fixture.display()
+        )
+    );
+    assert!(!out.path().join("press.rs").exists());
+    // The seed press has its pin map.
+    let (written, _) = Build::new(model("press.plc.toml"))
+        .out_dir(out.path())
+        .require_board()
+        .generate()
+        .unwrap();
+    assert!(written.exists());
+}

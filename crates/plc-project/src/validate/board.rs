@@ -85,12 +85,7 @@ impl Validator<'_> {
         let Some(mcu) = boards::chip_of(chip) else {
             // Only a chip the project names can be unsupported.
             let span = decl.chip.as_ref().map_or(header.clone(), |c| c.span());
-            return Err(self.error(
-                &span,
-                format!(
-                    "chip `{chip}` is not supported: the board firmware is written for the STM32F411 (probe-rs names such as `STM32F411RETx`, the Nucleo-F411RE's, or `STM32F411CEUx`)"
-                ),
-            ));
+            return Err(self.error(&span, unsupported_chip(chip)));
         };
         let chip = chip.to_owned();
         let package = mcu.package(&chip);
@@ -340,4 +335,20 @@ impl Validator<'_> {
         );
         Ok(())
     }
+}
+
+/// Why `chip` is refused: the chip lines the board data has
+/// ([`boards::CHIPS`]) and, as examples, the part of each development board
+/// ([`boards::DEV_BOARDS`]).
+fn unsupported_chip(chip: &str) -> String {
+    let lines: Vec<String> = boards::CHIPS.iter().map(|c| c.name.to_owned()).collect();
+    let examples: Vec<String> = boards::DEV_BOARDS
+        .iter()
+        .map(|b| format!("`{}`, the {}'s", b.part, b.name))
+        .collect();
+    format!(
+        "chip `{chip}` is not supported: the board firmware is written for the {} (probe-rs part names that start so, such as {})",
+        lines.join(", the "),
+        examples.join("; ")
+    )
 }
