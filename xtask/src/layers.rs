@@ -6,6 +6,7 @@
 //! | stage | crates | may use (normal and build dependencies) |
 //! |---|---|---|
 //! | core | `des`, `executor`, `iec-st` | no workspace crate |
+//! | core on des | `des-symbolic` (symbolic synthesis) | `des` only |
 //! | front end | `plc-project` | core |
 //! | backends | `codegen` (lowering, backends, emission, build-script API), `iec-export` | core and the front end; never each other |
 //! | on top | `codegen-cli` (the `codegen` binary), `host-sim`, `firmware` | anything below |
@@ -52,6 +53,10 @@ use std::path::{Path, PathBuf};
 enum Stage {
     /// Automata and the scan cycle, and the ST interpreter (a test tool).
     Core,
+    /// Libraries of the core stage built on the automaton model (`des`):
+    /// core crates use no workspace crate, so these stand one step above
+    /// them and below everything that reads projects.
+    CoreOnDes,
     /// Reading and validating PLC projects.
     FrontEnd,
     /// Turning a validated project into something else (Rust, IEC).
@@ -66,6 +71,7 @@ impl Stage {
     fn name(self) -> &'static str {
         match self {
             Stage::Core => "core",
+            Stage::CoreOnDes => "core on des",
             Stage::FrontEnd => "front end",
             Stage::Backend => "backend",
             Stage::Top => "top",
@@ -114,6 +120,13 @@ const LAYERS: &[Layer] = &[
         name: "iec-st",
         stage: Stage::Core,
         normal: &[],
+        build: &[],
+        dev: &[],
+    },
+    Layer {
+        name: "des-symbolic",
+        stage: Stage::CoreOnDes,
+        normal: &["des"],
         build: &[],
         dev: &[],
     },
@@ -406,7 +419,7 @@ fn crate_failures(packages: &[Package], layers: &[Layer]) -> Vec<String> {
             };
             failures.push(format!(
                 "{location}: `{}` ({}) depends on `{}` ({stage}) in {}; there it may use {}. \
-                 Arrows point down the stages (core <- front end <- backends <- top <- \
+                 Arrows point down the stages (core <- core on des <- front end <- backends <- top <- \
                  tooling) and backends never use each other: move what it needs down a \
                  stage instead",
                 p.name,
