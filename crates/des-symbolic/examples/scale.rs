@@ -48,6 +48,13 @@ fn main() -> ExitCode {
         s.guards.len()
     );
     println!("fixpoint rounds    {}", s.fixpoint.rounds);
-    println!("time               {:.3} s", time.as_secs_f64());
+    let t = s.timings;
+    println!(
+        "time               {:.3} s (relations {:.3}, fixpoint {:.3}, guards {:.3})",
+        time.as_secs_f64(),
+        t.model.as_secs_f64(),
+        t.fixpoint.as_secs_f64(),
+        t.guards.as_secs_f64()
+    );
     ExitCode::SUCCESS
 }

@@ -65,6 +65,7 @@ pub use num_bigint::BigUint;
 pub use relation::Model;
 
 use des::{Automaton, StateId};
+use std::time::{Duration, Instant};
 use supcon::Fixpoint;
 
 /// The result of [`synthesize`]: the model, the fixpoint's sets and the
@@ -77,18 +78,40 @@ pub struct Synthesis {
     pub fixpoint: Fixpoint,
     /// One guard per controllable event.
     pub guards: Vec<Guard>,
+    /// Time per phase.
+    pub timings: Timings,
+}
+
+/// How long each phase of [`synthesize`] took.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Timings {
+    /// Building the relations.
+    pub model: Duration,
+    /// Reachability and the fixpoint.
+    pub fixpoint: Duration,
+    /// Computing and simplifying the guards.
+    pub guards: Duration,
 }
 
 /// Synthesises the supremal controllable, nonblocking supervisor of
 /// `plants` ∥ `specs` symbolically.
 pub fn synthesize(plants: &[Automaton], specs: &[Automaton]) -> Result<Synthesis> {
+    let start = Instant::now();
     let model = Model::new(plants, specs)?;
+    let built = Instant::now();
     let fixpoint = supcon::fixpoint(&model);
+    let solved = Instant::now();
     let guards = guards::guards(&model, &fixpoint);
+    let timings = Timings {
+        model: built - start,
+        fixpoint: solved - built,
+        guards: solved.elapsed(),
+    };
     Ok(Synthesis {
         model,
         fixpoint,
         guards,
+        timings,
     })
 }
 
