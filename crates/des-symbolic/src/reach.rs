@@ -27,6 +27,8 @@ pub fn search(
         .filter(|&e| use_event(e))
         .collect();
     let mut reached = start.and(within);
+    // `within` minus `reached`, kept up to date: one conjunction per image.
+    let mut open = within.and_not(&reached);
     let mut frontier = reached.clone();
     while !frontier.is_false() {
         let mut found = model.mk_false();
@@ -35,8 +37,9 @@ pub fn search(
                 Direction::Forward => model.post(&frontier, e),
                 Direction::Backward => model.pre(&frontier, e),
             };
-            let new = step.and(within).and_not(&reached);
+            let new = step.and(&open);
             if !new.is_false() {
+                open = open.and_not(&new);
                 reached = reached.or(&new);
                 found = found.or(&new);
                 frontier = frontier.or(&new);
