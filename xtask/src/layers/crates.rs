@@ -12,6 +12,10 @@ use std::path::{Path, PathBuf};
 pub(super) enum Stage {
     /// Automata and the scan cycle, and the ST interpreter (a test tool).
     Core,
+    /// Libraries of the core stage built on the automaton model (`des`):
+    /// core crates use no workspace crate, so these stand one step above
+    /// them and below everything that reads projects.
+    CoreOnDes,
     /// Reading and validating PLC projects.
     FrontEnd,
     /// Turning a validated project into something else (Rust, IEC).
@@ -26,6 +30,7 @@ impl Stage {
     pub(super) fn name(self) -> &'static str {
         match self {
             Stage::Core => "core",
+            Stage::CoreOnDes => "core on des",
             Stage::FrontEnd => "front end",
             Stage::Backend => "backend",
             Stage::Top => "top",
@@ -74,6 +79,13 @@ pub(super) const LAYERS: &[Layer] = &[
         name: "iec-st",
         stage: Stage::Core,
         normal: &[],
+        build: &[],
+        dev: &[],
+    },
+    Layer {
+        name: "des-symbolic",
+        stage: Stage::CoreOnDes,
+        normal: &["des"],
         build: &[],
         dev: &[],
     },
@@ -366,7 +378,7 @@ pub(super) fn crate_failures(packages: &[Package], layers: &[Layer]) -> Vec<Stri
             };
             failures.push(format!(
                 "{location}: `{}` ({}) depends on `{}` ({stage}) in {}; there it may use {}. \
-                 Arrows point down the stages (core <- front end <- backends <- top <- \
+                 Arrows point down the stages (core <- core on des <- front end <- backends <- top <- \
                  tooling) and backends never use each other: move what it needs down a \
                  stage instead",
                 p.name,

@@ -6,6 +6,7 @@
 //! | stage | crates | may use (normal and build dependencies) |
 //! |---|---|---|
 //! | core | `des`, `executor`, `iec-st` | no workspace crate |
+//! | core on des | `des-symbolic` (symbolic synthesis) | `des` only |
 //! | front end | `plc-project` | core |
 //! | backends | `codegen` (lowering, backends, emission, build-script API), `iec-export` | core and the front end; never each other |
 //! | on top | `codegen-cli` (the `codegen` binary), `host-sim`, `firmware` | anything below |
