@@ -1556,3 +1556,79 @@ fn petri_reach_never_merges_two_markings_whose_plain_names_coincide() {
     assert_eq!((a.num_states(), a.num_transitions()), (2, 1));
     assert_eq!(a.state_name(a.initial().unwrap()), "\"a+b\"");
 }
+
+/// `synth --symbolic` writes the small factory's guards; run on plant ∥
+/// specifications, they enable exactly what the explicit supervisor
+/// enables, state by state.
+#[test]
+fn synth_symbolic_writes_guards_that_act_as_the_explicit_supervisor() {
+    use des_symbolic::guard_file::GuardFile;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sf.guards.toml");
+    let (code, report) = synth_small_factory(&out, &["--symbolic"]);
+    assert_eq!(code, 0, "{report}");
+    // Exact counts are decimal strings: they outgrow JSON numbers.
+    assert_eq!(report["supervisor_states"], "12");
+    assert_eq!(report["reachable_states"], "18");
+    assert_eq!(report["components"], 4);
+    assert_eq!(report["guards"].as_array().unwrap().len(), 4);
+    let text = std::fs::read_to_string(&out).unwrap();
+    let file = GuardFile::parse(&text, &out).unwrap();
+    for c in &file.components {
+        let from_guards = dir.path().join(c.file.as_deref().unwrap());
+        assert!(from_guards.exists(), "{}: {from_guards:?}", c.name);
+    }
+
+    let explicit = dir.path().join("sup.gen");
+    let (code, report) = synth_small_factory(&explicit, &[]);
+    assert_eq!(code, 0, "{report}");
+    let sup = read_automaton(&explicit).unwrap();
+    let parts: Vec<des::Automaton> = SMALL_FACTORY_PLANTS
+        .iter()
+        .chain(&SMALL_FACTORY_SPECS)
+        .map(|p| read_automaton(&model(p)).unwrap())
+        .collect();
+    let mut compared = 0;
+    for s in sup.states() {
+        // The explicit supervisor names its states after the components'.
+        let name = sup.state_name(s);
+        let tuple: Vec<u32> = name
+            .split('.')
+            .zip(&parts)
+            .map(|(x, a)| a.state_by_name(x).unwrap().0)
+            .collect();
+        for (_, ev) in sup.alphabet().iter().filter(|(_, e)| e.controllable) {
+            let enabled = parts.iter().zip(&tuple).all(|(a, &x)| {
+                a.alphabet()
+                    .id(&ev.name)
+                    .is_none_or(|e| a.successor(des::StateId(x), e).is_some())
+            });
+            let guarded = enabled && file.allows(&ev.name, &tuple).unwrap();
+            let by_sup = sup
+                .alphabet()
+                .id(&ev.name)
+                .and_then(|e| sup.successor(s, e))
+                .is_some();
+            assert_eq!(guarded, by_sup, "{} in {name}", ev.name);
+            compared += 1;
+        }
+    }
+    assert_eq!(compared, 12 * 4);
+
+    // A guard file is named so; the explicit options do not apply.
+    let (code, report) = synth_small_factory(&dir.path().join("sf.gen"), &["--symbolic"]);
+    assert_eq!(code, 2);
+    assert!(
+        report["error"]
+            .as_str()
+            .unwrap()
+            .contains("name the output `*.guards.toml`"),
+        "{report}"
+    );
+    let mut args = vec!["synth", "--symbolic", "--minstate", "--plant"];
+    args.extend(SMALL_FACTORY_PLANTS);
+    args.extend(["-o", "x.guards.toml"]);
+    let run = run_codegen(&args);
+    assert_eq!(run.code, 2);
+    assert!(run.stderr.contains("--minstate"), "{}", run.stderr);
+}

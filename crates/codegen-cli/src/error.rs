@@ -13,6 +13,10 @@ pub enum CliError {
     /// unchanged.
     #[error(transparent)]
     Codegen(#[from] codegen::Error),
+    /// Symbolic synthesis refused its models: the symbolic layer's error,
+    /// unchanged.
+    #[error(transparent)]
+    Symbolic(#[from] des_symbolic::Error),
     /// A composition or reachability graph reached the bound on states
     /// that the command's `--max-states` sets.
     #[error("{source} (raise it with --max-states)")]

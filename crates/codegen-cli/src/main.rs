@@ -19,6 +19,7 @@ mod output;
 mod petri;
 mod plc;
 mod progress;
+mod symbolic;
 mod synth;
 mod wiring;
 

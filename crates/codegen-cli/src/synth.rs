@@ -16,27 +16,32 @@ use std::time::Instant;
 pub struct SynthArgs {
     /// Plant component files; the plant is their synchronous composition.
     #[arg(long = "plant", required = true, num_args = 1..)]
-    plants: Vec<PathBuf>,
+    pub(crate) plants: Vec<PathBuf>,
     /// Specification files; composed, then extended to the plant alphabet.
     /// Without any, the result is the plant's nonblocking supervisor.
     #[arg(long = "spec", num_args = 1..)]
-    specs: Vec<PathBuf>,
+    pub(crate) specs: Vec<PathBuf>,
     /// Minimise the supervisor's states (language preserved).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "symbolic")]
     minstate: bool,
+    /// Synthesise on BDDs without building the product of plants and
+    /// specifications, and write one guard per controllable event to a
+    /// guard file (`-o NAME.guards.toml`, docs/formats.md).
+    #[arg(long)]
+    symbolic: bool,
     /// Output file; its extension picks the format.
     #[arg(short = 'o', long = "output")]
-    output: PathBuf,
+    pub(crate) output: PathBuf,
     /// Name of the supervisor (default: the output file's stem).
     #[arg(long)]
-    name: Option<String>,
+    pub(crate) name: Option<String>,
     /// Number the states instead of naming them after plant and spec
     /// states (saves memory on very large models).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "symbolic")]
     no_state_names: bool,
     /// Refuse a composition beyond this many states (memory grows with
     /// them: about 100 bytes a state and more with names).
-    #[arg(long, default_value_t = ops::sync::DEFAULT_MAX_STATES)]
+    #[arg(long, default_value_t = ops::sync::DEFAULT_MAX_STATES, conflicts_with = "symbolic")]
     max_states: usize,
 }
 
@@ -58,7 +63,7 @@ struct Report {
 }
 
 /// The process's peak resident set size, from `/proc/self/status`.
-fn peak_rss_kib() -> Option<u64> {
+pub(crate) fn peak_rss_kib() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     line.split_whitespace().nth(1)?.parse().ok()
@@ -93,6 +98,9 @@ fn state_name_key(plants: &[Automaton], specs: &[Automaton]) -> Vec<String> {
 }
 
 pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliError> {
+    if args.symbolic {
+        return super::symbolic::run(args, json, out);
+    }
     let start = Instant::now();
     let mut t = Timings::default();
     let spinner = Spinner::new("loading");

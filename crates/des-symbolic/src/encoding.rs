@@ -107,28 +107,37 @@ impl Layout {
             .map(|a| (a, Role::Plant))
             .chain(specs.iter().map(|a| (a, Role::Spec)))
             .collect();
-        // Events by name: controllability, the component that set it, and
-        // the participants.
-        let mut by_name: BTreeMap<&str, (bool, usize, Vec<usize>)> = BTreeMap::new();
+        // Events by name: controllability and the component that stated
+        // it, and the participants. A component whose file does not state
+        // controllability (a `.gen` specification) takes it from the
+        // others; an event no component states it for is uncontrollable,
+        // as everywhere in `des`.
+        type Entry = (Option<(bool, usize)>, Vec<usize>);
+        let mut by_name: BTreeMap<&str, Entry> = BTreeMap::new();
         for (c, (a, _)) in all.iter().enumerate() {
+            let stated = a.alphabet().controllability_stated();
             for (_, e) in a.alphabet().iter() {
-                let entry =
-                    by_name
-                        .entry(e.name.as_str())
-                        .or_insert((e.controllable, c, Vec::new()));
-                if entry.0 != e.controllable {
-                    let (first, second) = if entry.0 {
-                        (all[entry.1].0.name(), a.name())
-                    } else {
-                        (a.name(), all[entry.1].0.name())
-                    };
-                    return Err(Error::Controllability {
-                        event: e.name.clone(),
-                        first: first.to_owned(),
-                        second: second.to_owned(),
-                    });
+                let entry = by_name.entry(e.name.as_str()).or_default();
+                entry.1.push(c);
+                if !stated {
+                    continue;
                 }
-                entry.2.push(c);
+                match entry.0 {
+                    None => entry.0 = Some((e.controllable, c)),
+                    Some((controllable, by)) if controllable != e.controllable => {
+                        let (first, second) = if controllable {
+                            (all[by].0.name(), a.name())
+                        } else {
+                            (a.name(), all[by].0.name())
+                        };
+                        return Err(Error::Controllability {
+                            event: e.name.clone(),
+                            first: first.to_owned(),
+                            second: second.to_owned(),
+                        });
+                    }
+                    Some(_) => {}
+                }
             }
         }
         for spec in specs {
@@ -144,9 +153,9 @@ impl Layout {
         }
         let events: Vec<EventInfo> = by_name
             .iter()
-            .map(|(name, (c, _, p))| EventInfo {
+            .map(|(name, (stated, p))| EventInfo {
                 name: (*name).to_owned(),
-                controllable: *c,
+                controllable: stated.is_some_and(|(c, _)| c),
                 participants: p.clone(),
             })
             .collect();
@@ -288,5 +297,30 @@ mod tests {
             let span = ps.iter().max().unwrap() - ps.iter().min().unwrap();
             assert!(span <= 4, "{}: {ps:?}", e.name);
         }
+    }
+
+    #[test]
+    fn a_component_that_does_not_state_controllability_takes_the_others() {
+        let one = |name: &str, controllable: bool, stated: bool| {
+            let mut b = des::AutomatonBuilder::new(name);
+            let a = b.add_event("a", controllable).unwrap();
+            let s = b.add_state("s");
+            b.set_initial(s).unwrap();
+            b.mark(s);
+            b.add_transition(s, a, s, 1);
+            b.set_controllability_stated(stated);
+            b.build().unwrap()
+        };
+        let plant = [one("P", true, true)];
+        // A `.gen` specification reads its events as uncontrollable
+        // without saying so: the plant's word stands.
+        let l = Layout::new(&plant, &[one("S", false, false)]).unwrap();
+        assert!(l.events[0].controllable);
+        // Stated on both sides, a disagreement is an error.
+        let err = Layout::new(&plant, &[one("S", false, true)]).unwrap_err();
+        assert!(matches!(err, Error::Controllability { .. }), "{err}");
+        // Stated nowhere: uncontrollable, as everywhere in `des`.
+        let l = Layout::new(&[one("P", true, false)], &[]).unwrap();
+        assert!(!l.events[0].controllable);
     }
 }

@@ -247,13 +247,157 @@ pub fn phil(n: usize) -> Result<Family> {
     })
 }
 
-/// The family named `name` (`ring`, `ringb`, `tline`, `phil`) of size `n`.
+/// One automaton: `events` (name, controllable), `(source, event, target)`
+/// transitions by state name, the initial state first among `states`, the
+/// marked states.
+fn automaton_with_states(
+    name: &str,
+    events: &[(&str, bool)],
+    states: &[&str],
+    transitions: &[(&str, &str, &str)],
+    marked: &[&str],
+) -> Result<Automaton> {
+    let mut b = AutomatonBuilder::new(name);
+    for &(e, c) in events {
+        b.add_event(e, c)?;
+    }
+    for s in states {
+        b.add_state(s);
+    }
+    b.set_initial_by_name(states[0])?;
+    for &(s, e, t) in transitions {
+        b.add_transition_by_name(s, e, t, 0)?;
+    }
+    for m in marked {
+        b.mark_by_name(m);
+    }
+    Ok(b.build()?)
+}
+
+/// A Prenzel–Provost-class module (seed 004, docs/seeds.md): `n` conveyor
+/// stations in a loop (the last hands over to the first), each one light sensor (an input: rising and falling
+/// edges, uncontrollable) and one belt driven forward or backward (two
+/// outputs: `fwd`, `rev`, and `stop`, controllable). With `n = 10`: 10
+/// inputs, 20 outputs, 20 plant and 20 specification models, as the
+/// paper's medium-sized module.
+///
+/// Our reading (the paper gives sizes, not the models): each station's
+/// specification is the paper's Fig. 6b cycle (a part arrives, the belt
+/// starts; it leaves, the belt stops; a part may be taken off before the
+/// belt starts), where the belt may run backward on an empty station to
+/// eject a sample once three parts have passed since the last one; each
+/// handover specification keeps a belt from running forward while the
+/// next station's sensor is covered.
+///
+/// `n >= 2` stations.
+pub fn module(n: usize) -> Result<Family> {
+    at_least("module", n, 2)?;
+    let mut plants = Vec::with_capacity(2 * n);
+    let mut specs = Vec::with_capacity(2 * n);
+    let ev = |kind: &str, i: usize| format!("{kind}_{i}");
+    for i in 0..n {
+        let (re, fe) = (ev("RE_ls", i), ev("FE_ls", i));
+        plants.push(automaton_with_states(
+            &format!("LS{i}"),
+            &[(&re, false), (&fe, false)],
+            &["off", "on"],
+            &[("off", &re, "on"), ("on", &fe, "off")],
+            &["off"],
+        )?);
+        let (fwd, rev, stop) = (ev("fwd", i), ev("rev", i), ev("stop", i));
+        plants.push(automaton_with_states(
+            &format!("BELT{i}"),
+            &[(&fwd, true), (&rev, true), (&stop, true)],
+            &["stopped", "forward", "backward"],
+            &[
+                ("stopped", &fwd, "forward"),
+                ("stopped", &rev, "backward"),
+                ("forward", &stop, "stopped"),
+                ("backward", &stop, "stopped"),
+            ],
+            &["stopped"],
+        )?);
+    }
+    for i in 0..n {
+        let (re, fe) = (ev("RE_ls", i), ev("FE_ls", i));
+        let (fwd, rev, stop) = (ev("fwd", i), ev("rev", i), ev("stop", i));
+        // idle → (part) waiting → (belt on) carrying → (part gone) leaving
+        // → (belt off) idle; a part may arrive again while leaving, and be
+        // taken off while waiting. The parts since the last sample count
+        // up to 3 (`_k`); only then may the belt run backward to eject a
+        // sample (clearing), which starts the count again.
+        let name = |phase: &str, k: usize| format!("{phase}_{k}");
+        let mut states: Vec<String> = Vec::new();
+        for k in 0..4 {
+            for phase in ["idle", "waiting", "carrying", "leaving"] {
+                states.push(name(phase, k));
+            }
+        }
+        states.push("clearing".to_owned());
+        let mut moves: Vec<(String, String, String)> = Vec::new();
+        for k in 0..4 {
+            let at = |phase: &str| name(phase, k);
+            moves.push((at("idle"), re.clone(), at("waiting")));
+            moves.push((at("waiting"), fe.clone(), at("idle")));
+            moves.push((at("waiting"), fwd.clone(), at("carrying")));
+            moves.push((at("carrying"), fe.clone(), at("leaving")));
+            moves.push((at("leaving"), re.clone(), at("carrying")));
+            moves.push((at("leaving"), stop.clone(), name("idle", (k + 1).min(3))));
+        }
+        moves.push((name("idle", 3), rev.clone(), "clearing".to_owned()));
+        moves.push(("clearing".to_owned(), stop.clone(), name("idle", 0)));
+        moves.push(("clearing".to_owned(), re.clone(), "clearing".to_owned()));
+        moves.push(("clearing".to_owned(), fe.clone(), "clearing".to_owned()));
+        let state_refs: Vec<&str> = states.iter().map(String::as_str).collect();
+        let move_refs: Vec<(&str, &str, &str)> = moves
+            .iter()
+            .map(|(s, e, t)| (s.as_str(), e.as_str(), t.as_str()))
+            .collect();
+        let idle: Vec<String> = (0..4).map(|k| name("idle", k)).collect();
+        let idle: Vec<&str> = idle.iter().map(String::as_str).collect();
+        specs.push(automaton_with_states(
+            &format!("CYCLE{i}"),
+            &[
+                (&re, false),
+                (&fe, false),
+                (&fwd, true),
+                (&rev, true),
+                (&stop, true),
+            ],
+            &state_refs,
+            &move_refs,
+            &idle,
+        )?);
+        let next = (i + 1) % n;
+        let (re_next, fe_next) = (ev("RE_ls", next), ev("FE_ls", next));
+        specs.push(automaton_with_states(
+            &format!("HANDOVER{i}"),
+            &[(&re_next, false), (&fe_next, false), (&fwd, true)],
+            &["free", "covered"],
+            &[
+                ("free", &fwd, "free"),
+                ("free", &re_next, "covered"),
+                ("covered", &fe_next, "free"),
+            ],
+            &["free"],
+        )?);
+    }
+    Ok(Family {
+        name: format!("module{n}"),
+        plants,
+        specs,
+    })
+}
+
+/// The family named `name` (`ring`, `ringb`, `tline`, `phil`, `module`) of
+/// size `n`.
 pub fn by_name(name: &str, n: usize) -> Option<Result<Family>> {
     match name {
         "ring" => Some(ring(n)),
         "ringb" => Some(ring_breakdowns(n)),
         "tline" => Some(tline(n)),
         "phil" => Some(phil(n)),
+        "module" => Some(module(n)),
         _ => None,
     }
 }

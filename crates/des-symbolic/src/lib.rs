@@ -11,7 +11,10 @@
 //! - [`guards`]: one guard per controllable event, simplified against the
 //!   closed loop's states.
 //! - [`families`]: parametric families (ring, ring with breakdowns,
-//!   transfer line, dining philosophers).
+//!   transfer line, dining philosophers, a Prenzel–Provost-class module).
+//! - [`verify`]: nonblocking (nonconflict) of plants and supervisors, with
+//!   a shortest string into a blocking state.
+//! - [`guard_file`]: the guards as a file a target runs (`*.guards.toml`).
 //!
 //! State counts are exact ([`BigUint`], from the library's exact
 //! cardinality); node counts are the library's, terminals included.
@@ -53,10 +56,12 @@
 pub mod encoding;
 pub mod error;
 pub mod families;
+pub mod guard_file;
 pub mod guards;
 pub mod reach;
 pub mod relation;
 pub mod supcon;
+pub mod verify;
 
 pub use biodivine_lib_bdd::Bdd;
 pub use error::{Error, Result};

@@ -372,3 +372,77 @@ fn random_instances_cover_the_cases() {
         "{empty} {whole} {cut}"
     );
 }
+
+/// The symbolic nonblocking verdict of plants ∥ specifications (all run
+/// as they are) against `des`'s explicit one: same verdict, and when
+/// blocking, a counterexample of the same (shortest) length that leads,
+/// run on the explicit product, into a blocking state.
+fn check_nonblocking(plants: &[Automaton], specs: &[Automaton]) -> Result<bool, String> {
+    use des_symbolic::verify::nonblocking;
+    let model = des_symbolic::Model::new(plants, specs).map_err(|e| e.to_string())?;
+    let verdict = nonblocking(&model);
+    let all: Vec<&Automaton> = plants.iter().chain(specs).collect();
+    let explicit = ops::verify::check_nonconflicting(&all).map_err(|e| e.to_string())?;
+    let product = ops::sync(&all).map_err(|e| e.to_string())?;
+    if verdict.reachable != BigUint::from(product.num_states()) {
+        return Err(format!(
+            "reachable {} symbolically, {} explicitly",
+            verdict.reachable,
+            product.num_states()
+        ));
+    }
+    match (&verdict.counterexample, &explicit) {
+        (None, None) => Ok(true),
+        (Some(c), Some(w)) => {
+            if c.events.len() != w.path.len() {
+                return Err(format!("strings {:?} and {:?}", c.events, w.path));
+            }
+            // Run the string on the product: it must end where no marked
+            // state can be reached.
+            let mut s = product.initial().ok_or("no initial state")?;
+            for e in &c.events {
+                let id = product.alphabet().id(e).ok_or("unknown event")?;
+                s = product.successor(s, id).ok_or(format!("{e} not enabled"))?;
+            }
+            let coreachable = ops::reach::coreachable(&product);
+            if coreachable.contains(s.index()) {
+                return Err(format!("{:?} ends in a state that can finish", c.events));
+            }
+            Ok(false)
+        }
+        _ => Err(format!(
+            "symbolic {:?}, explicit {:?}",
+            verdict.counterexample, explicit
+        )),
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(cases()))]
+
+    #[test]
+    fn random_closed_loops_block_as_the_explicit_check_says(seed in any::<u64>()) {
+        let (plants, specs) = random_instance(seed);
+        if let Err(e) = check_nonblocking(&plants, &specs) {
+            prop_assert!(false, "seed {seed}: {e}");
+        }
+    }
+}
+
+/// Both verdicts occur among the random closed loops.
+#[test]
+fn random_closed_loops_cover_both_verdicts() {
+    let (mut nonblocking, mut blocking) = (0, 0);
+    for seed in 0..300 {
+        let (plants, specs) = random_instance(seed * 104_729 + 7);
+        match check_nonblocking(&plants, &specs) {
+            Ok(true) => nonblocking += 1,
+            Ok(false) => blocking += 1,
+            Err(e) => panic!("seed {seed}: {e}"),
+        }
+    }
+    assert!(
+        nonblocking > 10 && blocking > 10,
+        "{nonblocking} {blocking}"
+    );
+}

@@ -113,7 +113,13 @@ pub(super) const LAYERS: &[Layer] = &[
     Layer {
         name: "codegen-cli",
         stage: Stage::Top,
-        normal: &["codegen", "des", "iec-export", "plc-project"],
+        normal: &[
+            "codegen",
+            "des",
+            "des-symbolic",
+            "iec-export",
+            "plc-project",
+        ],
         build: &[],
         dev: &[],
     },
@@ -134,9 +140,15 @@ pub(super) const LAYERS: &[Layer] = &[
     Layer {
         name: "e2e",
         stage: Stage::Tooling,
-        normal: &["codegen", "des", "iec-export", "plc-project"],
+        normal: &[
+            "codegen",
+            "des",
+            "des-symbolic",
+            "iec-export",
+            "plc-project",
+        ],
         build: &["codegen", "des", "plc-project"],
-        dev: &["boards", "executor", "host-sim", "iec-st"],
+        dev: &["boards", "des-symbolic", "executor", "host-sim", "iec-st"],
     },
     Layer {
         name: "xtask",
