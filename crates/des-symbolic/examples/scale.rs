@@ -8,7 +8,7 @@ use std::time::Instant;
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let (Some(family), Some(n)) = (args.first(), args.get(1).and_then(|n| n.parse().ok())) else {
-        eprintln!("usage: scale ring|tline|phil N");
+        eprintln!("usage: scale ring|ringb|tline|phil|module N");
         return ExitCode::from(2);
     };
     let instance = match families::by_name(family, n) {
@@ -18,7 +18,7 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
         None => {
-            eprintln!("unknown family `{family}` (ring, tline, phil)");
+            eprintln!("unknown family `{family}` (ring, ringb, tline, phil, module)");
             return ExitCode::from(2);
         }
     };

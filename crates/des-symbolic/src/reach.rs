@@ -23,9 +23,21 @@ pub fn search(
     dir: Direction,
     use_event: impl Fn(usize) -> bool,
 ) -> Bdd {
-    let events: Vec<usize> = (0..model.relations.len())
+    // Chaining in variable order: an event's states, once found, feed the
+    // events whose components lie next to its own in the same sweep.
+    let layout = model.layout();
+    let top = |e: usize| {
+        layout.events[e]
+            .participants
+            .iter()
+            .map(|&c| layout.components[c].offset)
+            .min()
+            .unwrap_or(usize::MAX)
+    };
+    let mut events: Vec<usize> = (0..model.relations.len())
         .filter(|&e| use_event(e))
         .collect();
+    events.sort_by_key(|&e| top(e));
     let mut reached = start.and(within);
     // `within` minus `reached`, kept up to date: one conjunction per image.
     let mut open = within.and_not(&reached);
