@@ -76,57 +76,62 @@ fn decode(model: &Model, state: &Bdd) -> Vec<(String, u32)> {
 
 /// Decides whether the components of `model` together are nonblocking.
 pub fn nonblocking(model: &Model) -> Verdict {
+    let reached = search(
+        model,
+        model.initial(),
+        &model.mk_true(),
+        Direction::Forward,
+        |_| true,
+    );
+    let coreachable = search(model, model.marked(), &reached, Direction::Backward, |_| {
+        true
+    });
+    let blocking = reached.and_not(&coreachable);
+    let counterexample = (!blocking.is_false()).then(|| shortest_into(model, &blocking));
+    Verdict {
+        reachable: model.count(&reached),
+        blocking: model.count(&blocking),
+        counterexample,
+    }
+}
+
+/// A shortest string from the initial state into the (reachable,
+/// non-empty) set `target`: breadth-first layers until one meets it, then
+/// back through the layers one predecessor at a time.
+fn shortest_into(model: &Model, target: &Bdd) -> Counterexample {
     let events = model.layout().events.len();
-    // Breadth-first layers from the initial state: the first one that
-    // meets a blocking state gives a shortest string.
+    let vars = current_vars(model);
     let mut layers = vec![model.initial().clone()];
     let mut reached = model.initial().clone();
-    loop {
-        let last = layers.last().expect("the initial layer");
+    while layers.last().expect("a layer").and(target).is_false() {
+        let last = layers.last().expect("a layer");
         let mut next = model.mk_false();
         for e in 0..events {
             next = next.or(&model.post(last, e));
         }
         let next = next.and_not(&reached);
-        if next.is_false() {
-            break;
-        }
+        assert!(!next.is_false(), "the target is reachable");
         reached = reached.or(&next);
         layers.push(next);
     }
-    let coreachable = search(model, model.marked(), &reached, Direction::Backward, |_| {
-        true
-    });
-    let blocking = reached.and_not(&coreachable);
-    let counterexample = (!blocking.is_false()).then(|| {
-        let vars = current_vars(model);
-        let k = layers
-            .iter()
-            .position(|l| !l.and(&blocking).is_false())
-            .expect("blocking states are reachable");
-        let mut state = one_of(&layers[k].and(&blocking), &vars);
-        let target = decode(model, &state);
-        let mut trail = Vec::new();
-        for i in (1..=k).rev() {
-            let (e, before) = (0..events)
-                .find_map(|e| {
-                    let p = model.pre(&state, e).and(&layers[i - 1]);
-                    (!p.is_false()).then_some((e, p))
-                })
-                .expect("every state of layer i has a predecessor in layer i - 1");
-            trail.push(model.layout().events[e].name.clone());
-            state = one_of(&before, &vars);
-        }
-        trail.reverse();
-        Counterexample {
-            events: trail,
-            state: target,
-        }
-    });
-    Verdict {
-        reachable: model.count(&reached),
-        blocking: model.count(&blocking),
-        counterexample,
+    let k = layers.len() - 1;
+    let mut state = one_of(&layers[k].and(target), &vars);
+    let at = decode(model, &state);
+    let mut trail = Vec::new();
+    for i in (1..=k).rev() {
+        let (e, before) = (0..events)
+            .find_map(|e| {
+                let p = model.pre(&state, e).and(&layers[i - 1]);
+                (!p.is_false()).then_some((e, p))
+            })
+            .expect("every state of layer i has a predecessor in layer i - 1");
+        trail.push(model.layout().events[e].name.clone());
+        state = one_of(&before, &vars);
+    }
+    trail.reverse();
+    Counterexample {
+        events: trail,
+        state: at,
     }
 }
 

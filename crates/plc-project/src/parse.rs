@@ -146,6 +146,8 @@ pub(crate) struct RawPlc {
     pub lost_edge_fault: bool,
     #[serde(default)]
     pub rom_test_bytes_per_scan: Option<Spanned<i64>>,
+    #[serde(default)]
+    pub check_nonconflicting: Option<Spanned<bool>>,
 }
 
 /// An entry of `[inputs]`.

@@ -92,7 +92,7 @@ pub(super) const LAYERS: &[Layer] = &[
     Layer {
         name: "plc-project",
         stage: Stage::FrontEnd,
-        normal: &["boards", "des", "executor"],
+        normal: &["boards", "des", "des-symbolic", "executor"],
         build: &[],
         dev: &[],
     },

@@ -17,6 +17,8 @@
 //!   [`actions`]: what an event does, and in which order;
 //! - [`supervisors`]: supervisors against the declared events; [`nets`]:
 //!   Petri nets against them, and their counters;
+//! - [`nonconflict`]: `check_nonconflicting`, the supervisors proven not
+//!   to block each other;
 //! - [`board`]: the `[board]` pin map.
 //!
 //! # Order of passes
@@ -27,7 +29,7 @@
 //! order: inputs, `[plc]` (its `reset` input), outputs, timers, switches
 //! (their outputs), events (inputs, timers, outputs, switches), supervisors
 //! (events). Then what needs the supervisors: events in no supervisor's
-//! alphabet, output drives (state maps name supervisor states), timers no
+//! alphabet, their nonconflict when asked, output drives (state maps name supervisor states), timers no
 //! action starts; `[board]` last. The first error in this order is the
 //! one reported, and warnings come in this order too.
 
@@ -44,6 +46,7 @@ pub mod board;
 pub mod events;
 pub mod names;
 pub mod nets;
+pub mod nonconflict;
 pub mod numbers;
 pub mod outputs;
 pub mod plc;
@@ -156,6 +159,11 @@ impl Validator<'_> {
         let supervisors = self.supervisors(&raw.supervisor, sources.supervisors, &events)?;
         let nets = self.nets(&raw.net, sources.nets, &events)?;
         self.events_no_supervisor_knows(&events, &supervisors.items, &nets.items)?;
+        self.nonconflicting(
+            raw.plc.get_ref().check_nonconflicting.as_ref(),
+            &supervisors.items,
+            &nets.items,
+        )?;
         let outputs = self.outputs(&raw.outputs, &output_uses.items, &supervisors, &nets)?;
         self.timers_nothing_starts(&timers, &events.items);
         let board = self.board(
