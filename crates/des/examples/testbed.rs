@@ -158,6 +158,17 @@ impl Spec {
             self.events.push((e.to_owned(), controllable));
         }
     }
+    /// Marks every state named so far: a safety specification asks
+    /// nothing of where the system stops.
+    fn mark_all(&mut self) {
+        for (s, _, t) in &self.transitions {
+            for x in [s, t] {
+                if !self.marked.contains(x) {
+                    self.marked.push(x.clone());
+                }
+            }
+        }
+    }
     fn t(&mut self, s: &str, e: &str, t: &str) {
         self.transitions
             .push((s.to_owned(), e.to_owned(), t.to_owned()));
@@ -215,7 +226,6 @@ fn order(i: usize, start: usize) -> Automaton {
             a.t(&format!("at{k}"), &at(i, m), &format!("at{m}"));
         }
     }
-    a.marked = (1..=SENSORS).map(|k| format!("at{k}")).collect();
     a.build()
 }
 
@@ -307,6 +317,7 @@ fn explore<S: Clone + Eq + std::hash::Hash>(
             }
         }
     }
+    spec.mark_all();
     spec.build()
 }
 
@@ -338,6 +349,7 @@ fn sup_crane(u: Unit) -> Automaton {
             }
         }
     }
+    a.mark_all();
     a.build()
 }
 

@@ -69,3 +69,64 @@ fn every_supervisor_is_controllable_on_its_reduced_plant() {
         assert_eq!(v.rounds, 1, "{}", sup.name());
     }
 }
+
+/// The closed loop: the 22 plant components and the 29 supervisors
+/// composed as one (the plant alone is about 10^9 states; the
+/// supervisors keep the closed loop small).
+fn closed_loop() -> (Vec<Automaton>, des::ops::Product) {
+    let mut all = read("plant");
+    all.extend(read("sup"));
+    let refs: Vec<&Automaton> = all.iter().collect();
+    let options = ComposeOptions {
+        name_states: false,
+        ..ComposeOptions::default()
+    };
+    let product = des::ops::compose(&refs, des::ops::Composition::Sync, options).unwrap();
+    (all, product)
+}
+
+#[test]
+fn the_closed_loop_is_nonblocking_collision_free_and_keeps_the_routes() {
+    let (all, product) = closed_loop();
+    let a = &product.automaton;
+    assert_eq!(a.num_states(), 12_318);
+    // Nonblocking: from every state both trains can stop at their start
+    // sensors again, cranes idle, no request pending.
+    assert_eq!(des::ops::check_nonblocking(a), None);
+    assert!(a.states().all(|s| !a.transitions(s).is_empty()));
+    let component = |name: &str| all.iter().position(|c| c.name() == name).unwrap();
+    for s in a.states() {
+        // No collision: no section supervisor ever sees both trains in
+        // its section.
+        for (i, c) in all.iter().enumerate() {
+            if c.name().starts_with("sup_section_") {
+                let state = c.state_name(product.component_state(s, i)).into_owned();
+                let occupied = state
+                    .split(',')
+                    .filter(|p| p.contains(":in") || p.contains(":entering"))
+                    .count();
+                assert!(occupied <= 1, "{}: {state}", c.name());
+            }
+        }
+        // Routes: train 1 never reaches crane 3's siding, train 2 never
+        // crane 2's.
+        let at = |train: &str| {
+            let i = component(&format!("order_{train}"));
+            all[i]
+                .state_name(product.component_state(s, i))
+                .into_owned()
+        };
+        assert!(!["at21", "at22"].contains(&at("t1").as_str()));
+        assert!(!["at6", "at7"].contains(&at("t2").as_str()));
+    }
+    // Every crane loads, and each train meets the cranes of its route.
+    let events: std::collections::BTreeSet<&str> = a
+        .iter_transitions()
+        .map(|(_, e, _)| a.alphabet().name(e))
+        .collect();
+    for e in [
+        "st_ld1", "st_ld2", "st_ld3", "t1_at13", "t2_at13", "t1_at6", "t2_at21",
+    ] {
+        assert!(events.contains(e), "{e} never happens");
+    }
+}
