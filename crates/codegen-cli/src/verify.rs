@@ -1,5 +1,7 @@
 //! `codegen verify`: modular controllability, each supervisor decided on
-//! its reduced plant (`des::ops::modular`), never the whole plant.
+//! its reduced plant (`des::ops::modular`), never the whole plant; with
+//! `--nonblocking`, the closed loop of the plant with every supervisor,
+//! composed as one, checked nonblocking.
 
 use super::error::CliError;
 use super::key::Key;
@@ -24,6 +26,27 @@ pub struct VerifyArgs {
     /// Refuse a reduced plant or closed loop beyond this many states.
     #[arg(long, default_value_t = ops::sync::DEFAULT_MAX_STATES)]
     max_states: usize,
+    /// Also compose the plant components with all the supervisors (the
+    /// closed loop, never the plant alone) and check it nonblocking.
+    #[arg(long)]
+    nonblocking: bool,
+}
+
+/// The closed loop of the plant with every supervisor.
+#[derive(Debug, serde::Serialize)]
+struct ClosedLoop {
+    states: usize,
+    transitions: usize,
+    nonblocking: bool,
+    /// A shortest string to a state from which no marked state can be
+    /// reached.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    blocking_path: Option<Vec<String>>,
+    /// Every component's state there: plant components, then
+    /// supervisors.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    blocking_state: Option<Key>,
+    milliseconds: f64,
 }
 
 #[derive(Debug, serde::Serialize)]
@@ -41,6 +64,9 @@ struct SupervisorReport {
 struct Report {
     plant_components: usize,
     supervisors: Vec<SupervisorReport>,
+    /// With `--nonblocking` only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    closed_loop: Option<ClosedLoop>,
     holds: bool,
     milliseconds: f64,
 }
@@ -82,11 +108,33 @@ pub fn run(args: &VerifyArgs, json: bool, out: &mut Out) -> Result<Outcome, CliE
             milliseconds,
         });
     }
+    let closed_loop = if args.nonblocking {
+        spinner.phase("closed loop");
+        let mark = Instant::now();
+        let mut all = refs.clone();
+        all.extend(sups.iter());
+        let product =
+            ops::compose(&all, ops::Composition::Sync, options).map_err(CliError::max_states)?;
+        let a = &product.automaton;
+        let blocking = ops::check_nonblocking(a);
+        Some(ClosedLoop {
+            states: a.num_states(),
+            transitions: a.num_transitions(),
+            nonblocking: blocking.is_none(),
+            blocking_state: blocking.as_ref().and_then(|w| Key::after(&all, &w.path)),
+            blocking_path: blocking.map(|w| w.path),
+            milliseconds: mark.elapsed().as_secs_f64() * 1e3,
+        })
+    } else {
+        None
+    };
     drop(spinner);
-    let holds = reports.iter().all(|r| r.controllable);
+    let holds = reports.iter().all(|r| r.controllable)
+        && closed_loop.as_ref().is_none_or(|c| c.nonblocking);
     let report = Report {
         plant_components: components.len(),
         supervisors: reports,
+        closed_loop,
         holds,
         milliseconds: start.elapsed().as_secs_f64() * 1e3,
     };
@@ -154,6 +202,30 @@ fn print_text(out: &mut Out, report: &Report) {
                     path(&c.plant_path)
                 );
             }
+        }
+    }
+    if let Some(c) = &report.closed_loop {
+        match (&c.blocking_path, &c.blocking_state) {
+            (None, _) => outln!(
+                out,
+                "closed loop (plant and {} supervisors): {} states, {} transitions, nonblocking ({:.1} ms)",
+                report.supervisors.len(),
+                c.states,
+                c.transitions,
+                c.milliseconds
+            ),
+            (Some(p), key) => outln!(
+                out,
+                "closed loop (plant and {} supervisors): {} states, {} transitions, BLOCKING: after {}, \
+                 no marked state can be reached{} ({:.1} ms)",
+                report.supervisors.len(),
+                c.states,
+                c.transitions,
+                path(p),
+                key.as_ref()
+                    .map_or(String::new(), |k| format!(" from {}", k.describe())),
+                c.milliseconds
+            ),
         }
     }
     let good = report.supervisors.iter().filter(|r| r.controllable).count();

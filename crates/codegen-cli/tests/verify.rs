@@ -25,12 +25,19 @@ fn files(sub: &str) -> Vec<String> {
 }
 
 fn verify(sups: &[String], json: bool) -> Output {
+    verify_with(sups, json, &[])
+}
+
+fn verify_with(sups: &[String], json: bool, flags: &[&str]) -> Output {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_codegen"));
     cmd.current_dir(root());
     if json {
         cmd.arg("--json");
     }
-    cmd.arg("verify").arg("--plant").args(files("plant"));
+    cmd.arg("verify")
+        .args(flags)
+        .arg("--plant")
+        .args(files("plant"));
     cmd.arg("--sup").args(sups);
     cmd.output().expect("the codegen binary runs")
 }
@@ -41,7 +48,7 @@ fn json(output: &Output) -> serde_json::Value {
 
 #[test]
 fn the_29_testbed_supervisors_are_controllable_on_their_reduced_plants() {
-    let run = verify(&files("sup"), true);
+    let run = verify_with(&files("sup"), true, &["--nonblocking"]);
     assert_eq!(
         run.status.code(),
         Some(0),
@@ -75,6 +82,29 @@ fn the_29_testbed_supervisors_are_controllable_on_their_reduced_plants() {
         ])
     );
     assert_eq!(crane1["reduced_states"], 10816);
+    // The closed loop with all 29 is small, and nonblocking.
+    assert_eq!(report["closed_loop"]["states"], 12318);
+    assert_eq!(report["closed_loop"]["nonblocking"], true);
+}
+
+#[test]
+fn the_papers_section_figure_read_literally_blocks_the_testbed() {
+    // models/crane/sup_section.toml counts any `run_t1` as entering the
+    // section 13 -> 14, so train 1 leaving sensor 1 is held at sensor 2
+    // for ever, and train 2 with it. Controllable, but blocking.
+    let mut sups = files("sup");
+    sups.push("models/crane/sup_section.toml".to_owned());
+    let run = verify_with(&sups, true, &["--nonblocking"]);
+    assert_eq!(run.status.code(), Some(1));
+    let report = json(&run);
+    let all = report["supervisors"].as_array().unwrap();
+    assert_eq!(all.len(), 30);
+    assert!(all.iter().all(|s| s["controllable"] == true));
+    let closed = &report["closed_loop"];
+    assert_eq!(closed["nonblocking"], false);
+    assert_eq!(closed["blocking_path"], serde_json::json!(["run_t1"]));
+    assert_eq!(closed["blocking_state"]["sup_section"], "t1_in");
+    assert_eq!(closed["blocking_state"]["train1"], "moving");
 }
 
 #[test]
