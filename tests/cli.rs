@@ -624,11 +624,15 @@ fn a_reader_that_stops_early_ends_every_verb_quietly_with_its_exit_code() {
     let mut condat = vec!["condat".to_owned(), "--plant".to_owned()];
     condat.extend(SMALL_FACTORY_PLANTS.map(String::from));
     condat.extend(["--sup".to_owned(), SMALL_FACTORY_SPECS[0].to_owned()]);
+    let mut verify = vec!["verify".to_owned(), "--plant".to_owned()];
+    verify.extend(SMALL_FACTORY_PLANTS.map(String::from));
+    verify.extend(["--sup".to_owned(), SMALL_FACTORY_SPECS[0].to_owned()]);
     let words = |ws: &[&str]| ws.iter().map(|w| w.to_string()).collect::<Vec<_>>();
     let cases: Vec<(Vec<String>, i32)> = vec![
         (words(&["info", SMALL_FACTORY_PLANTS[0]]), 0),
         (synth, 0),
         (check, 1),
+        (verify, 1),
         (condat, 0),
         (
             words(&[

@@ -21,6 +21,7 @@ mod plc;
 mod progress;
 mod symbolic;
 mod synth;
+mod verify;
 mod wiring;
 
 use clap::{Parser, Subcommand};
@@ -65,6 +66,10 @@ enum Command {
         #[arg(long = "sup", required = true, num_args = 1..)]
         sups: Vec<PathBuf>,
     },
+    /// Modular controllability: each supervisor decided on its reduced
+    /// plant (the plant components sharing events with it), the whole
+    /// plant never composed; a shortest counterexample when one fails.
+    Verify(verify::VerifyArgs),
     /// Control data: the controllable events each supervisor state disables.
     Condat {
         /// Plant component files.
@@ -118,6 +123,7 @@ fn main() -> ExitCode {
         Command::Info { files } => info::run(&files, json, &mut out),
         Command::Synth(args) => synth::run(&args, json, &mut out),
         Command::Check { plants, sups } => check::run(&plants, &sups, json, &mut out),
+        Command::Verify(args) => verify::run(&args, json, &mut out),
         Command::Condat { plants, sup } => condat::run(&plants, &sup, json, &mut out),
         Command::Convert(args) => convert::run(&args, json, &mut out),
         Command::Gen(args) => gen::run(&args, json, &mut out),

@@ -9,12 +9,14 @@
 //! | [`minstate`](mod@minstate) | language-preserving minimisation |
 //! | [`condat`](mod@condat) | control data: disabled events per supervisor state |
 //! | [`verify`] | controllability, nonblocking, nonconflict, with witnesses |
+//! | [`modular`] | controllability of one modular supervisor on its reduced plant |
 //! | [`equivalence`] | language equality, isomorphism |
 //! | [`synthesis`](mod@synthesis) | the pipeline supcon(sync(plants), sync(specs)), minstate |
 
 pub mod condat;
 pub mod equivalence;
 pub mod minstate;
+pub mod modular;
 pub mod reach;
 pub mod selfloop;
 pub mod supcon;
@@ -25,14 +27,17 @@ pub mod verify;
 pub use condat::{condat, Condat};
 pub use equivalence::{isomorphic, language_difference, language_equal, LanguageDifference};
 pub use minstate::minstate;
+pub use modular::{
+    check_controllable_modular, reduced_plant, ModularCounterexample, ModularVerdict,
+};
 pub use reach::{accessible, coaccessible, coreachable, is_trim, reachable, restrict, trim};
 pub use selfloop::{inverse_projection, selfloop};
 pub use supcon::{supcon, supcon_with};
 pub use sync::{compose, meet, sync, ComposeOptions, Composition, Product};
 pub use synthesis::{synthesize, Synthesis, SynthesisOptions};
 pub use verify::{
-    check_controllable, check_nonblocking, check_nonconflicting, BlockingWitness,
-    UncontrollableWitness,
+    check_controllable, check_controllable_with, check_nonblocking, check_nonconflicting,
+    BlockingWitness, UncontrollableWitness,
 };
 
 /// Receives progress reports of long operations.

@@ -52,8 +52,23 @@ pub fn check_controllable(
     plant: &Automaton,
     sup: &Automaton,
 ) -> Result<Option<UncontrollableWitness>> {
+    check_controllable_with(plant, sup, quiet())
+}
+
+/// [`check_controllable`] with the closed loop composed under `options`
+/// (its state bound and progress reports; state names are not needed and
+/// never built).
+pub fn check_controllable_with(
+    plant: &Automaton,
+    sup: &Automaton,
+    options: ComposeOptions<'_>,
+) -> Result<Option<UncontrollableWitness>> {
     check_spec_alphabet(plant, sup)?;
-    let closed = compose(&[plant, sup], Composition::Sync, quiet())?;
+    let options = ComposeOptions {
+        name_states: false,
+        ..options
+    };
+    let closed = compose(&[plant, sup], Composition::Sync, options)?;
     let p = &closed.automaton;
     // Plant first and sup ⊆ plant: product event ids are plant event ids.
     let violation = |s| {
