@@ -1,7 +1,8 @@
 //! `codegen verify`: modular controllability, each supervisor decided on
 //! its reduced plant (`des::ops::modular`), never the whole plant; with
 //! `--nonblocking`, the closed loop of the plant with every supervisor,
-//! composed as one, checked nonblocking.
+//! composed as one, checked nonblocking; with `--symbolic` as well, that
+//! closed loop is decided on BDDs (`des_symbolic::verify`) and never built.
 
 use super::error::CliError;
 use super::key::Key;
@@ -30,13 +31,44 @@ pub struct VerifyArgs {
     /// closed loop, never the plant alone) and check it nonblocking.
     #[arg(long)]
     nonblocking: bool,
+    /// With `--nonblocking`: decide the closed loop on BDDs, without
+    /// building it (exact state count; no transition count).
+    #[arg(long, requires = "nonblocking")]
+    symbolic: bool,
+}
+
+/// A state count: a JSON number while it fits one, else a decimal string.
+#[derive(Debug, serde::Serialize)]
+#[serde(untagged)]
+enum Count {
+    Number(u64),
+    Decimal(String),
+}
+
+impl Count {
+    fn of(n: &des_symbolic::BigUint) -> Count {
+        u64::try_from(n).map_or_else(|_| Count::Decimal(n.to_string()), Count::Number)
+    }
+}
+
+impl std::fmt::Display for Count {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Count::Number(n) => write!(f, "{n}"),
+            Count::Decimal(n) => f.write_str(n),
+        }
+    }
 }
 
 /// The closed loop of the plant with every supervisor.
 #[derive(Debug, serde::Serialize)]
 struct ClosedLoop {
-    states: usize,
-    transitions: usize,
+    /// `explicit` or `symbolic`.
+    method: &'static str,
+    states: Count,
+    /// Explicit only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    transitions: Option<usize>,
     nonblocking: bool,
     /// A shortest string to a state from which no marked state can be
     /// reached.
@@ -108,25 +140,45 @@ pub fn run(args: &VerifyArgs, json: bool, out: &mut Out) -> Result<Outcome, CliE
             milliseconds,
         });
     }
-    let closed_loop = if args.nonblocking {
-        spinner.phase("closed loop");
-        let mark = Instant::now();
-        let mut all = refs.clone();
-        all.extend(sups.iter());
-        let product =
-            ops::compose(&all, ops::Composition::Sync, options).map_err(CliError::max_states)?;
-        let a = &product.automaton;
-        let blocking = ops::check_nonblocking(a);
-        Some(ClosedLoop {
-            states: a.num_states(),
-            transitions: a.num_transitions(),
-            nonblocking: blocking.is_none(),
-            blocking_state: blocking.as_ref().and_then(|w| Key::after(&all, &w.path)),
-            blocking_path: blocking.map(|w| w.path),
-            milliseconds: mark.elapsed().as_secs_f64() * 1e3,
-        })
-    } else {
-        None
+    let closed_loop = match (args.nonblocking, args.symbolic) {
+        (false, _) => None,
+        (true, false) => {
+            spinner.phase("closed loop");
+            let mark = Instant::now();
+            let mut all = refs.clone();
+            all.extend(sups.iter());
+            let product = ops::compose(&all, ops::Composition::Sync, options)
+                .map_err(CliError::max_states)?;
+            let a = &product.automaton;
+            let blocking = ops::check_nonblocking(a);
+            Some(ClosedLoop {
+                method: "explicit",
+                states: Count::Number(a.num_states() as u64),
+                transitions: Some(a.num_transitions()),
+                nonblocking: blocking.is_none(),
+                blocking_state: blocking.as_ref().and_then(|w| Key::after(&all, &w.path)),
+                blocking_path: blocking.map(|w| w.path),
+                milliseconds: mark.elapsed().as_secs_f64() * 1e3,
+            })
+        }
+        (true, true) => {
+            spinner.phase("closed loop on BDDs");
+            let mark = Instant::now();
+            let model = des_symbolic::Model::new(&components, &sups)?;
+            let verdict = des_symbolic::verify::nonblocking(&model);
+            let mut all = refs.clone();
+            all.extend(sups.iter());
+            let path = verdict.counterexample.as_ref().map(|c| c.events.clone());
+            Some(ClosedLoop {
+                method: "symbolic",
+                states: Count::of(&verdict.reachable),
+                transitions: None,
+                nonblocking: verdict.holds(),
+                blocking_state: path.as_ref().and_then(|p| Key::after(&all, p)),
+                blocking_path: path,
+                milliseconds: mark.elapsed().as_secs_f64() * 1e3,
+            })
+        }
     };
     drop(spinner);
     let holds = reports.iter().all(|r| r.controllable)
@@ -205,22 +257,22 @@ fn print_text(out: &mut Out, report: &Report) {
         }
     }
     if let Some(c) = &report.closed_loop {
+        let size = match c.transitions {
+            Some(t) => format!("{} states, {t} transitions", c.states),
+            None => format!("{} states (on BDDs)", c.states),
+        };
         match (&c.blocking_path, &c.blocking_state) {
             (None, _) => outln!(
                 out,
-                "closed loop (plant and {} supervisors): {} states, {} transitions, nonblocking ({:.1} ms)",
+                "closed loop (plant and {} supervisors): {size}, nonblocking ({:.1} ms)",
                 report.supervisors.len(),
-                c.states,
-                c.transitions,
                 c.milliseconds
             ),
             (Some(p), key) => outln!(
                 out,
-                "closed loop (plant and {} supervisors): {} states, {} transitions, BLOCKING: after {}, \
+                "closed loop (plant and {} supervisors): {size}, BLOCKING: after {}, \
                  no marked state can be reached{} ({:.1} ms)",
                 report.supervisors.len(),
-                c.states,
-                c.transitions,
                 path(p),
                 key.as_ref()
                     .map_or(String::new(), |k| format!(" from {}", k.describe())),

@@ -176,3 +176,35 @@ fn a_supervisor_event_in_no_plant_component_is_an_error() {
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(stderr.contains("bad.toml:4"), "{stderr}");
 }
+
+#[test]
+fn the_closed_loop_decided_on_bdds_agrees_with_the_explicit_one() {
+    // Nonblocking: the same exact count, never building the closed loop.
+    let run = verify_with(&files("sup"), true, &["--nonblocking", "--symbolic"]);
+    assert_eq!(run.status.code(), Some(0));
+    let closed = &json(&run)["closed_loop"];
+    assert_eq!(closed["method"], "symbolic");
+    assert_eq!(closed["states"], 12318);
+    assert_eq!(closed["nonblocking"], true);
+    assert!(closed.get("transitions").is_none());
+    // Blocking with Fig. 6 read literally: a shortest string as long as
+    // the explicit one (either train's first move blocks), into the state
+    // where the section holds that train.
+    let mut sups = files("sup");
+    sups.push("models/crane/sup_section.toml".to_owned());
+    let run = verify_with(&sups, true, &["--nonblocking", "--symbolic"]);
+    assert_eq!(run.status.code(), Some(1));
+    let closed = &json(&run)["closed_loop"];
+    assert_eq!(closed["nonblocking"], false);
+    let path = closed["blocking_path"].as_array().unwrap();
+    assert_eq!(path.len(), 1, "{path:?}");
+    let train = match path[0].as_str().unwrap() {
+        "run_t1" => "t1",
+        "run_t2" => "t2",
+        other => panic!("{other}"),
+    };
+    assert_eq!(
+        closed["blocking_state"]["sup_section"],
+        format!("{train}_in")
+    );
+}
