@@ -126,7 +126,7 @@ pub fn restrict(a: &Automaton, keep: &FixedBitSet) -> Automaton {
     offsets.push(0u32);
     let mut edges = Vec::new();
     let mut marked = FixedBitSet::with_capacity(count as usize);
-    let mut names = a.state_names().map(|_| Vec::with_capacity(count as usize));
+    let mut old_ids = Vec::with_capacity(count as usize);
     for s in a.states() {
         let id = new_id[s.index()];
         if id == u32::MAX {
@@ -145,9 +145,7 @@ pub fn restrict(a: &Automaton, keep: &FixedBitSet) -> Automaton {
         if a.is_marked(s) {
             marked.insert(id as usize);
         }
-        if let (Some(names), Some(all)) = (names.as_mut(), a.state_names()) {
-            names.push(all[s.index()].clone());
-        }
+        old_ids.push(s.0);
     }
     let initial = a
         .initial()
@@ -157,7 +155,7 @@ pub fn restrict(a: &Automaton, keep: &FixedBitSet) -> Automaton {
     Automaton::from_parts(
         a.name().to_owned(),
         a.alphabet().clone(),
-        names,
+        a.state_names().select(&old_ids),
         initial,
         marked,
         offsets,

@@ -15,12 +15,13 @@
 //!   intersection of the components' languages.
 
 use super::Progress;
-use crate::automaton::{Alphabet, Automaton, EventId, StateId, Transition};
+use crate::automaton::{Alphabet, Automaton, Composed, EventId, StateId, StateNames, Transition};
 use crate::error::{Error, Result};
 use fixedbitset::FixedBitSet;
 use hashbrown::HashTable;
 use rustc_hash::FxBuildHasher;
 use std::hash::BuildHasher;
+use std::sync::Arc;
 
 /// How the alphabets of the components combine.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -67,7 +68,7 @@ impl Default for ComposeOptions<'_> {
 pub struct Product {
     /// The product automaton.
     pub automaton: Automaton,
-    tuples: Vec<u32>,
+    tuples: Arc<Vec<u32>>,
     width: usize,
 }
 
@@ -233,7 +234,7 @@ pub fn compose(
         let automaton = Automaton::from_parts(
             name,
             alphabet,
-            None,
+            StateNames::Indices,
             Some(StateId(0)),
             marked,
             vec![0, 0],
@@ -241,7 +242,7 @@ pub fn compose(
         );
         return Ok(Product {
             automaton,
-            tuples: Vec::new(),
+            tuples: Arc::default(),
             width,
         });
     }
@@ -266,7 +267,7 @@ pub fn compose(
     let Some(initial) = initial else {
         return Ok(Product {
             automaton: Automaton::empty(name, alphabet),
-            tuples: Vec::new(),
+            tuples: Arc::default(),
             width,
         });
     };
@@ -343,19 +344,16 @@ pub fn compose(
             marked.insert(s);
         }
     }
-    let names = options.name_states.then(|| {
-        (0..n)
-            .map(|s| {
-                let tuple = &store.tuples[s * width..(s + 1) * width];
-                tuple
-                    .iter()
-                    .zip(components)
-                    .map(|(&q, a)| a.state_name(StateId(q)))
-                    .collect::<Vec<_>>()
-                    .join(".")
-            })
-            .collect()
-    });
+    let mut tuples = store.tuples;
+    tuples.shrink_to_fit();
+    let tuples = Arc::new(tuples);
+    // Names are joined from the components' when asked for, not stored.
+    let names = if options.name_states {
+        let parts = components.iter().map(|a| a.state_names().clone()).collect();
+        StateNames::Composed(Arc::new(Composed::new(parts, Arc::clone(&tuples))))
+    } else {
+        StateNames::Indices
+    };
     let automaton = Automaton::from_parts(
         name,
         alphabet,
@@ -367,7 +365,7 @@ pub fn compose(
     );
     Ok(Product {
         automaton,
-        tuples: store.tuples,
+        tuples,
         width,
     })
 }
