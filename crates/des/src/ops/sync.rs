@@ -135,7 +135,7 @@ pub fn composed_alphabet(components: &[&Automaton], mode: Composition) -> Result
 
 /// One component's transition function, as a dense table when that is
 /// small, else looked up in its CSR rows.
-enum Delta<'a> {
+pub(super) enum Delta<'a> {
     Dense { table: Vec<u32>, events: usize },
     Sparse(&'a Automaton),
 }
@@ -143,7 +143,7 @@ enum Delta<'a> {
 const DENSE_LIMIT: usize = 1 << 22;
 
 impl<'a> Delta<'a> {
-    fn new(a: &'a Automaton) -> Self {
+    pub(super) fn new(a: &'a Automaton) -> Self {
         let events = a.alphabet().len();
         let size = a.num_states().saturating_mul(events);
         if size > DENSE_LIMIT {
@@ -157,7 +157,7 @@ impl<'a> Delta<'a> {
     }
 
     #[inline]
-    fn next(&self, s: u32, e: EventId) -> Option<u32> {
+    pub(super) fn next(&self, s: u32, e: EventId) -> Option<u32> {
         match self {
             Delta::Dense { table, events } => {
                 let t = table[s as usize * events + e.index()];
