@@ -138,13 +138,13 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
     sup.set_name(name);
     spinner.phase("writing");
     let mark = Instant::now();
-    formats::write_file(
-        &args.output,
-        &[Component {
-            kind: Kind::Supervisor,
-            automaton: sup.clone(),
-        }],
-    )?;
+    // Written from the supervisor itself, not a copy of it.
+    let written = [Component {
+        kind: Kind::Supervisor,
+        automaton: sup,
+    }];
+    formats::write_file(&args.output, &written)?;
+    let [Component { automaton: sup, .. }] = written;
     t.write = ms(mark);
     t.total = ms(start);
     drop(spinner);
