@@ -14,10 +14,12 @@
 mod alphabet;
 mod builder;
 mod names;
+mod tuples;
 
 pub use alphabet::{Alphabet, ControllabilityConflict, Event, EventId};
 pub use builder::{AutomatonBuilder, BuildError};
 pub(crate) use names::{Composed, StateNames};
+pub(crate) use tuples::{Layout, Tuples};
 
 use fixedbitset::FixedBitSet;
 use std::borrow::Cow;

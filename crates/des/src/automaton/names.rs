@@ -9,6 +9,7 @@
 //! bytes) and the components' own names, and produces the string when it is
 //! asked for.
 
+use super::tuples::Tuples;
 use std::borrow::Cow;
 use std::fmt::Write as _;
 use std::sync::Arc;
@@ -30,15 +31,16 @@ pub(crate) enum StateNames {
 #[derive(Debug)]
 pub(crate) struct Composed {
     parts: Vec<StateNames>,
-    tuples: Arc<Vec<u32>>,
+    tuples: Arc<Tuples>,
     /// When set, product state `s` is tuple `select[s]`; else tuple `s`.
     select: Option<Vec<u32>>,
 }
 
 impl Composed {
-    /// Names of a product whose state `s` is the tuple
-    /// `tuples[s * parts.len()..(s + 1) * parts.len()]`.
-    pub(crate) fn new(parts: Vec<StateNames>, tuples: Arc<Vec<u32>>) -> Composed {
+    /// Names of a product whose state `s` is tuple `s` of `tuples`, one
+    /// component per part.
+    pub(crate) fn new(parts: Vec<StateNames>, tuples: Arc<Tuples>) -> Composed {
+        debug_assert_eq!(parts.len(), tuples.width());
         Composed {
             parts,
             tuples,
@@ -46,18 +48,13 @@ impl Composed {
         }
     }
 
-    fn tuple(&self, s: usize) -> &[u32] {
-        let w = self.parts.len();
-        let i = self.select.as_ref().map_or(s, |sel| sel[s] as usize);
-        &self.tuples[i * w..(i + 1) * w]
-    }
-
     fn write(&self, s: usize, out: &mut String) {
-        for (j, (&q, part)) in self.tuple(s).iter().zip(&self.parts).enumerate() {
+        let i = self.select.as_ref().map_or(s, |sel| sel[s] as usize);
+        for (j, part) in self.parts.iter().enumerate() {
             if j > 0 {
                 out.push('.');
             }
-            part.write(q as usize, out);
+            part.write(self.tuples.get(i, j) as usize, out);
         }
     }
 }
@@ -126,7 +123,7 @@ impl StateNames {
             StateNames::Indices => 0,
             StateNames::Stored(v) => v.iter().map(|n| n.capacity() + 24).sum(),
             StateNames::Composed(c) => {
-                c.tuples.capacity() * 4 + c.select.as_ref().map_or(0, |s| s.capacity() * 4)
+                c.tuples.heap_bytes() + c.select.as_ref().map_or(0, |s| s.capacity() * 4)
             }
         }
     }

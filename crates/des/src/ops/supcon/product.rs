@@ -10,10 +10,10 @@
 //! ones are never built.
 //!
 //! States are numbered breadth-first in discovery order; a state is the
-//! pair (plant state, spec state), interned as one `u64` key through a
-//! hash table of `u32` ids into a flat `Vec<u32>` of pairs.
+//! pair (plant state, spec state) packed into one `u64`, interned through a
+//! hash table of `u32` ids into the `Vec<u64>` of pairs.
 
-use crate::automaton::{Automaton, Composed, StateId, StateNames, Transition};
+use crate::automaton::{Automaton, Composed, Layout, StateId, StateNames, Transition, Tuples};
 use crate::error::{Error, Result};
 use crate::ops::sync::{composed_alphabet, ComposeOptions, Composition, Delta};
 use fixedbitset::FixedBitSet;
@@ -31,40 +31,35 @@ pub(super) struct Pruned {
     pub bad: FixedBitSet,
 }
 
-/// Interned (plant, spec) pairs.
+/// Interned (plant, spec) pairs, packed as `g | e << 32`.
 struct Pairs {
-    pairs: Vec<u32>,
+    keys: Vec<u64>,
     table: HashTable<u32>,
 }
 
 impl Pairs {
-    fn key(g: u32, e: u32) -> u64 {
-        (u64::from(g) << 32) | u64::from(e)
-    }
-
     fn len(&self) -> usize {
-        self.pairs.len() / 2
+        self.keys.len()
     }
 
     fn pair(&self, id: usize) -> (u32, u32) {
-        (self.pairs[2 * id], self.pairs[2 * id + 1])
+        let key = self.keys[id];
+        (key as u32, (key >> 32) as u32)
     }
 
     /// The id of `(g, e)`, and whether it is new.
     fn intern(&mut self, g: u32, e: u32) -> (u32, bool) {
-        let hash = FxBuildHasher.hash_one(Self::key(g, e));
-        let pairs = &self.pairs;
-        let eq = |&id: &u32| pairs[2 * id as usize] == g && pairs[2 * id as usize + 1] == e;
-        if let Some(&id) = self.table.find(hash, eq) {
+        let key = u64::from(g) | (u64::from(e) << 32);
+        let hash = FxBuildHasher.hash_one(key);
+        let keys = &self.keys;
+        if let Some(&id) = self.table.find(hash, |&id| keys[id as usize] == key) {
             return (id, false);
         }
         let id = self.len() as u32;
-        self.pairs.extend_from_slice(&[g, e]);
-        let pairs = &self.pairs;
-        self.table.insert_unique(hash, id, |&i| {
-            let i = i as usize;
-            FxBuildHasher.hash_one(Self::key(pairs[2 * i], pairs[2 * i + 1]))
-        });
+        self.keys.push(key);
+        let keys = &self.keys;
+        self.table
+            .insert_unique(hash, id, |&i| FxBuildHasher.hash_one(keys[i as usize]));
         (id, true)
     }
 }
@@ -100,7 +95,7 @@ pub(super) fn pruned_product(
     let delta = Delta::new(spec);
 
     let mut store = Pairs {
-        pairs: Vec::new(),
+        keys: Vec::new(),
         table: HashTable::new(),
     };
     store.intern(g0.0, e0.0);
@@ -153,20 +148,25 @@ pub(super) fn pruned_product(
         }
     }
     let n = store.len();
-    let Pairs { mut pairs, table } = store;
-    drop(table);
     let mut marked = FixedBitSet::with_capacity(n);
-    for (s, pair) in pairs.chunks_exact(2).enumerate() {
-        if plant.is_marked(StateId(pair[0])) && spec.is_marked(StateId(pair[1])) {
+    for s in 0..n {
+        let (g, e) = store.pair(s);
+        if plant.is_marked(StateId(g)) && spec.is_marked(StateId(e)) {
             marked.insert(s);
         }
     }
+    let Pairs { mut keys, table } = store;
+    drop(table);
     let mut bad_set = FixedBitSet::with_capacity(n);
     bad_set.extend(bad);
     let names = if options.name_states {
-        pairs.shrink_to_fit();
+        keys.shrink_to_fit();
         let parts = vec![plant.state_names().clone(), spec.state_names().clone()];
-        StateNames::Composed(Arc::new(Composed::new(parts, Arc::new(pairs))))
+        let tuples = Tuples::Packed {
+            keys,
+            layout: Layout::pair(),
+        };
+        StateNames::Composed(Arc::new(Composed::new(parts, Arc::new(tuples))))
     } else {
         StateNames::Indices
     };
