@@ -27,7 +27,7 @@
 
 mod product;
 
-use super::reach::{coreachable_within, restrict, Reverse};
+use super::reach::{coreachable_within, restrict_owned, Reverse};
 use super::sync::ComposeOptions;
 use crate::automaton::{Automaton, StateId};
 use crate::error::{Error, Result};
@@ -86,10 +86,10 @@ pub fn supcon_with(
 ) -> Result<Automaton> {
     check_spec_alphabet(plant, spec)?;
     let product::Pruned {
-        automaton: p,
+        automaton: product,
         mut bad,
     } = product::pruned_product(plant, spec, options)?;
-    let p = &p;
+    let p = &product;
     let uncontrollable: Vec<bool> = p
         .alphabet()
         .ids()
@@ -140,7 +140,7 @@ pub fn supcon_with(
         }
     }
     drop(bad);
-    let mut result = restrict(p, &keep);
+    let mut result = restrict_owned(product, &keep);
     result.set_name(name);
     Ok(result)
 }
