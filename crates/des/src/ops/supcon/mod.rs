@@ -8,7 +8,7 @@
 //!
 //! Algorithm:
 //! 1. Build the reachable product `P = G ‖ E` (its states are pairs),
-//!    pruned ([`product`]):
+//!    pruned as it is built (`supcon/product.rs`):
 //! 2. a product state is *bad* when the plant can do an uncontrollable
 //!    event there that the specification forbids; it is not expanded.
 //! 3. Repeat until nothing changes: every state with an uncontrollable
