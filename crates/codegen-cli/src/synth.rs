@@ -31,11 +31,14 @@ pub struct SynthArgs {
     #[arg(long)]
     name: Option<String>,
     /// Number the states instead of naming them after plant and spec
-    /// states (saves memory on very large models).
+    /// states. Names cost little memory (they are composed from the
+    /// component states when the file is written), but writing them takes
+    /// time on very large models.
     #[arg(long)]
     no_state_names: bool,
     /// Refuse a composition beyond this many states (memory grows with
-    /// them: about 100 bytes a state and more with names).
+    /// them: on the benchmark families about 30 bytes per transition of
+    /// the largest product, names included).
     #[arg(long, default_value_t = ops::sync::DEFAULT_MAX_STATES)]
     max_states: usize,
 }
