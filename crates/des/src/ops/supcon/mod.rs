@@ -25,9 +25,10 @@
 //! while the blocking and controllability cuts feed each other, which is
 //! a handful of times on real models.
 
+mod preds;
 mod product;
 
-use super::reach::{coreachable_within, restrict_owned, Reverse};
+use super::reach::restrict_owned;
 use super::sync::ComposeOptions;
 use crate::automaton::{Automaton, StateId};
 use crate::error::{Error, Result};
@@ -100,19 +101,15 @@ pub fn supcon_with(
     let mut frontier: Vec<StateId> = bad.ones().map(|s| StateId(s as u32)).collect();
 
     // Step 3.
-    let rev = Reverse::new(p);
+    let preds = preds::Predecessors::new(p, &uncontrollable);
     loop {
-        while let Some(s) = frontier.pop() {
-            for &(pred, e) in rev.predecessors(s) {
-                if uncontrollable[e.index()] && !bad.put(pred.index()) {
-                    frontier.push(pred);
-                }
-            }
-        }
-        let mut good = bad.clone();
-        good.toggle_range(..);
-        let co = coreachable_within(p, &rev, Some(&good));
-        for s in good.difference(&co) {
+        preds.spread_bad(&mut bad, &mut frontier);
+        let co = preds.coreachable_good(p, &bad);
+        // Good states that block: neither bad nor coreachable.
+        let mut blocking = co;
+        blocking.union_with(&bad);
+        blocking.toggle_range(..);
+        for s in blocking.ones() {
             bad.insert(s);
             frontier.push(StateId(s as u32));
         }
@@ -124,7 +121,7 @@ pub fn supcon_with(
 
     // Step 4.
     let name = format!("supcon({},{})", plant.name(), spec.name());
-    drop(rev);
+    drop(preds);
     let Some(init) = p.initial().filter(|s| !bad.contains(s.index())) else {
         return Ok(Automaton::empty(name, p.alphabet().clone()));
     };
