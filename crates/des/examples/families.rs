@@ -6,9 +6,7 @@
 //!
 //! writes the plant components `M*.gen`/`P*.gen`/`F*.gen` and the
 //! specifications `B*.gen` of instance `N` into `OUTDIR` (created). The
-//! families, each with its monolithic supcon size (issue 23's ring family,
-//! ring12 with 673,596 states, is not here: no ring of these machines and
-//! buffers tried reproduced that count):
+//! families, each with its monolithic supcon size:
 //!
 //! - `tline N`: a transfer line of `N` machines in series with `N - 1`
 //!   buffers of one slot. Machine `i` (plant `Mi`, Wonham's small-factory
@@ -18,6 +16,14 @@
 //!   (specification `Bi`, `i < N`): `0 -fi-> 1 -s(i+1)-> 0`, marked in `0`.
 //!   The supervisor has `3 · 4^(N-1)` states (tline9: 196,608; tline10:
 //!   786,432).
+//! - `ring N`: `N` machines in a cycle with `N` buffers of one slot.
+//!   Machine `i` (plant `Mi`) breaks down while working and is repaired
+//!   back to work, keeping its part: `I -si-> W -fi-> I`, `W -bi-> D -ri->
+//!   W` (`si`, `ri` controllable). Buffer `i` (specification `Bi`): `fi`
+//!   fills it, `s(i mod N + 1)` empties it; the odd buffers start full
+//!   (`⌈N/2⌉` parts circulate) and each is marked in its initial fill. As
+//!   `ringb` of the `des-symbolic` families; ring12 has 673,596
+//!   supervisor states.
 //! - `phil N`: `N` dining philosophers as in `/work/shared/bench/phil*`:
 //!   philosopher `Pi` takes its left fork (`ei01`) and its right fork
 //!   (`ei03`) in either order and puts both back (`ei05`); fork `Fi` is
@@ -96,6 +102,42 @@ fn tline(n: usize) -> (Vec<Automaton>, Vec<Automaton>) {
     (plants, specs)
 }
 
+/// Machine `i` that breaks down while working and is repaired back to
+/// work, keeping its part: `I -si-> W -fi-> I`, `W -bi-> D -ri-> W`.
+fn repairing_machine(i: usize) -> Automaton {
+    let (s, f, b, r) = (
+        format!("s{i}"),
+        format!("f{i}"),
+        format!("b{i}"),
+        format!("r{i}"),
+    );
+    automaton(
+        &format!("M{i}"),
+        &[
+            (s.clone(), true),
+            (f.clone(), false),
+            (b.clone(), false),
+            (r.clone(), true),
+        ],
+        &[("I", s, "W"), ("W", f, "I"), ("W", b, "D"), ("D", r, "W")],
+        "I",
+        &["I"],
+    )
+}
+
+/// The ring of `n` repairing machines: buffer `i` between `fi` and
+/// `s(i mod n + 1)`, full at first for odd `i`.
+fn ring(n: usize) -> (Vec<Automaton>, Vec<Automaton>) {
+    let plants = (1..=n).map(repairing_machine).collect();
+    let specs = (1..=n)
+        .map(|i| {
+            let initial = if i % 2 == 1 { "1" } else { "0" };
+            buffer(i, format!("f{i}"), format!("s{}", i % n + 1), initial)
+        })
+        .collect();
+    (plants, specs)
+}
+
 /// `n` dining philosophers and their forks.
 fn phil(n: usize) -> Vec<Automaton> {
     let mut out = Vec::new();
@@ -151,7 +193,7 @@ fn write(dir: &Path, kind: Kind, automata: Vec<Automaton>) -> Result<(), String>
 fn main() -> Result<(), String> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let [family, n, dir] = args.as_slice() else {
-        return Err("usage: families tline|phil N OUTDIR".into());
+        return Err("usage: families tline|ring|phil N OUTDIR".into());
     };
     let n: usize = n
         .parse()
@@ -162,8 +204,9 @@ fn main() -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let (plants, specs) = match family.as_str() {
         "tline" => tline(n),
+        "ring" => ring(n),
         "phil" => (phil(n), Vec::new()),
-        other => return Err(format!("unknown family `{other}` (tline, phil)")),
+        other => return Err(format!("unknown family `{other}` (tline, ring, phil)")),
     };
     write(dir, Kind::Plant, plants)?;
     write(dir, Kind::Spec, specs)
