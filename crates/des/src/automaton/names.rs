@@ -11,7 +11,6 @@
 
 use super::tuples::Tuples;
 use std::borrow::Cow;
-use std::fmt::Write as _;
 use std::sync::Arc;
 
 /// The names of an automaton's states.
@@ -59,6 +58,24 @@ impl Composed {
     }
 }
 
+/// Appends `s` in decimal (what `write!` does, without its machinery: this
+/// runs once per component of every state name written).
+fn push_index(out: &mut String, mut s: usize) {
+    let mut digits = [0u8; 20];
+    let mut at = digits.len();
+    loop {
+        at -= 1;
+        digits[at] = b'0' + (s % 10) as u8;
+        s /= 10;
+        if s == 0 {
+            break;
+        }
+    }
+    for &d in &digits[at..] {
+        out.push(char::from(d));
+    }
+}
+
 impl StateNames {
     /// Stored names, or indices for `None`.
     pub(crate) fn from_option(names: Option<Vec<String>>) -> StateNames {
@@ -86,9 +103,7 @@ impl StateNames {
     /// Appends the name of state `s` to `out`.
     pub(crate) fn write(&self, s: usize, out: &mut String) {
         match self {
-            StateNames::Indices => {
-                let _ = write!(out, "{s}");
-            }
+            StateNames::Indices => push_index(out, s),
             StateNames::Stored(names) => out.push_str(&names[s]),
             StateNames::Composed(c) => c.write(s, out),
         }
@@ -125,6 +140,20 @@ impl StateNames {
             StateNames::Composed(c) => {
                 c.tuples.heap_bytes() + c.select.as_ref().map_or(0, |s| s.capacity() * 4)
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::push_index;
+
+    #[test]
+    fn indices_are_written_in_decimal() {
+        for n in [0, 7, 10, 99, 100, 4_294_967_295, usize::MAX] {
+            let mut out = String::from("x");
+            push_index(&mut out, n);
+            assert_eq!(out, format!("x{n}"));
         }
     }
 }

@@ -143,8 +143,33 @@ pub(super) fn stream_with_kind(
 
 /// Characters a libFAUDES symbol may consist of without quotes (a
 /// conservative choice: anything else is quoted).
-fn is_plain_char(c: char) -> bool {
-    c.is_ascii_alphanumeric() || "_.-:[]()/,;=@$!?*^~|".contains(c)
+///
+/// Read byte by byte: every byte of a non-ASCII character is outside the
+/// set, as the character is.
+fn is_plain_byte(b: u8) -> bool {
+    b.is_ascii_alphanumeric()
+        || matches!(
+            b,
+            b'_' | b'.'
+                | b'-'
+                | b':'
+                | b'['
+                | b']'
+                | b'('
+                | b')'
+                | b'/'
+                | b','
+                | b';'
+                | b'='
+                | b'@'
+                | b'$'
+                | b'!'
+                | b'?'
+                | b'*'
+                | b'^'
+                | b'~'
+                | b'|'
+        )
 }
 
 /// `true` when `name` can be written without quotes and libFAUDES reads
@@ -152,7 +177,7 @@ fn is_plain_char(c: char) -> bool {
 /// attribute (see the module docs).
 fn is_plain_symbol(name: &str) -> bool {
     name.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
-        && name.chars().all(is_plain_char)
+        && name.bytes().all(is_plain_byte)
         && name != "inf"
 }
 
