@@ -984,3 +984,39 @@ fn devices_fifos_and_directories_are_not_model_files() {
         );
     }
 }
+
+/// A `.gen` file is written in pieces; the pieces make exactly the text
+/// `write_string` gives, names composed on demand included (here a
+/// composition whose text is several pieces long).
+#[test]
+fn a_streamed_gen_file_is_the_written_string() {
+    let machine = |i: usize| {
+        let mut b = des::AutomatonBuilder::new(format!("M{i}"));
+        let (s, f, k) = (format!("s{i}"), format!("f{i}"), format!("b{i}"));
+        b.add_event(&s, true).unwrap();
+        b.add_event(&f, false).unwrap();
+        b.add_event(&k, false).unwrap();
+        b.set_initial_by_name("idle").unwrap();
+        b.mark_by_name("idle");
+        b.add_transition_by_name("idle", &s, "busy", 0).unwrap();
+        b.add_transition_by_name("busy", &f, "idle", 0).unwrap();
+        b.add_transition_by_name("busy", &k, "down#3", 0).unwrap();
+        b.add_transition_by_name("down#3", &s, "idle", 0).unwrap();
+        b.build().unwrap()
+    };
+    let parts: Vec<_> = (0..9).map(machine).collect();
+    let refs: Vec<_> = parts.iter().collect();
+    let product = des::ops::sync(&refs).unwrap();
+    let component = des::formats::Component {
+        kind: des::formats::Kind::Supervisor,
+        automaton: product,
+    };
+    let text =
+        des::formats::write_string(des::formats::Format::Gen, std::slice::from_ref(&component))
+            .unwrap();
+    assert!(text.len() > 3 << 20, "several pieces: {}", text.len());
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("big.gen");
+    des::formats::write_file(&path, std::slice::from_ref(&component)).unwrap();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), text);
+}

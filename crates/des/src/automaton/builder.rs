@@ -272,7 +272,7 @@ impl AutomatonBuilder {
         for s in self.marked {
             marked.insert(s.index());
         }
-        let names = self.any_named.then_some(self.state_names);
+        let names = super::StateNames::from_option(self.any_named.then_some(self.state_names));
         Ok(Automaton::from_parts(
             self.name,
             self.alphabet,

@@ -13,9 +13,13 @@
 
 mod alphabet;
 mod builder;
+mod names;
+mod tuples;
 
 pub use alphabet::{Alphabet, ControllabilityConflict, Event, EventId};
 pub use builder::{AutomatonBuilder, BuildError};
+pub(crate) use names::{Composed, StateNames};
+pub(crate) use tuples::{Layout, Tuples};
 
 use fixedbitset::FixedBitSet;
 use std::borrow::Cow;
@@ -49,11 +53,15 @@ pub struct Transition {
 }
 
 /// A deterministic automaton `(Q, Σ, δ, q0, Qm)`; see the module docs.
-#[derive(Debug, Clone, PartialEq, Eq)]
+///
+/// Two automata are equal when they have the same name, alphabet, states
+/// (with the same names), initial state, marking and transitions, however
+/// their names are kept.
+#[derive(Debug, Clone)]
 pub struct Automaton {
     name: String,
     alphabet: Alphabet,
-    state_names: Option<Vec<String>>,
+    state_names: StateNames,
     initial: Option<StateId>,
     marked: FixedBitSet,
     offsets: Vec<u32>,
@@ -69,7 +77,7 @@ impl Automaton {
     pub(crate) fn from_parts(
         name: String,
         alphabet: Alphabet,
-        state_names: Option<Vec<String>>,
+        state_names: StateNames,
         initial: Option<StateId>,
         marked: FixedBitSet,
         offsets: Vec<u32>,
@@ -78,7 +86,10 @@ impl Automaton {
         let n = offsets.len() - 1;
         debug_assert_eq!(marked.len(), n);
         debug_assert_eq!(*offsets.last().unwrap() as usize, edges.len());
-        debug_assert!(state_names.as_ref().is_none_or(|v| v.len() == n));
+        debug_assert!(match &state_names {
+            StateNames::Stored(v) => v.len() == n,
+            _ => true,
+        });
         debug_assert!(initial.is_none_or(|s| s.index() < n));
         debug_assert!(offsets.windows(2).all(|w| w[0] <= w[1]));
         debug_assert!((0..n).all(|s| {
@@ -104,7 +115,7 @@ impl Automaton {
         Automaton::from_parts(
             name.into(),
             alphabet,
-            None,
+            StateNames::Indices,
             None,
             FixedBitSet::new(),
             vec![0],
@@ -174,26 +185,31 @@ impl Automaton {
 
     /// `true` when states carry names.
     pub fn has_state_names(&self) -> bool {
-        self.state_names.is_some()
+        self.state_names.is_named()
     }
 
     /// The name of `s`: its given name, else its index.
     pub fn state_name(&self, s: StateId) -> Cow<'_, str> {
-        match &self.state_names {
-            Some(names) => Cow::Borrowed(&names[s.index()]),
-            None => Cow::Owned(s.0.to_string()),
-        }
+        self.state_names.name(s.index())
     }
 
     /// The state named `name` (a linear search; for tools, not hot loops).
     /// Unnamed automata answer to state indices.
     pub fn state_by_name(&self, name: &str) -> Option<StateId> {
         match &self.state_names {
-            Some(names) => names
+            StateNames::Stored(names) => names
                 .iter()
                 .position(|n| n == name)
                 .map(|i| StateId(i as u32)),
-            None => name
+            StateNames::Composed(_) => {
+                let mut buf = String::new();
+                self.states().find(|&s| {
+                    buf.clear();
+                    self.state_names.write(s.index(), &mut buf);
+                    buf == name
+                })
+            }
+            StateNames::Indices => name
                 .parse::<u32>()
                 .ok()
                 .filter(|&i| (i as usize) < self.num_states())
@@ -209,7 +225,7 @@ impl Automaton {
 
     /// Drops state names (operations then number states).
     pub fn clear_state_names(&mut self) {
-        self.state_names = None;
+        self.state_names = StateNames::Indices;
     }
 
     /// The outgoing transitions of `s`, sorted by event.
@@ -260,7 +276,7 @@ impl Automaton {
     ) -> (
         String,
         Alphabet,
-        Option<Vec<String>>,
+        StateNames,
         Option<StateId>,
         FixedBitSet,
         Vec<u32>,
@@ -277,9 +293,15 @@ impl Automaton {
         )
     }
 
-    /// The state names, if any.
-    pub(crate) fn state_names(&self) -> Option<&[String]> {
-        self.state_names.as_deref()
+    /// The state names.
+    pub(crate) fn state_names(&self) -> &StateNames {
+        &self.state_names
+    }
+
+    /// Appends the name of `s` to `out` (see [`Automaton::state_name`]),
+    /// without allocating a string of its own.
+    pub fn write_state_name(&self, s: StateId, out: &mut String) {
+        self.state_names.write(s.index(), out);
     }
 
     /// Approximate heap bytes used (for reports).
@@ -287,12 +309,34 @@ impl Automaton {
         self.offsets.capacity() * 4
             + self.edges.capacity() * std::mem::size_of::<Transition>()
             + self.marked.len() / 8
-            + self
-                .state_names
-                .as_ref()
-                .map_or(0, |v| v.iter().map(|n| n.capacity() + 24).sum())
+            + self.state_names.heap_bytes()
     }
 }
+
+impl PartialEq for Automaton {
+    fn eq(&self, other: &Automaton) -> bool {
+        // Same offsets, so the same number of states when names compare.
+        let same_names = || match (&self.state_names, &other.state_names) {
+            (StateNames::Indices, StateNames::Indices) => true,
+            (StateNames::Stored(a), StateNames::Stored(b)) => a == b,
+            (a, b) => {
+                a.is_named() == b.is_named()
+                    && self
+                        .states()
+                        .all(|s| a.name(s.index()) == b.name(s.index()))
+            }
+        };
+        self.name == other.name
+            && self.alphabet == other.alphabet
+            && self.initial == other.initial
+            && self.marked == other.marked
+            && self.offsets == other.offsets
+            && self.edges == other.edges
+            && same_names()
+    }
+}
+
+impl Eq for Automaton {}
 
 #[cfg(test)]
 mod tests {

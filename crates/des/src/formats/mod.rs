@@ -192,8 +192,18 @@ pub fn write_string(format: Format, components: &[Component]) -> Result<String> 
 
 /// Writes `components` to `path` in the format its extension names.
 pub fn write_file(path: &Path, components: &[Component]) -> Result<()> {
+    let format = Format::from_path(path)?;
+    if let (Format::Gen, [one]) = (format, components) {
+        // Streamed: a large supervisor's text is never whole in memory.
+        use std::io::Write as _;
+        let file = std::fs::File::create(path).map_err(|e| Error::io(path, e))?;
+        let mut file = std::io::BufWriter::new(file);
+        return gen::stream_component(one, &mut |chunk| file.write_all(chunk.as_bytes()))
+            .and_then(|()| file.flush())
+            .map_err(|e| Error::io(path, e));
+    }
     // A name the format cannot carry is an error about this file.
-    let text = write_string(Format::from_path(path)?, components).map_err(|e| match e {
+    let text = write_string(format, components).map_err(|e| match e {
         Error::Incompatible(message) => {
             Error::Incompatible(format!("{}: {message}", path.display()))
         }

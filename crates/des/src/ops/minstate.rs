@@ -15,7 +15,7 @@
 //! split is queued, which gives O(m log n) time.
 
 use super::reach::{reachable, restrict};
-use crate::automaton::{Automaton, StateId, Transition};
+use crate::automaton::{Automaton, StateId, StateNames, Transition};
 use fixedbitset::FixedBitSet;
 
 /// A partition of `0..n` into sets whose elements are contiguous in
@@ -228,7 +228,7 @@ fn quotient(a: &Automaton, blocks: &RefinablePartition, init: StateId) -> Automa
         offsets.push(edges.len() as u32);
         i += 1;
     }
-    let names = a.has_state_names().then(|| {
+    let names = StateNames::from_option(a.has_state_names().then(|| {
         representative
             .iter()
             .map(|&rep| {
@@ -243,7 +243,7 @@ fn quotient(a: &Automaton, blocks: &RefinablePartition, init: StateId) -> Automa
                 }
             })
             .collect()
-    });
+    }));
     marked.grow(representative.len());
     Automaton::from_parts(
         a.name().to_owned(),

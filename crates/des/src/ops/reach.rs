@@ -126,7 +126,7 @@ pub fn restrict(a: &Automaton, keep: &FixedBitSet) -> Automaton {
     offsets.push(0u32);
     let mut edges = Vec::new();
     let mut marked = FixedBitSet::with_capacity(count as usize);
-    let mut names = a.state_names().map(|_| Vec::with_capacity(count as usize));
+    let mut old_ids = Vec::with_capacity(count as usize);
     for s in a.states() {
         let id = new_id[s.index()];
         if id == u32::MAX {
@@ -145,9 +145,7 @@ pub fn restrict(a: &Automaton, keep: &FixedBitSet) -> Automaton {
         if a.is_marked(s) {
             marked.insert(id as usize);
         }
-        if let (Some(names), Some(all)) = (names.as_mut(), a.state_names()) {
-            names.push(all[s.index()].clone());
-        }
+        old_ids.push(s.0);
     }
     let initial = a
         .initial()
@@ -157,7 +155,69 @@ pub fn restrict(a: &Automaton, keep: &FixedBitSet) -> Automaton {
     Automaton::from_parts(
         a.name().to_owned(),
         a.alphabet().clone(),
-        names,
+        a.state_names().select(&old_ids),
+        initial,
+        marked,
+        offsets,
+        edges,
+    )
+}
+
+/// [`restrict`] of an automaton given away: the kept rows are moved down
+/// inside its own vectors, so the result needs no second copy of the
+/// transitions.
+pub(crate) fn restrict_owned(a: Automaton, keep: &FixedBitSet) -> Automaton {
+    let n = a.num_states();
+    if keep.count_ones(..) == n {
+        return a;
+    }
+    let mut new_id = vec![u32::MAX; n];
+    let mut count = 0u32;
+    for s in keep.ones().filter(|&s| s < n) {
+        new_id[s] = count;
+        count += 1;
+    }
+    let (name, alphabet, names, initial, old_marked, mut offsets, mut edges) = a.into_parts();
+    let mut marked = FixedBitSet::with_capacity(count as usize);
+    let mut old_ids = Vec::with_capacity(count as usize);
+    let (mut written, mut kept) = (0usize, 0usize);
+    let mut row_start = offsets[0] as usize;
+    for s in 0..n {
+        // Read before `offsets[kept]` (kept <= s + 1) is overwritten.
+        let row_end = offsets[s + 1] as usize;
+        if new_id[s] != u32::MAX {
+            for k in row_start..row_end {
+                let t = edges[k];
+                let target = new_id[t.target.index()];
+                if target != u32::MAX {
+                    edges[written] = Transition {
+                        event: t.event,
+                        target: StateId(target),
+                    };
+                    written += 1;
+                }
+            }
+            if old_marked.contains(s) {
+                marked.insert(kept);
+            }
+            old_ids.push(s as u32);
+            kept += 1;
+            offsets[kept] = written as u32;
+        }
+        row_start = row_end;
+    }
+    offsets.truncate(kept + 1);
+    offsets.shrink_to_fit();
+    edges.truncate(written);
+    edges.shrink_to_fit();
+    let initial = initial
+        .map(|s| new_id[s.index()])
+        .filter(|&i| i != u32::MAX)
+        .map(StateId);
+    Automaton::from_parts(
+        name,
+        alphabet,
+        names.select(&old_ids),
         initial,
         marked,
         offsets,
@@ -258,6 +318,20 @@ mod tests {
         let r = restrict(&g, &keep);
         assert_eq!(r.initial(), None);
         assert_eq!(r.num_transitions(), 1);
+    }
+
+    #[test]
+    fn restricting_in_place_gives_what_restrict_gives() {
+        let g = sample();
+        for bits in 0u32..32 {
+            let mut keep = FixedBitSet::with_capacity(5);
+            keep.extend((0..5).filter(|i| bits & (1 << i) != 0));
+            assert_eq!(
+                restrict_owned(g.clone(), &keep),
+                restrict(&g, &keep),
+                "{bits:05b}"
+            );
+        }
     }
 
     #[test]

@@ -3,10 +3,12 @@
 //!
 //! Both explore the reachable part of the product breadth-first from the
 //! tuple of initial states. A product state is a tuple of component states,
-//! stored flat in one `Vec<u32>` and interned through a hash table of
-//! indices into it, so a state costs `4 × components` bytes plus the
-//! table slot. States are numbered in discovery order, which lets the
-//! transition rows be appended directly in CSR form.
+//! packed into one `u64` when the components' state counts allow it (else
+//! stored flat in one `Vec<u32>`), and interned through a hash table of
+//! `u32` ids into it, so a state costs 8 bytes (or `4 × components`) plus
+//! the table slot. States are numbered in discovery order, which lets the
+//! transition rows be appended directly in CSR form. State names are
+//! composed from the tuples when asked for, not stored.
 //!
 //! - `sync`: the alphabet is the union; an event moves every component
 //!   that has it and leaves the others where they are, and is possible
@@ -15,12 +17,15 @@
 //!   intersection of the components' languages.
 
 use super::Progress;
-use crate::automaton::{Alphabet, Automaton, EventId, StateId, Transition};
+use crate::automaton::{
+    Alphabet, Automaton, Composed, EventId, Layout, StateId, StateNames, Transition, Tuples,
+};
 use crate::error::{Error, Result};
 use fixedbitset::FixedBitSet;
 use hashbrown::HashTable;
 use rustc_hash::FxBuildHasher;
 use std::hash::BuildHasher;
+use std::sync::Arc;
 
 /// How the alphabets of the components combine.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -67,20 +72,21 @@ impl Default for ComposeOptions<'_> {
 pub struct Product {
     /// The product automaton.
     pub automaton: Automaton,
-    tuples: Vec<u32>,
-    width: usize,
+    tuples: Arc<Tuples>,
 }
 
 impl Product {
     /// The state of component `component` in product state `s`.
     #[inline]
     pub fn component_state(&self, s: StateId, component: usize) -> StateId {
-        StateId(self.tuples[s.index() * self.width + component])
+        StateId(self.tuples.get(s.index(), component))
     }
 
     /// The tuple of component states of product state `s`.
-    pub fn tuple(&self, s: StateId) -> &[u32] {
-        &self.tuples[s.index() * self.width..(s.index() + 1) * self.width]
+    pub fn tuple(&self, s: StateId) -> Vec<u32> {
+        (0..self.tuples.width())
+            .map(|j| self.tuples.get(s.index(), j))
+            .collect()
     }
 }
 
@@ -134,7 +140,7 @@ pub fn composed_alphabet(components: &[&Automaton], mode: Composition) -> Result
 
 /// One component's transition function, as a dense table when that is
 /// small, else looked up in its CSR rows.
-enum Delta<'a> {
+pub(super) enum Delta<'a> {
     Dense { table: Vec<u32>, events: usize },
     Sparse(&'a Automaton),
 }
@@ -142,7 +148,7 @@ enum Delta<'a> {
 const DENSE_LIMIT: usize = 1 << 22;
 
 impl<'a> Delta<'a> {
-    fn new(a: &'a Automaton) -> Self {
+    pub(super) fn new(a: &'a Automaton) -> Self {
         let events = a.alphabet().len();
         let size = a.num_states().saturating_mul(events);
         if size > DENSE_LIMIT {
@@ -156,7 +162,7 @@ impl<'a> Delta<'a> {
     }
 
     #[inline]
-    fn next(&self, s: u32, e: EventId) -> Option<u32> {
+    pub(super) fn next(&self, s: u32, e: EventId) -> Option<u32> {
         match self {
             Delta::Dense { table, events } => {
                 let t = table[s as usize * events + e.index()];
@@ -167,44 +173,96 @@ impl<'a> Delta<'a> {
     }
 }
 
-/// Interned product-state tuples.
+/// Interned product-state tuples, packed when the layout allows.
 struct TupleStore {
     width: usize,
-    tuples: Vec<u32>,
+    layout: Option<Layout>,
+    keys: Vec<u64>,
+    flat: Vec<u32>,
     table: HashTable<u32>,
     hasher: FxBuildHasher,
 }
 
 impl TupleStore {
-    fn new(width: usize) -> Self {
+    fn new(components: &[&Automaton]) -> Self {
+        let sizes: Vec<usize> = components.iter().map(|a| a.num_states()).collect();
         TupleStore {
-            width,
-            tuples: Vec::new(),
+            width: components.len(),
+            layout: Layout::packed(&sizes),
+            keys: Vec::new(),
+            flat: Vec::new(),
             table: HashTable::new(),
             hasher: FxBuildHasher,
         }
     }
 
     fn len(&self) -> usize {
-        self.tuples.len() / self.width.max(1)
+        match self.layout {
+            Some(_) => self.keys.len(),
+            None => self.flat.len() / self.width.max(1),
+        }
+    }
+
+    /// Copies tuple `id` into `out`.
+    fn load(&self, id: usize, out: &mut [u32]) {
+        match &self.layout {
+            Some(layout) => {
+                for (j, q) in out.iter_mut().enumerate() {
+                    *q = layout.get(self.keys[id], j);
+                }
+            }
+            None => out.copy_from_slice(&self.flat[id * self.width..(id + 1) * self.width]),
+        }
     }
 
     /// The id of `tuple`, and whether it is new.
     fn intern(&mut self, tuple: &[u32]) -> (u32, bool) {
+        let id = self.len() as u32;
+        if let Some(layout) = &self.layout {
+            let key = layout.pack(tuple);
+            let hash = self.hasher.hash_one(key);
+            let keys = &self.keys;
+            if let Some(&found) = self.table.find(hash, |&i| keys[i as usize] == key) {
+                return (found, false);
+            }
+            self.keys.push(key);
+            let (keys, hasher) = (&self.keys, &self.hasher);
+            self.table
+                .insert_unique(hash, id, |&i| hasher.hash_one(keys[i as usize]));
+            return (id, true);
+        }
         let hash = self.hasher.hash_one(tuple);
         let width = self.width;
-        let tuples = &self.tuples;
-        let eq = |&id: &u32| &tuples[id as usize * width..(id as usize + 1) * width] == tuple;
-        if let Some(&id) = self.table.find(hash, eq) {
-            return (id, false);
+        let flat = &self.flat;
+        let eq = |&i: &u32| &flat[i as usize * width..(i as usize + 1) * width] == tuple;
+        if let Some(&found) = self.table.find(hash, eq) {
+            return (found, false);
         }
-        let id = self.len() as u32;
-        self.tuples.extend_from_slice(tuple);
-        let (tuples, hasher) = (&self.tuples, &self.hasher);
+        self.flat.extend_from_slice(tuple);
+        let (flat, hasher) = (&self.flat, &self.hasher);
         self.table.insert_unique(hash, id, |&i| {
-            hasher.hash_one(&tuples[i as usize * width..(i as usize + 1) * width])
+            hasher.hash_one(&flat[i as usize * width..(i as usize + 1) * width])
         });
         (id, true)
+    }
+
+    /// The tuples, in id order.
+    fn into_tuples(self) -> Tuples {
+        match self.layout {
+            Some(layout) => {
+                let mut keys = self.keys;
+                keys.shrink_to_fit();
+                Tuples::Packed { keys, layout }
+            }
+            None => {
+                let mut data = self.flat;
+                data.shrink_to_fit();
+                Tuples::Flat {
+                    data,
+                    width: self.width,
+                }
+            }
+        }
     }
 }
 
@@ -233,7 +291,7 @@ pub fn compose(
         let automaton = Automaton::from_parts(
             name,
             alphabet,
-            None,
+            StateNames::Indices,
             Some(StateId(0)),
             marked,
             vec![0, 0],
@@ -241,8 +299,7 @@ pub fn compose(
         );
         return Ok(Product {
             automaton,
-            tuples: Vec::new(),
-            width,
+            tuples: Arc::default(),
         });
     }
 
@@ -266,13 +323,12 @@ pub fn compose(
     let Some(initial) = initial else {
         return Ok(Product {
             automaton: Automaton::empty(name, alphabet),
-            tuples: Vec::new(),
-            width,
+            tuples: Arc::default(),
         });
     };
 
     let deltas: Vec<Delta> = components.iter().map(|a| Delta::new(a)).collect();
-    let mut store = TupleStore::new(width);
+    let mut store = TupleStore::new(components);
     store.intern(&initial);
 
     let mut offsets = vec![0u32];
@@ -282,7 +338,7 @@ pub fn compose(
     let mut moved: Vec<(usize, u32)> = Vec::with_capacity(width);
     let mut s = 0usize;
     while s < store.len() {
-        current.copy_from_slice(&store.tuples[s * width..(s + 1) * width]);
+        store.load(s, &mut current);
         next.copy_from_slice(&current);
         for (g, parts) in participants.iter().enumerate() {
             moved.clear();
@@ -332,30 +388,25 @@ pub fn compose(
     }
 
     let n = store.len();
+    drop(std::mem::take(&mut store.table));
+    let tuples = Arc::new(store.into_tuples());
     let mut marked = FixedBitSet::with_capacity(n);
     for s in 0..n {
-        let tuple = &store.tuples[s * width..(s + 1) * width];
-        if tuple
+        if components
             .iter()
-            .zip(components)
-            .all(|(&q, a)| a.is_marked(StateId(q)))
+            .enumerate()
+            .all(|(j, a)| a.is_marked(StateId(tuples.get(s, j))))
         {
             marked.insert(s);
         }
     }
-    let names = options.name_states.then(|| {
-        (0..n)
-            .map(|s| {
-                let tuple = &store.tuples[s * width..(s + 1) * width];
-                tuple
-                    .iter()
-                    .zip(components)
-                    .map(|(&q, a)| a.state_name(StateId(q)))
-                    .collect::<Vec<_>>()
-                    .join(".")
-            })
-            .collect()
-    });
+    // Names are joined from the components' when asked for, not stored.
+    let names = if options.name_states {
+        let parts = components.iter().map(|a| a.state_names().clone()).collect();
+        StateNames::Composed(Arc::new(Composed::new(parts, Arc::clone(&tuples))))
+    } else {
+        StateNames::Indices
+    };
     let automaton = Automaton::from_parts(
         name,
         alphabet,
@@ -365,11 +416,7 @@ pub fn compose(
         offsets,
         edges,
     );
-    Ok(Product {
-        automaton,
-        tuples: store.tuples,
-        width,
-    })
+    Ok(Product { automaton, tuples })
 }
 
 #[cfg(test)]

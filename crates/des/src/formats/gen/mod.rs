@@ -118,6 +118,15 @@ pub fn write_component(c: &Component) -> String {
     write::write_with_kind(&c.automaton, c.kind)
 }
 
+/// [`write_component()`] to `sink` a piece at a time, without the whole
+/// text in memory.
+pub(crate) fn stream_component(
+    c: &Component,
+    sink: &mut dyn FnMut(&str) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    write::stream_with_kind(&c.automaton, c.kind, sink)
+}
+
 /// The file the unit tests' texts come from, as errors name it.
 #[cfg(test)]
 fn p() -> &'static Path {

@@ -10,7 +10,34 @@ use std::fmt::Write as _;
 /// [`super::write()`] and [`super::write_component()`]: `kind` is
 /// recorded unless [`Kind::Unspecified`].
 pub(super) fn write_with_kind(a: &Automaton, kind: Kind) -> String {
-    let mut out = String::with_capacity(64 + a.num_transitions() * 16 + a.num_states() * 8);
+    let mut all = String::new();
+    let mut append = |chunk: &str| {
+        all.push_str(chunk);
+        Ok(())
+    };
+    stream_with_kind(a, kind, &mut append).expect("appending to a string does not fail");
+    all
+}
+
+/// Text is handed to the sink in pieces of about this many bytes.
+const CHUNK: usize = 1 << 20;
+
+/// [`write_with_kind`] in pieces: the text goes to `sink` a chunk at a
+/// time, so a large automaton is written without its whole text (or all
+/// its state names) in memory at once.
+pub(super) fn stream_with_kind(
+    a: &Automaton,
+    kind: Kind,
+    sink: &mut dyn FnMut(&str) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let mut out = String::with_capacity(CHUNK + 4096);
+    let mut flush = |out: &mut String, force: bool| {
+        if force || out.len() >= CHUNK {
+            sink(out)?;
+            out.clear();
+        }
+        Ok::<(), std::io::Error>(())
+    };
     out.push_str("<Generator name=\"");
     escape_into(&mut out, a.name());
     out.push('"');
@@ -38,23 +65,36 @@ pub(super) fn write_with_kind(a: &Automaton, kind: Kind) -> String {
             out.push_str(" +C+");
         }
         out.push('\n');
+        flush(&mut out, false)?;
     }
     out.push_str("</Alphabet>\n\n<States>\n");
-    let names = state_tokens(a);
-    match &names {
-        Some(names) => {
-            for (s, n) in a.states().zip(names) {
-                put_state_decl(&mut out, a, s, n);
-                out.push('\n');
-            }
+    let named = a.has_state_names();
+    // A state's name, reused for every state (names are composed on
+    // demand, never all held at once).
+    let mut name = String::new();
+    let token = |out: &mut String, name: &mut String, s: StateId| {
+        if named {
+            name.clear();
+            a.write_state_name(s, name);
+            put_name(out, name);
+        } else {
+            let _ = write!(out, "{}", s.0 as u64 + 1);
         }
-        None if a.num_states() > 16 && a.num_states() as u64 <= MAX_RANGE_STATES => {
-            let _ = writeln!(out, "<Consecutive>\n1 {}\n</Consecutive>", a.num_states());
+    };
+    if named {
+        for s in a.states() {
+            name.clear();
+            a.write_state_name(s, &mut name);
+            put_state_decl(&mut out, &name, s);
+            out.push('\n');
+            flush(&mut out, false)?;
         }
-        None => {
-            for s in a.states() {
-                let _ = writeln!(out, "{}", s.0 as u64 + 1);
-            }
+    } else if a.num_states() > 16 && a.num_states() as u64 <= MAX_RANGE_STATES {
+        let _ = writeln!(out, "<Consecutive>\n1 {}\n</Consecutive>", a.num_states());
+    } else {
+        for s in a.states() {
+            let _ = writeln!(out, "{}", s.0 as u64 + 1);
+            flush(&mut out, false)?;
         }
     }
     out.push_str("</States>\n\n<TransRel>\n");
@@ -68,38 +108,68 @@ pub(super) fn write_with_kind(a: &Automaton, kind: Kind) -> String {
             s
         })
         .collect();
-    let put_state = |out: &mut String, s: StateId| match &names {
-        Some(names) => out.push_str(&names[s.index()]),
-        None => {
-            let _ = write!(out, "{}", s.0 as u64 + 1);
+    let mut source = String::new();
+    for s in a.states() {
+        let row = a.transitions(s);
+        if row.is_empty() {
+            continue;
         }
-    };
-    for (s, e, t) in a.iter_transitions() {
-        put_state(&mut out, s);
-        out.push(' ');
-        out.push_str(&events[e.index()]);
-        out.push(' ');
-        put_state(&mut out, t);
-        out.push('\n');
+        source.clear();
+        token(&mut source, &mut name, s);
+        for t in row {
+            out.push_str(&source);
+            out.push(' ');
+            out.push_str(&events[t.event.index()]);
+            out.push(' ');
+            token(&mut out, &mut name, t.target);
+            out.push('\n');
+        }
+        flush(&mut out, false)?;
     }
     out.push_str("</TransRel>\n\n<InitStates>\n");
     if let Some(s) = a.initial() {
-        put_state(&mut out, s);
+        token(&mut out, &mut name, s);
         out.push('\n');
     }
     out.push_str("</InitStates>\n\n<MarkedStates>\n");
     for s in a.marked_states() {
-        put_state(&mut out, s);
+        token(&mut out, &mut name, s);
         out.push('\n');
+        flush(&mut out, false)?;
     }
     out.push_str("</MarkedStates>\n\n</Generator>\n");
-    out
+    flush(&mut out, true)
 }
 
 /// Characters a libFAUDES symbol may consist of without quotes (a
 /// conservative choice: anything else is quoted).
-fn is_plain_char(c: char) -> bool {
-    c.is_ascii_alphanumeric() || "_.-:[]()/,;=@$!?*^~|".contains(c)
+///
+/// Read byte by byte: every byte of a non-ASCII character is outside the
+/// set, as the character is.
+fn is_plain_byte(b: u8) -> bool {
+    b.is_ascii_alphanumeric()
+        || matches!(
+            b,
+            b'_' | b'.'
+                | b'-'
+                | b':'
+                | b'['
+                | b']'
+                | b'('
+                | b')'
+                | b'/'
+                | b','
+                | b';'
+                | b'='
+                | b'@'
+                | b'$'
+                | b'!'
+                | b'?'
+                | b'*'
+                | b'^'
+                | b'~'
+                | b'|'
+        )
 }
 
 /// `true` when `name` can be written without quotes and libFAUDES reads
@@ -107,7 +177,7 @@ fn is_plain_char(c: char) -> bool {
 /// attribute (see the module docs).
 fn is_plain_symbol(name: &str) -> bool {
     name.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
-        && name.chars().all(is_plain_char)
+        && name.bytes().all(is_plain_byte)
         && name != "inf"
 }
 
@@ -140,35 +210,17 @@ fn escape_into(out: &mut String, s: &str) {
     }
 }
 
-/// How each state of a named automaton is referred to (`None` when
-/// unnamed): its name, quoted when necessary.
-fn state_tokens(a: &Automaton) -> Option<Vec<String>> {
-    if !a.has_state_names() {
-        return None;
-    }
-    Some(
-        a.states()
-            .map(|s| {
-                let mut tok = String::new();
-                put_name(&mut tok, &a.state_name(s));
-                tok
-            })
-            .collect(),
-    )
-}
-
-/// Writes the `<States>` entry of state `s` whose reference is `tok`.
+/// Writes the `<States>` entry of state `s` named `name`: the name,
+/// quoted when necessary.
 ///
 /// A name ending in `#digits` would read back as an explicit index, so
 /// such states get their (1-based) index appended explicitly: the name
 /// contains `#`, hence is quoted, and the index goes inside the quotes.
-fn put_state_decl(out: &mut String, a: &Automaton, s: StateId, tok: &str) {
-    match tok.strip_suffix('"') {
-        Some(open) if split_explicit_index(&a.state_name(s)).is_some() => {
-            out.push_str(open);
-            let _ = write!(out, "#{}\"", s.0 as u64 + 1);
-        }
-        _ => out.push_str(tok),
+fn put_state_decl(out: &mut String, name: &str, s: StateId) {
+    put_name(out, name);
+    if out.ends_with('"') && split_explicit_index(name).is_some() {
+        out.pop();
+        let _ = write!(out, "#{}\"", s.0 as u64 + 1);
     }
 }
 

@@ -7,22 +7,29 @@
 //! and whose prefix closure is nonblocking.
 //!
 //! Algorithm:
-//! 1. Build the reachable product `P = G ‖ E` (its states are pairs).
-//! 2. A product state is *bad* when the plant can do an uncontrollable
-//!    event there that the product cannot (the specification forbids it).
+//! 1. Build the reachable product `P = G ‖ E` (its states are pairs),
+//!    pruned as it is built (`supcon/product.rs`):
+//! 2. a product state is *bad* when the plant can do an uncontrollable
+//!    event there that the specification forbids; it is not expanded.
 //! 3. Repeat until nothing changes: every state with an uncontrollable
 //!    transition into a bad state becomes bad (backwards search over the
 //!    reversed transitions); then every good state that cannot reach a good
 //!    marked state through good states becomes bad.
 //! 4. The result is the good part, restricted to what the initial state
-//!    reaches. If the initial state is bad the result is empty.
+//!    reaches through good states, in the product's (breadth-first) order.
+//!    If the initial state is bad the result is empty.
+//!
+//! State names (`plant.spec`) are composed on demand from the pairs.
 //!
 //! Each round is linear in the size of the product; rounds repeat only
 //! while the blocking and controllability cuts feed each other, which is
 //! a handful of times on real models.
 
-use super::reach::{accessible, coreachable_within, restrict, Reverse};
-use super::sync::{compose, ComposeOptions, Composition};
+mod preds;
+mod product;
+
+use super::reach::restrict_owned;
+use super::sync::ComposeOptions;
 use crate::automaton::{Automaton, StateId};
 use crate::error::{Error, Result};
 use fixedbitset::FixedBitSet;
@@ -79,57 +86,30 @@ pub fn supcon_with(
     options: ComposeOptions<'_>,
 ) -> Result<Automaton> {
     check_spec_alphabet(plant, spec)?;
-    let product = compose(&[plant, spec], Composition::Sync, options)?;
-    let p = &product.automaton;
-    // The spec's alphabet is within the plant's and the plant comes first,
-    // so product event ids are plant event ids.
-    debug_assert!(p
-        .alphabet()
-        .ids()
-        .all(|e| { plant.alphabet().name(e) == p.alphabet().name(e) }));
-    let n = p.num_states();
+    let product::Pruned {
+        automaton: product,
+        mut bad,
+    } = product::pruned_product(plant, spec, options)?;
+    let p = &product;
     let uncontrollable: Vec<bool> = p
         .alphabet()
         .ids()
         .map(|e| !p.alphabet().is_controllable(e))
         .collect();
-
-    // Step 2: states where the spec disables an uncontrollable plant event.
-    let mut bad = FixedBitSet::with_capacity(n);
-    let mut frontier: Vec<StateId> = Vec::new();
-    for s in p.states() {
-        let g = product.component_state(s, 0);
-        let row = p.transitions(s);
-        let mut k = 0;
-        let disabled = plant.transitions(g).iter().any(|t| {
-            if !uncontrollable[t.event.index()] {
-                return false;
-            }
-            while k < row.len() && row[k].event < t.event {
-                k += 1;
-            }
-            k == row.len() || row[k].event != t.event
-        });
-        if disabled {
-            bad.insert(s.index());
-            frontier.push(s);
-        }
-    }
+    // Step 2: the states where the spec disables an uncontrollable plant
+    // event, found while building the product.
+    let mut frontier: Vec<StateId> = bad.ones().map(|s| StateId(s as u32)).collect();
 
     // Step 3.
-    let rev = Reverse::new(p);
+    let preds = preds::Predecessors::new(p, &uncontrollable);
     loop {
-        while let Some(s) = frontier.pop() {
-            for &(pred, e) in rev.predecessors(s) {
-                if uncontrollable[e.index()] && !bad.put(pred.index()) {
-                    frontier.push(pred);
-                }
-            }
-        }
-        let mut good = bad.clone();
-        good.toggle_range(..);
-        let co = coreachable_within(p, &rev, Some(&good));
-        for s in good.difference(&co) {
+        preds.spread_bad(&mut bad, &mut frontier);
+        let co = preds.coreachable_good(p, &bad);
+        // Good states that block: neither bad nor coreachable.
+        let mut blocking = co;
+        blocking.union_with(&bad);
+        blocking.toggle_range(..);
+        for s in blocking.ones() {
             bad.insert(s);
             frontier.push(StateId(s as u32));
         }
@@ -141,11 +121,23 @@ pub fn supcon_with(
 
     // Step 4.
     let name = format!("supcon({},{})", plant.name(), spec.name());
-    if p.initial().is_none_or(|s| bad.contains(s.index())) {
+    drop(preds);
+    let Some(init) = p.initial().filter(|s| !bad.contains(s.index())) else {
         return Ok(Automaton::empty(name, p.alphabet().clone()));
+    };
+    // The good states the initial state reaches through good states.
+    let mut keep = FixedBitSet::with_capacity(p.num_states());
+    keep.insert(init.index());
+    let mut stack = vec![init];
+    while let Some(s) = stack.pop() {
+        for t in p.transitions(s) {
+            if !bad.contains(t.target.index()) && !keep.put(t.target.index()) {
+                stack.push(t.target);
+            }
+        }
     }
-    bad.toggle_range(..);
-    let mut result = accessible(&restrict(p, &bad));
+    drop(bad);
+    let mut result = restrict_owned(product, &keep);
     result.set_name(name);
     Ok(result)
 }
