@@ -28,8 +28,8 @@ use toml::Spanned;
 /// The `format` line of the files this version writes and reads.
 pub const FORMAT: &str = "guards/1";
 
-/// The most DNF terms a guard's text lists before it says how many more
-/// there are (the node table is exact either way).
+/// The most DNF terms a guard's text lists before it says at most how
+/// many more there are (the node table is exact either way).
 pub const MAX_TERMS: usize = 64;
 
 /// Why a guard file is refused.
@@ -391,7 +391,7 @@ fn node_table(bdd: &Bdd) -> (u32, Vec<[u32; 3]>) {
 }
 
 /// `bdd` as a disjunction of terms over component states (at most
-/// [`MAX_TERMS`], then a count of the rest).
+/// [`MAX_TERMS`], then a bound on how many more).
 fn dnf(bdd: &Bdd, components: &[Component]) -> String {
     if bdd.is_false() {
         return "false".to_owned();
@@ -400,12 +400,12 @@ fn dnf(bdd: &Bdd, components: &[Component]) -> String {
         return "true".to_owned();
     }
     let mut terms = Vec::new();
-    let mut more = 0usize;
+    let mut seen = 0u128;
     for clause in bdd.sat_clauses() {
         if terms.len() == MAX_TERMS {
-            more += 1;
-            continue;
+            break;
         }
+        seen += 1;
         let mut literals = Vec::new();
         for comp in components {
             let fixed: Vec<(u32, bool)> = (0..comp.bits)
@@ -454,10 +454,23 @@ fn dnf(bdd: &Bdd, components: &[Component]) -> String {
             .collect::<Vec<_>>()
             .join(" ∨ "),
     };
+    let more = paths(bdd).saturating_sub(seen);
     if more > 0 {
-        let _ = write!(text, " ∨ … ({more} more terms)");
+        let _ = write!(text, " ∨ … (up to {more} more terms)");
     }
     text
+}
+
+/// The number of paths from the root of `bdd` to `true` (saturating): an
+/// upper bound on its terms, counted without listing them.
+fn paths(bdd: &Bdd) -> u128 {
+    let (root, nodes) = node_table(bdd);
+    // Children come first, so one pass in order counts every node.
+    let mut count = vec![0u128, 1];
+    for &[_, low, high] in &nodes {
+        count.push(count[low as usize].saturating_add(count[high as usize]));
+    }
+    count[root as usize]
 }
 
 #[cfg(test)]
@@ -545,5 +558,30 @@ mod tests {
                 g.text
             );
         }
+    }
+
+    #[test]
+    fn a_long_guard_lists_its_first_terms_and_bounds_the_rest() {
+        use biodivine_lib_bdd::BddVariableSet;
+        // The parity of 8 one-bit components: 128 terms, none shorter.
+        let vars = BddVariableSet::new_anonymous(16);
+        let parity = (0..8).fold(vars.mk_false(), |x, k| {
+            x.xor(&vars.mk_var(BddVariable::from_index(2 * k)))
+        });
+        assert_eq!(paths(&parity), 128);
+        let components: Vec<Component> = (0..8)
+            .map(|k| Component {
+                name: format!("C{k}"),
+                role: "plant".to_owned(),
+                file: None,
+                states: vec!["off".to_owned(), "on".to_owned()],
+                first_bit: k,
+                bits: 1,
+            })
+            .collect();
+        let text = dnf(&parity, &components);
+        assert!(text.ends_with(" ∨ … (up to 64 more terms)"), "{text}");
+        assert_eq!(text.matches(" ∨ ").count(), MAX_TERMS, "{text}");
+        assert!(text.starts_with("(C0 = "), "{text}");
     }
 }
