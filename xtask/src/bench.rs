@@ -1,6 +1,12 @@
 //! `cargo xtask bench-faudes`: compose + supcon, ours against libFAUDES,
 //! on the same models in the same run, reported as ratios.
 //!
+//! Models are the shared benchmarks under `models/bench/` or instances of
+//! the scalable families, `tline:N`, `ring:N` and `phil:N`, written by the
+//! `families` example of `des` (`target/bench-families/`). Beside the
+//! explicit synthesis, `sym ms` is `codegen synth --symbolic` on the same
+//! files (one run: its BDD fixpoint and guards, the same supervisor size).
+//!
 //! Both sides exclude file reading from the timed phases and report the
 //! median of `--runs` runs; memory is each process's peak resident set
 //! (ours: the whole `codegen synth` process; libFAUDES: the Python process,
@@ -12,7 +18,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 struct Model {
-    name: &'static str,
+    name: String,
     plants: Vec<PathBuf>,
     specs: Vec<PathBuf>,
 }
@@ -30,14 +36,78 @@ fn files(dir: &Path, keep: impl Fn(&str) -> bool) -> Result<Vec<PathBuf>> {
     Ok(out)
 }
 
-fn model(name: &'static str) -> Result<Model> {
+fn model(name: &str) -> Result<Model> {
     let dir = root().join("models/bench").join(name);
     let is_spec = |s: &str| s.ends_with("SPEC") || s.ends_with("SP");
     Ok(Model {
-        name,
+        name: name.to_owned(),
         plants: files(&dir, |s| !is_spec(s))?,
         specs: files(&dir, is_spec)?,
     })
+}
+
+/// The family instance `FAMILY:N` (`tline`, `ring`, `phil`), written by
+/// `cargo run --release -p des --example families` (its specifications are
+/// the `B*` files).
+fn family(arg: &str) -> Result<Model> {
+    let (family, n) = arg.split_once(':').ok_or("not FAMILY:N")?;
+    if !["tline", "ring", "phil"].contains(&family) {
+        return Err(format!("unknown family `{family}` (tline, ring, phil)"));
+    }
+    let n: usize = n
+        .parse()
+        .map_err(|_| format!("`{arg}`: the size is not a number"))?;
+    let name = format!("{family}{n}");
+    let dir = crate::target_dir().join("bench-families").join(&name);
+    crate::run(
+        cargo()
+            .args([
+                "run",
+                "--release",
+                "-q",
+                "-p",
+                "des",
+                "--example",
+                "families",
+                "--",
+            ])
+            .args([family, &n.to_string()])
+            .arg(&dir),
+    )?;
+    Ok(Model {
+        name,
+        plants: files(&dir, |s| !s.starts_with('B'))?,
+        specs: files(&dir, |s| s.starts_with('B'))?,
+    })
+}
+
+/// Ours on BDDs (`synth --symbolic`, one run): milliseconds (fixpoint and
+/// guards), peak KiB, supervisor states.
+fn symbolic(m: &Model) -> Result<(f64, f64, f64)> {
+    let exe = crate::target_dir().join("release/codegen");
+    let out = std::env::temp_dir().join(format!("xtask-bench-{}.guards.toml", m.name));
+    let mut cmd = Command::new(&exe);
+    cmd.args(["--json", "synth", "--symbolic", "-o"])
+        .arg(&out)
+        .arg("--plant")
+        .args(&m.plants);
+    if !m.specs.is_empty() {
+        cmd.arg("--spec").args(&m.specs);
+    }
+    let v = json_of(
+        cmd.output().map_err(|e| e.to_string())?,
+        "codegen synth --symbolic",
+    )?;
+    let _ = std::fs::remove_file(out);
+    let states: f64 = v["supervisor_states"]
+        .as_str()
+        .and_then(|s| s.parse().ok())
+        .ok_or("missing supervisor_states")?;
+    Ok((
+        number(&v, &["milliseconds", "fixpoint"])? + number(&v, &["milliseconds", "guards"])?,
+        number(&v, &["peak_rss_kib"])?,
+        states,
+    ))
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -131,7 +201,7 @@ fn theirs(m: &Model, runs: usize, python: &str) -> Result<(f64, f64, (f64, f64))
 /// Runs the comparison.
 pub fn run(args: &[String]) -> Result {
     let mut runs = 3usize;
-    let mut names: Vec<&'static str> = Vec::new();
+    let mut models: Vec<Model> = Vec::new();
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
@@ -143,52 +213,59 @@ pub fn run(args: &[String]) -> Result {
                     .ok_or("--runs needs a positive number")?
             }
             "smallfactory" | "transferline" | "agv" | "phil5" | "phil8" | "phil10" => {
-                let known = [
-                    "smallfactory",
-                    "transferline",
-                    "agv",
-                    "phil5",
-                    "phil8",
-                    "phil10",
-                ];
-                names.push(known.into_iter().find(|k| k == a).expect("listed"));
+                models.push(model(a)?);
+            }
+            family_instance if family_instance.contains(':') => {
+                models.push(family(family_instance)?);
             }
             other => return Err(format!("unknown argument `{other}`")),
         }
     }
-    if names.is_empty() {
-        names = vec!["agv", "phil8", "phil10"];
+    if models.is_empty() {
+        models = ["agv", "phil8", "phil10"]
+            .into_iter()
+            .map(model)
+            .collect::<Result<_>>()?;
     }
     let python = python_with_faudes()?;
     self::run_build()?;
     println!(
-        "{:<8} {:>14} {:>10} {:>10} {:>10} {:>8} {:>10} {:>10} {:>7}",
+        "{:<8} {:>14} {:>10} {:>10} {:>10} {:>10} {:>8} {:>10} {:>10} {:>7}",
         "model",
         "supervisor",
         "ours ms",
         "names ms",
+        "sym ms",
         "faudes ms",
         "speedup",
         "ours MiB",
         "faudes MiB",
         "mem"
     );
-    for name in names {
-        let m = model(name)?;
-        let (ms, kib, size) = ours(&m, runs, false)?;
-        let (named_ms, _, _) = ours(&m, runs, true)?;
-        let (fms, fkib, fsize) = theirs(&m, runs, &python)?;
+    for m in &models {
+        let name = &m.name;
+        let (ms, kib, size) = ours(m, runs, false)?;
+        let (named_ms, _, _) = ours(m, runs, true)?;
+        let (sms, _, sstates) = symbolic(m)?;
+        if sstates != size.0 {
+            return Err(format!(
+                "{name}: supervisor sizes differ: explicit {} states, symbolic {sstates}",
+                size.0
+            ));
+        }
+        let (fms, fkib, fsize) = theirs(m, runs, &python)?;
         if size != fsize {
             return Err(format!(
                 "{name}: supervisor sizes differ: ours {size:?}, libFAUDES {fsize:?}"
             ));
         }
         println!(
-            "{:<8} {:>14} {:>10.1} {:>10.1} {:>10.1} {:>7.1}x {:>10.1} {:>10.1} {:>6.2}x",
+            "{:<8} {:>14} {:>10.1} {:>10.1} {:>10.1} {:>10.1} {:>7.1}x {:>10.1} {:>10.1} {:>6.2}x",
             name,
             format!("{}/{}", size.0, size.1),
             ms,
             named_ms,
+            sms,
             fms,
             fms / ms,
             kib / 1024.0,
@@ -197,7 +274,8 @@ pub fn run(args: &[String]) -> Result {
         );
     }
     println!(
-        "(median of {runs} runs; `ours ms` numbers states, `names ms` names them a.b.c; \
+        "(median of {runs} runs; `ours ms` numbers states, `names ms` names them a.b.c, \
+         `sym ms` on BDDs (one run); \
          speedup = libFAUDES time / ours unnamed; mem = ours / libFAUDES peak RSS)"
     );
     Ok(())

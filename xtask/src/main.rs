@@ -2,8 +2,9 @@
 //!
 //! - `ci`: everything CI checks, in order, failing fast (the README's test
 //!   command).
-//! - `bench-faudes [--runs N] [MODEL…]`: our compose + supcon against
-//!   libFAUDES on the benchmark models, in one run, as ratios.
+//! - `bench-faudes [--runs N] [MODEL|FAMILY:N…]`: our compose + supcon
+//!   (explicit and symbolic) against libFAUDES on the benchmark models or
+//!   family instances (`tline:9`), in one run, as ratios.
 //! - `qemu [PROJECT] [SCENARIO]`: the firmware replay harness in QEMU for
 //!   every model (zero mismatches against host-sim, instructions per scan,
 //!   budgets, ratios to a `match` baseline).
@@ -45,7 +46,7 @@ fn main() -> ExitCode {
                 "usage: cargo xtask <task>\n\
                  tasks:\n  \
                  ci                         fmt, clippy, all tests, differential tests vs libFAUDES\n  \
-                 bench-faudes [--runs N] [MODEL…]  compose + supcon timings and memory vs libFAUDES\n  \
+                 bench-faudes [--runs N] [MODEL|FAMILY:N…]  supcon (explicit, symbolic) vs libFAUDES\n  \
                  qemu [PROJECT] [SCENARIO]  replay in QEMU: zero mismatches, instructions per scan, budgets\n  \
                  size [MODEL…]              flash and static RAM of the board firmware, budgets\n  \
                  deps                       the README's commands and the firmware build without libclang (cargo tree)\n  \
