@@ -2,7 +2,7 @@
 //! on the same models in the same run, reported as ratios.
 //!
 //! Models are the shared benchmarks under `models/bench/` or instances of
-//! the scalable families, `tline:N`, `ring:N` and `phil:N`, written by the
+//! the scalable families, `tline:N`, `ringb:N` and `phil:N`, written by the
 //! `families` example of `des` (`target/bench-families/`). Beside the
 //! explicit synthesis, `sym ms` is `codegen synth --symbolic` on the same
 //! files (one run: its BDD fixpoint and guards, the same supervisor size).
@@ -46,13 +46,13 @@ fn model(name: &str) -> Result<Model> {
     })
 }
 
-/// The family instance `FAMILY:N` (`tline`, `ring`, `phil`), written by
+/// The family instance `FAMILY:N` (`tline`, `ringb`, `phil`), written by
 /// `cargo run --release -p des --example families` (its specifications are
 /// the `B*` files).
 fn family(arg: &str) -> Result<Model> {
     let (family, n) = arg.split_once(':').ok_or("not FAMILY:N")?;
-    if !["tline", "ring", "phil"].contains(&family) {
-        return Err(format!("unknown family `{family}` (tline, ring, phil)"));
+    if !["tline", "ringb", "phil"].contains(&family) {
+        return Err(format!("unknown family `{family}` (tline, ringb, phil)"));
     }
     let n: usize = n
         .parse()

@@ -16,13 +16,14 @@
 //!   (specification `Bi`, `i < N`): `0 -fi-> 1 -s(i+1)-> 0`, marked in `0`.
 //!   The supervisor has `3 · 4^(N-1)` states (tline9: 196,608; tline10:
 //!   786,432).
-//! - `ring N`: `N` machines in a cycle with `N` buffers of one slot.
+//! - `ringb N`: `N` machines in a cycle with `N` buffers of one slot.
 //!   Machine `i` (plant `Mi`) breaks down while working and is repaired
 //!   back to work, keeping its part: `I -si-> W -fi-> I`, `W -bi-> D -ri->
 //!   W` (`si`, `ri` controllable). Buffer `i` (specification `Bi`): `fi`
 //!   fills it, `s(i mod N + 1)` empties it; the odd buffers start full
 //!   (`⌈N/2⌉` parts circulate) and each is marked in its initial fill. As
-//!   `ringb` of the `des-symbolic` families; ring12 has 673,596
+//!   `ringb` of the `des-symbolic` families (and issue 23's "ring");
+//!   ringb12 has 673,596
 //!   supervisor states.
 //! - `phil N`: `N` dining philosophers as in `/work/shared/bench/phil*`:
 //!   philosopher `Pi` takes its left fork (`ei01`) and its right fork
@@ -193,7 +194,7 @@ fn write(dir: &Path, kind: Kind, automata: Vec<Automaton>) -> Result<(), String>
 fn main() -> Result<(), String> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let [family, n, dir] = args.as_slice() else {
-        return Err("usage: families tline|ring|phil N OUTDIR".into());
+        return Err("usage: families tline|ringb|phil N OUTDIR".into());
     };
     let n: usize = n
         .parse()
@@ -204,9 +205,9 @@ fn main() -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let (plants, specs) = match family.as_str() {
         "tline" => tline(n),
-        "ring" => ring(n),
+        "ringb" => ring(n),
         "phil" => (phil(n), Vec::new()),
-        other => return Err(format!("unknown family `{other}` (tline, ring, phil)")),
+        other => return Err(format!("unknown family `{other}` (tline, ringb, phil)")),
     };
     write(dir, Kind::Plant, plants)?;
     write(dir, Kind::Spec, specs)
