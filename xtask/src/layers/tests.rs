@@ -93,7 +93,7 @@ fn a_front_end_using_a_backend_fails() {
     assert!(
         failure.starts_with(
             "crates/plc-project/Cargo.toml: `plc-project` (front end) depends on `codegen` \
-             (backend) in [dependencies]; there it may use boards, des, executor."
+             (backend) in [dependencies]; there it may use boards, des, des-symbolic, executor."
         ),
         "{failure}"
     );
