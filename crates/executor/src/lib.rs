@@ -246,6 +246,7 @@ extern crate alloc;
 mod bits;
 pub mod compiled;
 mod controller;
+pub mod guards;
 pub mod image;
 mod inputs;
 pub mod memory;

@@ -87,7 +87,7 @@ pub(super) const LAYERS: &[Layer] = &[
         stage: Stage::CoreOnDes,
         normal: &["des"],
         build: &[],
-        dev: &[],
+        dev: &["executor"],
     },
     Layer {
         name: "plc-project",

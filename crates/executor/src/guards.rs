@@ -1,0 +1,206 @@
+//! Guards of a symbolic supervisor, evaluated on the target: a first step
+//! of running guard supervisors (issue 24), not yet part of the scan.
+//!
+//! A symbolic supervisor (docs/formats.md, "Guard files") is a set of
+//! component automata run as they are plus one guard per controllable
+//! event: a Boolean function of the components' current states. Each guard
+//! is a decision diagram written as a node table. Evaluation starts at the
+//! root and reads one state bit per node, so it takes at most one step per
+//! state bit and no memory.
+//!
+//! Node indices: 0 is false, 1 is true, `k ≥ 2` is `nodes[k − 2]`. A
+//! node's children come before it (`low`, `high` < its own index), which
+//! [`GuardTable::eval`] checks as it walks: a table that breaks the rule,
+//! points past its end or reads a bit that does not exist is refused
+//! (`None`) instead of looping or reading out of range.
+
+use crate::program::Index;
+
+/// Where one state bit comes from: a component and the bit's place in
+/// that component's state number.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StateBit {
+    /// The component (its index in the state vector).
+    pub component: Index,
+    /// The bit's shift in the component's state.
+    pub shift: u8,
+}
+
+/// One decision node: read state bit `bit`, continue at `high` if it is
+/// 1, at `low` if 0.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GuardNode {
+    /// The state bit read (an index into the bit sources).
+    pub bit: u16,
+    /// Where to go when the bit is 0.
+    pub low: u16,
+    /// Where to go when the bit is 1.
+    pub high: u16,
+}
+
+/// A guard as a node table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GuardTable<'a> {
+    /// The root: 0 false, 1 true, `k ≥ 2` the node `nodes[k − 2]`.
+    pub root: u16,
+    /// The decision nodes, children first.
+    pub nodes: &'a [GuardNode],
+}
+
+impl GuardTable<'_> {
+    /// The guard's value in the component states `states`, whose bits are
+    /// found through `bits`; `None` for a malformed table or a bit source
+    /// past `states`.
+    pub fn eval(&self, bits: &[StateBit], states: &[u32]) -> Option<bool> {
+        let mut at = self.root;
+        while at >= 2 {
+            let node = self.nodes.get(usize::from(at) - 2)?;
+            let source = bits.get(usize::from(node.bit))?;
+            let state = states.get(usize::from(source.component))?;
+            let next = if (state >> source.shift) & 1 == 1 {
+                node.high
+            } else {
+                node.low
+            };
+            // Children come first: every step goes down, so the walk ends.
+            if next >= at {
+                return None;
+            }
+            at = next;
+        }
+        Some(at == 1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two one-bit components `a`, `b`: bit 0 is `a`, bit 1 is `b`.
+    const BITS: [StateBit; 2] = [
+        StateBit {
+            component: 0,
+            shift: 0,
+        },
+        StateBit {
+            component: 1,
+            shift: 0,
+        },
+    ];
+
+    /// `a XOR b`: node 2 reads `b` (0 → false, 1 → true), node 3 reads
+    /// `b` the other way round, node 4 reads `a`.
+    const XOR: [GuardNode; 3] = [
+        GuardNode {
+            bit: 1,
+            low: 0,
+            high: 1,
+        },
+        GuardNode {
+            bit: 1,
+            low: 1,
+            high: 0,
+        },
+        GuardNode {
+            bit: 0,
+            low: 2,
+            high: 3,
+        },
+    ];
+
+    #[test]
+    fn a_table_computes_its_function_bit_by_bit() {
+        let xor = GuardTable {
+            root: 4,
+            nodes: &XOR,
+        };
+        for (a, b) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+            assert_eq!(xor.eval(&BITS, &[a, b]), Some(a != b), "{a} {b}");
+        }
+        let constant = |root| GuardTable { root, nodes: &[] };
+        assert_eq!(constant(0).eval(&BITS, &[1, 1]), Some(false));
+        assert_eq!(constant(1).eval(&BITS, &[0, 0]), Some(true));
+    }
+
+    #[test]
+    fn a_wider_state_reads_the_bit_at_its_shift() {
+        // One component of 4 states: bit 0 is its high bit, bit 1 its low.
+        let bits = [
+            StateBit {
+                component: 0,
+                shift: 1,
+            },
+            StateBit {
+                component: 0,
+                shift: 0,
+            },
+        ];
+        // State 2 (binary 10) and only it.
+        let nodes = [
+            GuardNode {
+                bit: 1,
+                low: 1,
+                high: 0,
+            },
+            GuardNode {
+                bit: 0,
+                low: 0,
+                high: 2,
+            },
+        ];
+        let only_2 = GuardTable {
+            root: 3,
+            nodes: &nodes,
+        };
+        let allowed: [bool; 4] = core::array::from_fn(|s| only_2.eval(&bits, &[s as u32]).unwrap());
+        assert_eq!(allowed, [false, false, true, false]);
+    }
+
+    #[test]
+    fn a_malformed_table_is_refused_not_followed() {
+        let up = [GuardNode {
+            bit: 0,
+            low: 2,
+            high: 1,
+        }];
+        // A node pointing to itself would loop for ever.
+        assert_eq!(
+            GuardTable {
+                root: 2,
+                nodes: &up
+            }
+            .eval(&BITS, &[0, 0]),
+            None
+        );
+        // Past the end of the table, of the bit sources, of the states.
+        assert_eq!(
+            GuardTable {
+                root: 3,
+                nodes: &up
+            }
+            .eval(&BITS, &[0, 0]),
+            None
+        );
+        let far_bit = [GuardNode {
+            bit: 7,
+            low: 0,
+            high: 1,
+        }];
+        assert_eq!(
+            GuardTable {
+                root: 2,
+                nodes: &far_bit
+            }
+            .eval(&BITS, &[0, 0]),
+            None
+        );
+        assert_eq!(
+            GuardTable {
+                root: 4,
+                nodes: &XOR
+            }
+            .eval(&BITS, &[0]),
+            None
+        );
+    }
+}
