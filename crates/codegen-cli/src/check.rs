@@ -64,7 +64,8 @@ struct Report {
     holds: bool,
 }
 
-fn path(p: &[String]) -> String {
+/// An event string as printed: its events spaced, or `(the empty string)`.
+pub(crate) fn path(p: &[String]) -> String {
     if p.is_empty() {
         "(the empty string)".to_owned()
     } else {

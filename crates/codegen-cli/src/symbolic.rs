@@ -5,7 +5,7 @@
 use super::error::CliError;
 use super::output::{outln, Out};
 use super::progress::Spinner;
-use super::synth::{peak_rss_kib, SynthArgs};
+use super::synth::{ms, peak_rss_kib, SynthArgs};
 use super::Outcome;
 use des::formats;
 use des::Automaton;
@@ -62,10 +62,6 @@ struct BddNodes {
     reachable: usize,
     supervisor: usize,
     guards: usize,
-}
-
-fn ms(since: Instant) -> f64 {
-    since.elapsed().as_secs_f64() * 1e3
 }
 
 /// Every automaton of the files `paths`, each with its file.

@@ -4,6 +4,7 @@
 //! composed as one, checked nonblocking; with `--symbolic` as well, that
 //! closed loop is decided on BDDs (`des_symbolic::verify`) and never built.
 
+use super::check::path;
 use super::error::CliError;
 use super::key::Key;
 use super::output::{outln, Out};
@@ -101,14 +102,6 @@ struct Report {
     closed_loop: Option<ClosedLoop>,
     holds: bool,
     milliseconds: f64,
-}
-
-fn path(p: &[String]) -> String {
-    if p.is_empty() {
-        "(the empty string)".to_owned()
-    } else {
-        p.join(" ")
-    }
 }
 
 pub fn run(args: &VerifyArgs, json: bool, out: &mut Out) -> Result<Outcome, CliError> {

@@ -266,6 +266,25 @@ impl TupleStore {
     }
 }
 
+/// The refusal of composition `name` once it passes `max_states` states.
+pub(crate) fn state_limit(name: &str, max_states: usize) -> Error {
+    Error::StateLimit {
+        max_states,
+        message: format!("composition `{name}` exceeds the limit of {max_states} states"),
+    }
+}
+
+/// Refuses composition `name` once its transitions no longer fit the
+/// 32-bit row offsets.
+pub(crate) fn check_transitions(edges: &[Transition], name: &str) -> Result<()> {
+    if edges.len() >= u32::MAX as usize {
+        return Err(Error::Incompatible(format!(
+            "composition `{name}` exceeds 2^32 transitions"
+        )));
+    }
+    Ok(())
+}
+
 /// The reachable product of `components` under `mode`.
 ///
 /// With no components the result is the one-state automaton of the empty
@@ -359,13 +378,7 @@ pub fn compose(
             }
             let (target, fresh) = store.intern(&next);
             if fresh && store.len() > options.max_states {
-                return Err(Error::StateLimit {
-                    max_states: options.max_states,
-                    message: format!(
-                        "composition `{name}` exceeds the limit of {} states",
-                        options.max_states
-                    ),
-                });
+                return Err(state_limit(&name, options.max_states));
             }
             for &(j, _) in &moved {
                 next[j] = current[j];
@@ -375,11 +388,7 @@ pub fn compose(
                 target: StateId(target),
             });
         }
-        if edges.len() >= u32::MAX as usize {
-            return Err(Error::Incompatible(format!(
-                "composition `{name}` exceeds 2^32 transitions"
-            )));
-        }
+        check_transitions(&edges, &name)?;
         offsets.push(edges.len() as u32);
         s += 1;
         if s % (1 << 16) == 0 {

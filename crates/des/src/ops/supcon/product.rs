@@ -14,8 +14,10 @@
 //! hash table of `u32` ids into the `Vec<u64>` of pairs.
 
 use crate::automaton::{Automaton, Composed, Layout, StateId, StateNames, Transition, Tuples};
-use crate::error::{Error, Result};
-use crate::ops::sync::{composed_alphabet, ComposeOptions, Composition, Delta};
+use crate::error::Result;
+use crate::ops::sync::{
+    check_transitions, composed_alphabet, state_limit, ComposeOptions, Composition, Delta,
+};
 use fixedbitset::FixedBitSet;
 use hashbrown::HashTable;
 use rustc_hash::FxBuildHasher;
@@ -122,24 +124,14 @@ pub(super) fn pruned_product(
                 let Some(e2) = next(t) else { continue };
                 let (target, fresh) = store.intern(t.target.0, e2);
                 if fresh && store.len() > options.max_states {
-                    return Err(Error::StateLimit {
-                        max_states: options.max_states,
-                        message: format!(
-                            "composition `{name}` exceeds the limit of {} states",
-                            options.max_states
-                        ),
-                    });
+                    return Err(state_limit(&name, options.max_states));
                 }
                 edges.push(Transition {
                     event: t.event,
                     target: StateId(target),
                 });
             }
-            if edges.len() >= u32::MAX as usize {
-                return Err(Error::Incompatible(format!(
-                    "composition `{name}` exceeds 2^32 transitions"
-                )));
-            }
+            check_transitions(&edges, &name)?;
         }
         offsets.push(edges.len() as u32);
         s += 1;
