@@ -140,6 +140,18 @@ fn print_scan_sets(out: &mut Out, sets: &codegen::lower::ScanSets) {
         sets.mask_bytes,
         sets.ram_bytes
     );
+    let g = &sets.guards;
+    if g.guards != 0 {
+        outln!(
+            out,
+            "  guards: {} command(s) guarded, {} decision node(s) over {} state bit(s), {} bytes of flash; a guard reads at most {} node(s)",
+            g.guards,
+            g.nodes,
+            g.state_bits,
+            g.bytes,
+            g.longest_walk
+        );
+    }
 }
 
 fn print_stats(out: &mut Out, project: &Path, stats: &[SupervisorStats], backend: Backend) {

@@ -656,7 +656,7 @@ const ERRORS: &[(&str, &str)] = &[
     // Supervisor sources.
     (
         "[plc]\nname = \"x\"\n[[supervisor]] # <-\nname = \"s\"\n",
-        "a supervisor needs `file = \"…\"` or `synthesize",
+        "a supervisor needs `file = \"…\"`, `synthesize",
     ),
     (
         "[plc]\nname = \"x\"\n[[supervisor]]\nfile = \"mini/mini.toml\"\nsynthesize = { plants = [\"mini/mini.toml\"] } # <-\n",

@@ -10,7 +10,7 @@
 //!
 //! ```
 //! use executor::compiled::{Compiled, ProgramData};
-//! use executor::program::{Config, Index, Program, Span, UnexpectedPolicy};
+//! use executor::program::{Config, Guards, Index, Program, Span, UnexpectedPolicy};
 //!
 //! /// A program of one supervisor written as code: `0 --e--> 1`.
 //! struct Toggle;
@@ -40,6 +40,7 @@
 //!         actions: &[],
 //!         memberships: &[],
 //!         state_map: &[],
+//!         guards: Guards::NONE,
 //!     };
 //!     const IMAGE_CRC: u32 = 0;
 //!     fn next_state(_supervisor: Index, state: u32, local: Index) -> Option<u32> {

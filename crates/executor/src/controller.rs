@@ -459,7 +459,7 @@ fn initialise<P: Program, M: Memory>(program: &P, config: &Config<'_>, memory: &
             allowed_of(ram.allowed, ew, j),
         );
     }
-    refresh_feasible(ram);
+    refresh_feasible(config, ram);
 }
 
 /// Supervisor `j`'s `allowed` set for its current state: the events
@@ -498,8 +498,10 @@ fn allowed_of(allowed: &mut [u32], event_words: usize, j: usize) -> &mut [u32] {
         .unwrap_or_default()
 }
 
-/// The feasible events: those no supervisor blocks.
-fn refresh_feasible(ram: &mut Ram<'_>) {
+/// The feasible events: those no supervisor blocks and, for a guarded
+/// event, whose guard holds ([`crate::guards`]). A guard is evaluated only
+/// when the supervisors enable its event.
+fn refresh_feasible(config: &Config<'_>, ram: &mut Ram<'_>) {
     let ew = ram.feasible.len();
     for (k, word) in ram.feasible.iter_mut().enumerate() {
         *word = ram
@@ -508,6 +510,13 @@ fn refresh_feasible(ram: &mut Ram<'_>) {
             .skip(k)
             .step_by(ew.max(1))
             .fold(u32::MAX, |w, a| w & a);
+    }
+    let guards = &config.guards;
+    for guard in guards.events {
+        let e = usize::from(guard.event);
+        if bits::contains(ram.feasible, e) && !guards.holds(guard, ram.states) {
+            bits::remove(ram.feasible, e);
+        }
     }
 }
 
@@ -615,7 +624,7 @@ fn execute<P: Program, M: Memory>(
         }
     }
     if moved {
-        refresh_feasible(ram);
+        refresh_feasible(config, ram);
     }
     let mut timers = false;
     for action in spec.actions.of(config.actions) {

@@ -1,42 +1,25 @@
-//! Guards of a symbolic supervisor, evaluated on the target: a first step
-//! of running guard supervisors (issue 24), not yet part of the scan.
+//! Guards of symbolic supervisors, evaluated in the scan.
 //!
 //! A symbolic supervisor (docs/formats.md, "Guard files") is a set of
-//! component automata run as they are plus one guard per controllable
-//! event: a Boolean function of the components' current states. Each guard
-//! is a decision diagram written as a node table. Evaluation starts at the
-//! root and reads one state bit per node, so it takes at most one step per
-//! state bit and no memory.
+//! component automata, run as ordinary supervisors, plus one guard per
+//! controllable event: a Boolean function of the components' current
+//! states. A controllable event with a guard ([`Guards::events`]) is
+//! feasible when every supervisor having it enables it *and* its guard
+//! holds (docs/semantics.md, "Guards"). The controller evaluates the
+//! guards of the events the supervisors enable whenever a state moves.
 //!
-//! Node indices: 0 is false, 1 is true, `k ≥ 2` is `nodes[k − 2]`. A
-//! node's children come before it (`low`, `high` < its own index), which
-//! [`GuardTable::eval`] checks as it walks: a table that breaks the rule,
-//! points past its end or reads a bit that does not exist is refused
-//! (`None`) instead of looping or reading out of range.
+//! Each guard is a decision diagram written as a node table. Evaluation
+//! starts at the root and reads one state bit per node, so it takes at
+//! most one step per state bit and no memory. Node indices: 0 is false, 1
+//! is true, `k ≥ 2` is `nodes[k − 2]`. A node's children come before it
+//! (`low`, `high` < its own index), which [`GuardTable::eval`] checks as
+//! it walks: a table that breaks the rule, points past its end or reads a
+//! bit that does not exist is refused (`None`) instead of looping or
+//! reading out of range. The structure check ([`crate::validate`]) refuses
+//! such an image before it runs; the scan treats a refused walk as a
+//! guard that does not hold (disabling a command is always safe).
 
-use crate::program::Index;
-
-/// Where one state bit comes from: a component and the bit's place in
-/// that component's state number.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct StateBit {
-    /// The component (its index in the state vector).
-    pub component: Index,
-    /// The bit's shift in the component's state.
-    pub shift: u8,
-}
-
-/// One decision node: read state bit `bit`, continue at `high` if it is
-/// 1, at `low` if 0.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct GuardNode {
-    /// The state bit read (an index into the bit sources).
-    pub bit: u16,
-    /// Where to go when the bit is 0.
-    pub low: u16,
-    /// Where to go when the bit is 1.
-    pub high: u16,
-}
+pub use crate::program::{GuardNode, GuardSpec, Guards, StateBit};
 
 /// A guard as a node table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -45,6 +28,23 @@ pub struct GuardTable<'a> {
     pub root: u16,
     /// The decision nodes, children first.
     pub nodes: &'a [GuardNode],
+}
+
+impl<'a> Guards<'a> {
+    /// The node table of `guard` (empty when its span lies past the pool).
+    pub fn table(&self, guard: &GuardSpec) -> GuardTable<'a> {
+        GuardTable {
+            root: guard.root,
+            nodes: guard.nodes.of(self.nodes),
+        }
+    }
+
+    /// Whether `guard` holds in the supervisor states `states`; `false`
+    /// for a malformed table.
+    #[inline]
+    pub fn holds(&self, guard: &GuardSpec, states: &[u32]) -> bool {
+        self.table(guard).eval(self.bits, states) == Some(true)
+    }
 }
 
 impl GuardTable<'_> {
@@ -57,7 +57,7 @@ impl GuardTable<'_> {
             let node = self.nodes.get(usize::from(at) - 2)?;
             let source = bits.get(usize::from(node.bit))?;
             let state = states.get(usize::from(source.component))?;
-            let next = if (state >> source.shift) & 1 == 1 {
+            let next = if state.checked_shr(source.shift.into())? & 1 == 1 {
                 node.high
             } else {
                 node.low

@@ -18,7 +18,7 @@
 //!
 //! | run | words per item | content |
 //! |---|---|---|
-//! | header | 25 | name length in bytes, `scan_period_ms`, `max_commands_per_scan`, `unexpected` (0 fault, 1 ignore), `reset`, `overrun_limit`, `overrun_fault`, `lost_edge_fault`, `rom_test_bytes_per_scan`, the spans `debounce_mask`, `commands` and `requested`; the lengths of the twelve pools below (inputs … state map) and the number of tables |
+//! | header | 28 | name length in bytes, `scan_period_ms`, `max_commands_per_scan`, `unexpected` (0 fault, 1 ignore), `reset`, `overrun_limit`, `overrun_fault`, `lost_edge_fault`, `rom_test_bytes_per_scan`, the spans `debounce_mask`, `commands` and `requested`; the lengths of the fifteen pools below (inputs … guard nodes) and the number of tables |
 //! | name | ⌈bytes / 4⌉ | the name's UTF-8 bytes, four per word, first byte least significant, the last word padded with zeros |
 //! | inputs | 2 | `debounce_scans`; `raises` |
 //! | debounced | 1 | the input |
@@ -32,6 +32,9 @@
 //! | actions | 1 | kind (0 set, 1 clear, 2 start, 3 reset) `<< 16 \|` its output or timer |
 //! | memberships | 1 | `supervisor \| local << 16` |
 //! | state map | 3 | `supervisor`; `state`; `mask` |
+//! | guards | 3 | `event`; `root`; `nodes` |
+//! | state bits | 1 | `component \| shift << 16` |
+//! | guard nodes | 2 | `bit \| low << 16`; `high` |
 //!
 //! then, per table in supervisor order, four runs: a 7-word header
 //! (events, state bits, layout (0 dense, 1 sparse, 2 net), row-start bits
@@ -58,8 +61,8 @@
 //! instructions per scan to that.
 
 use crate::program::{
-    Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Program, Span,
-    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
+    Action, Config, EventSpec, GuardNode, GuardSpec, Index, InputSpec, Membership, OutputSpec,
+    Program, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 use crate::table::{Rows, SupervisorTable, TableProgram};
 use crc::{Crc, CRC_32_MPEG_2};
@@ -81,11 +84,11 @@ const _: () = assert!(
 pub(crate) const CRC_START: u32 = CRC_32_MPEG_2.init;
 
 /// Runs of the configuration, before the tables.
-const CONFIG_RUNS: usize = 14;
+const CONFIG_RUNS: usize = 17;
 /// Runs per table: header, `defined`, `targets`, `row_starts`.
 const TABLE_RUNS: usize = 4;
 /// Words of the header run.
-const HEADER_WORDS: usize = 25;
+const HEADER_WORDS: usize = 28;
 /// Words of an event's record.
 const EVENT_WORDS: usize = 7;
 /// Words of a table's header run.
@@ -240,6 +243,9 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
             11 => Run::Actions(c.actions),
             12 => Run::Memberships(c.memberships),
             13 => Run::StateMap(c.state_map),
+            14 => Run::Guards(c.guards.events),
+            15 => Run::StateBits(c.guards.bits),
+            16 => Run::GuardNodes(c.guards.nodes),
             _ => {
                 let r = r - CONFIG_RUNS;
                 let table = self.table(r / TABLE_RUNS)?;
@@ -314,6 +320,15 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
             Run::StateMap(entries) => feed_records(entries, from, to, feeder, |e| {
                 [e.supervisor.into(), e.state, e.mask]
             }),
+            Run::Guards(guards) => feed_records(guards, from, to, feeder, |g| {
+                [g.event.into(), g.root.into(), span(g.nodes)]
+            }),
+            Run::StateBits(bits) => feed_records(bits, from, to, feeder, |b| {
+                [u32::from(b.component) | u32::from(b.shift) << 16]
+            }),
+            Run::GuardNodes(nodes) => feed_records(nodes, from, to, feeder, |n| {
+                [u32::from(n.bit) | u32::from(n.low) << 16, n.high.into()]
+            }),
             Run::TableHeader(ref t) => {
                 let (layout, start_bits, row_starts) = match t.rows {
                     Rows::Dense => (0, 0, 0),
@@ -368,6 +383,9 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
             21 => c.actions.len() as u32,
             22 => c.memberships.len() as u32,
             23 => c.state_map.len() as u32,
+            24 => c.guards.events.len() as u32,
+            25 => c.guards.bits.len() as u32,
+            26 => c.guards.nodes.len() as u32,
             _ => self.tables() as u32,
         }
     }
@@ -400,6 +418,12 @@ enum Run<'a> {
     Memberships(&'a [Membership]),
     /// The pool of state-map entries.
     StateMap(&'a [StateMapEntry]),
+    /// The guarded events.
+    Guards(&'a [GuardSpec]),
+    /// The pool of state bits guards read.
+    StateBits(&'a [StateBit]),
+    /// The pool of guard nodes.
+    GuardNodes(&'a [GuardNode]),
     /// A table's sizes and layout.
     TableHeader(SupervisorTable<'a>),
 }
@@ -420,6 +444,9 @@ impl Run<'_> {
             Run::Actions(x) => x.len(),
             Run::Memberships(x) => x.len(),
             Run::StateMap(x) => 3 * x.len(),
+            Run::Guards(x) => 3 * x.len(),
+            Run::StateBits(x) => x.len(),
+            Run::GuardNodes(x) => 2 * x.len(),
             Run::TableHeader(_) => TABLE_HEADER_WORDS,
         }
     }

@@ -19,8 +19,8 @@
 //! ```
 //! use executor::memory::StaticMemory;
 //! use executor::program::{
-//!     mask_word, Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Program,
-//!     Span, SupervisorSpec, Trigger, UnexpectedPolicy,
+//!     mask_word, Action, Config, EventSpec, Guards, Index, InputSpec, Membership, OutputSpec,
+//!     Program, Span, SupervisorSpec, Trigger, UnexpectedPolicy,
 //! };
 //! use executor::table::SupervisorTable;
 //! use executor::image::config_crc;
@@ -91,6 +91,7 @@
 //!         Membership { supervisor: 0, local: 1 },
 //!     ],
 //!     state_map: &[],
+//!     guards: Guards::NONE,
 //! };
 //!
 //! /// The supervisor as a `match` on (state, local event); its image is

@@ -216,6 +216,7 @@ mod tests {
             actions: &[],
             memberships: &[],
             state_map: &[],
+            guards: crate::program::Guards::NONE,
         }
     }
 

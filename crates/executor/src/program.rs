@@ -300,6 +300,64 @@ pub struct Config<'a> {
     pub memberships: &'a [Membership],
     /// Pool of state-map entries.
     pub state_map: &'a [StateMapEntry],
+    /// Guards of controllable events (symbolic supervisors:
+    /// [`crate::guards`]); [`Guards::NONE`] without.
+    pub guards: Guards<'a>,
+}
+
+/// Where one state bit comes from: a supervisor (a component of a
+/// symbolic supervisor) and the bit's place in its state number.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StateBit {
+    /// The supervisor (its index in the state vector).
+    pub component: Index,
+    /// The bit's shift in the supervisor's state.
+    pub shift: u8,
+}
+
+/// One decision node of a guard: read state bit `bit`, continue at `high`
+/// if it is 1, at `low` if 0.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GuardNode {
+    /// The state bit read (an index into [`Guards::bits`]).
+    pub bit: u16,
+    /// Where to go when the bit is 0.
+    pub low: u16,
+    /// Where to go when the bit is 1.
+    pub high: u16,
+}
+
+/// The guard of one controllable event: a decision diagram over state
+/// bits, which must hold for the event to be feasible.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GuardSpec {
+    /// The event guarded (controllable).
+    pub event: Index,
+    /// The root: 0 false, 1 true, `k ≥ 2` the node `nodes[k − 2]`.
+    pub root: u16,
+    /// Its nodes, children first (span of [`Guards::nodes`]); node
+    /// indices are relative to the span.
+    pub nodes: Span,
+}
+
+/// The guards of a program's symbolic supervisors ([`crate::guards`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Guards<'a> {
+    /// One per guarded event, in increasing event order.
+    pub events: &'a [GuardSpec],
+    /// Pool of the state bits the nodes read.
+    pub bits: &'a [StateBit],
+    /// Pool of decision nodes.
+    pub nodes: &'a [GuardNode],
+}
+
+impl Guards<'_> {
+    /// No guards: a program without symbolic supervisors.
+    pub const NONE: Guards<'static> = Guards {
+        events: &[],
+        bits: &[],
+        nodes: &[],
+    };
 }
 
 /// How the targets of a [`SupervisorTable`] are laid out (the encoding:

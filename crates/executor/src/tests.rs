@@ -165,6 +165,7 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
             state: 2,
             mask: u32::MAX,
         }],
+        guards: Guards::NONE,
     }
 }
 
@@ -501,4 +502,92 @@ fn quiet_scans_skip_the_controllable_phase_but_not_a_new_request() {
         "the request input changed: the phase runs"
     );
     assert!(!c.idle);
+}
+
+/// `config` with `stop` guarded by "bit 0 of the belt's state is `bit`".
+fn guarded_stop(bit: bool) -> Config<'static> {
+    let (low, high) = if bit { (0, 1) } else { (1, 0) };
+    Config {
+        guards: Guards {
+            events: Box::leak(Box::new([GuardSpec {
+                event: STOP,
+                root: 2,
+                nodes: Span::new(0, 1),
+            }])),
+            bits: &[StateBit {
+                component: 0,
+                shift: 0,
+            }],
+            nodes: Box::leak(Box::new([GuardNode { bit: 0, low, high }])),
+        },
+        ..config(0, UnexpectedPolicy::Fault, None)
+    }
+}
+
+#[test]
+fn a_guard_that_does_not_hold_keeps_its_command_from_running() {
+    // `stop` is enabled by the belt in state 3 (binary 11).
+    for (bit, executed) in [(true, &[LS_OFF, STOP][..]), (false, &[LS_OFF][..])] {
+        let mut c = controller(guarded_stop(bit));
+        c.scan(0, &io(false, false));
+        c.scan(10, &io(true, false));
+        let r = c.scan(20, &io(false, false));
+        assert_eq!(r.executed, executed, "guard `bit 0 = {bit}`");
+        assert_eq!(r.fault, None);
+    }
+}
+
+#[test]
+fn the_structure_check_refuses_a_malformed_guard() {
+    use crate::validate::{validate_config, Flaw, Part};
+    assert_eq!(validate_config(&guarded_stop(true)), Ok(()));
+    let with = |f: &dyn Fn(&mut Guards<'static>)| {
+        let mut c = guarded_stop(true);
+        f(&mut c.guards);
+        validate_config(&c).map_err(|e| (e.part, e.flaw))
+    };
+    let guard = |event, root| -> &'static [GuardSpec] {
+        Box::leak(Box::new([GuardSpec {
+            event,
+            root,
+            nodes: Span::new(0, 1),
+        }]))
+    };
+    // On an uncontrollable event.
+    assert_eq!(
+        with(&|g| g.events = guard(LS_ON, 2)),
+        Err((Part::Guard(0), Flaw::Guarded))
+    );
+    // A root past the nodes.
+    assert_eq!(
+        with(&|g| g.events = guard(STOP, 3)),
+        Err((Part::Guard(0), Flaw::GuardNode { node: 3 }))
+    );
+    // A node pointing to itself, one reading a missing bit.
+    let node = |bit, low| -> &'static [GuardNode] {
+        Box::leak(Box::new([GuardNode { bit, low, high: 1 }]))
+    };
+    assert_eq!(
+        with(&|g| g.nodes = node(0, 2)),
+        Err((Part::Guard(0), Flaw::GuardNode { node: 2 }))
+    );
+    assert_eq!(
+        with(&|g| g.nodes = node(1, 0)),
+        Err((Part::Guard(0), Flaw::GuardNode { node: 2 }))
+    );
+    // A bit of a supervisor that does not exist, a shift past 31.
+    assert_eq!(
+        with(&|g| g.bits = &[StateBit {
+            component: 1,
+            shift: 0
+        }]),
+        Err((Part::StateBit(0), Flaw::OutOfRange { index: 1, count: 1 }))
+    );
+    assert_eq!(
+        with(&|g| g.bits = &[StateBit {
+            component: 0,
+            shift: 32
+        }]),
+        Err((Part::StateBit(0), Flaw::Shift))
+    );
 }

@@ -53,6 +53,10 @@ pub enum Part {
     Membership(usize),
     /// `Config::state_map[k]`.
     StateMap(usize),
+    /// `Config::guards.events[k]`.
+    Guard(usize),
+    /// `Config::guards.bits[k]`.
+    StateBit(usize),
     /// The tables as a whole.
     Tables,
     /// The table of supervisor `j`.
@@ -119,6 +123,17 @@ pub enum Flaw {
         /// The local transition.
         local: u32,
     },
+    /// A guard on an event that is not a command, or guards out of
+    /// increasing event order (an event guarded twice).
+    Guarded,
+    /// A guard's root or node points to itself, to a later node or past
+    /// its nodes, or a node reads a state bit that does not exist.
+    GuardNode {
+        /// The node (0 and 1 are the constants, `k ≥ 2` node `k − 2`).
+        node: u32,
+    },
+    /// A state bit's shift is 32 or more.
+    Shift,
 }
 
 /// An image that fails the structure check: where, and what.
@@ -149,6 +164,8 @@ impl fmt::Display for Part {
             Part::Action(k) => write!(f, "action {k}"),
             Part::Membership(k) => write!(f, "membership {k}"),
             Part::StateMap(k) => write!(f, "state-map entry {k}"),
+            Part::Guard(k) => write!(f, "guard {k}"),
+            Part::StateBit(k) => write!(f, "state bit {k}"),
             Part::Tables => f.write_str("the tables"),
             Part::Table(j) => write!(f, "the table of supervisor {j}"),
         }
@@ -178,6 +195,9 @@ impl fmt::Display for Flaw {
             Flaw::StateMask => f.write_str("a state with bits outside its mask"),
             Flaw::Fields => f.write_str("net fields that overlap, are empty or not contiguous, or leave bits of the state out"),
             Flaw::Arcs { local } => write!(f, "arcs of transition {local} outside the fields"),
+            Flaw::Guarded => f.write_str("a guard on an event that is not a command, or out of event order"),
+            Flaw::GuardNode { node } => write!(f, "node {node} points up, past the table or to a missing bit"),
+            Flaw::Shift => f.write_str("a shift of 32 bits or more"),
         }
     }
 }
@@ -330,6 +350,49 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
         let listed = requested.iter().filter(|&&x| usize::from(x) == e).count();
         if listed != usize::from(command && spec.request.is_some()) {
             return fail(Part::Requested, Flaw::Commands);
+        }
+    }
+    validate_guards(c)
+}
+
+/// The guards: each on a command, in increasing event order, its nodes
+/// inside the pool, every node pointing down to an earlier node or a
+/// constant and reading a state bit that exists, every state bit a
+/// supervisor's with a shift below 32. Then no walk can loop or read out
+/// of range ([`crate::guards`]).
+fn validate_guards(c: &Config<'_>) -> Result<(), Invalid> {
+    let guards = &c.guards;
+    if guards.events.len() > usize::from(Index::MAX) + 1 {
+        return fail(Part::Counts, Flaw::TooMany);
+    }
+    for (k, b) in guards.bits.iter().enumerate() {
+        in_range(Part::StateBit(k), b.component.into(), c.supervisors.len())?;
+        if b.shift >= 32 {
+            return fail(Part::StateBit(k), Flaw::Shift);
+        }
+    }
+    let mut previous: Option<Index> = None;
+    for (k, guard) in guards.events.iter().enumerate() {
+        let part = Part::Guard(k);
+        in_range(part, guard.event.into(), c.events.len())?;
+        let command = c.events[usize::from(guard.event)].is_controllable();
+        if !command || previous.is_some_and(|p| p >= guard.event) {
+            return fail(part, Flaw::Guarded);
+        }
+        previous = Some(guard.event);
+        let nodes = pool(part, guard.nodes, guards.nodes)?;
+        let bad = |node: usize| fail(part, Flaw::GuardNode { node: node as u32 });
+        if usize::from(guard.root) >= nodes.len() + 2 {
+            return bad(usize::from(guard.root));
+        }
+        for (i, node) in nodes.iter().enumerate() {
+            let at = i + 2;
+            if usize::from(node.low) >= at
+                || usize::from(node.high) >= at
+                || usize::from(node.bit) >= guards.bits.len()
+            {
+                return bad(at);
+            }
         }
     }
     Ok(())

@@ -7,6 +7,7 @@
 //! are positions in declaration order.
 
 use des::automaton::{Automaton, EventId, StateId};
+use std::ops::Range;
 use std::path::PathBuf;
 
 // A pin of `[board]` and its pull are the board data's (crate `boards`).
@@ -159,6 +160,96 @@ pub enum SupervisorSource {
         /// Minimised with `minstate`.
         minimized: bool,
     },
+    /// A component of the symbolic supervisor `guarded`, read from `file`.
+    Component {
+        /// The symbolic supervisor.
+        guarded: String,
+        /// The component's model file.
+        file: PathBuf,
+    },
+}
+
+/// Where a symbolic supervisor's components and guards come from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum GuardedSource {
+    /// A guard file (`guards = …`), which names its components' files.
+    File(PathBuf),
+    /// Synthesised on BDDs at build time (`synthesize = { …, symbolic =
+    /// true }`).
+    Synthesized {
+        /// Plant files.
+        plants: Vec<PathBuf>,
+        /// Specification files.
+        specs: Vec<PathBuf>,
+    },
+}
+
+/// The guard of one controllable event of a [`Guarded`] supervisor: a
+/// decision diagram over [`Guarded::bits`] (docs/formats.md, "Guard
+/// files").
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct EventGuard {
+    /// The event (controllable).
+    pub event: usize,
+    /// The guard over component states, for people (`M1 = idle ∧ …`).
+    pub text: String,
+    /// The root: 0 false, 1 true, `k ≥ 2` the node `nodes[k − 2]`.
+    pub root: u32,
+    /// Decision nodes `[bit, low, high]`, children first; `bit` indexes
+    /// [`Guarded::bits`].
+    pub nodes: Vec<[u32; 3]>,
+}
+
+impl EventGuard {
+    /// The guard's value when the supervisors are in `states` (indexed as
+    /// [`Project::supervisors`]), its bits placed by `bits`.
+    pub fn holds(&self, bits: &[(usize, u32)], states: &[u32]) -> bool {
+        let mut at = self.root;
+        while at >= 2 {
+            let [b, low, high] = self.nodes[at as usize - 2];
+            let (component, shift) = bits[b as usize];
+            at = if states[component] >> shift & 1 == 1 {
+                high
+            } else {
+                low
+            };
+        }
+        at == 1
+    }
+}
+
+/// A symbolic supervisor (`[[supervisor]]` with `guards = …` or a symbolic
+/// `synthesize`): its components run as the ordinary supervisors
+/// `components` of [`Project::supervisors`] (named `name.component`), and
+/// a controllable event with a guard may occur only while its guard holds.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Guarded {
+    /// Its name (each component's is `name.component`).
+    pub name: String,
+    /// Its components, as supervisors of the project.
+    pub components: Range<usize>,
+    /// The state bits the guards read, in the guard file's bit order:
+    /// (supervisor, shift of the bit in its state number).
+    pub bits: Vec<(usize, u32)>,
+    /// The guards, in event order.
+    pub guards: Vec<EventGuard>,
+    /// States of the closed loop (exact, decimal), as the guard file says.
+    pub closed_loop_states: String,
+    /// Where it comes from.
+    pub source: GuardedSource,
+    /// Line of the `[[supervisor]]` table.
+    pub line: u32,
+}
+
+impl Guarded {
+    /// Whether the guards allow event `e` when the supervisors are in
+    /// `states` (an event without a guard is always allowed).
+    pub fn allows(&self, e: usize, states: &[u32]) -> bool {
+        self.guards
+            .iter()
+            .find(|g| g.event == e)
+            .is_none_or(|g| g.holds(&self.bits, states))
+    }
 }
 
 /// Where a `[[net]]` comes from.
@@ -370,6 +461,9 @@ pub struct Project {
     /// Petri nets in declaration order; their groups run as supervisors
     /// after [`Project::supervisors`].
     pub nets: Vec<Net>,
+    /// Symbolic supervisors, in declaration order: their components are
+    /// among [`Project::supervisors`], their guards restrict commands.
+    pub guarded: Vec<Guarded>,
     /// The board wiring (`[board]`), if the project has one.
     pub board: Option<Board>,
     /// Validation warnings.

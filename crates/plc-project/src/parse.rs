@@ -226,6 +226,9 @@ pub(crate) struct RawSupervisor {
     pub component: Option<Name>,
     #[serde(default)]
     pub synthesize: Option<Spanned<RawSynthesize>>,
+    /// A guard file (`*.guards.toml`): a symbolic supervisor.
+    #[serde(default)]
+    pub guards: Option<Name>,
     /// The logic backend's effort limit for this supervisor (default:
     /// the backend's, `codegen::backend::logic::DEFAULT_MAX_EFFORT`).
     #[serde(default)]
@@ -267,6 +270,9 @@ pub(crate) struct RawSynthesize {
     pub specs: Option<Spanned<Names>>,
     #[serde(default)]
     pub minimize: bool,
+    /// Synthesise symbolically: components and guards, not one automaton.
+    #[serde(default)]
+    pub symbolic: Option<Spanned<bool>>,
     /// The most states a composition may reach (default
     /// [`des::ops::sync::DEFAULT_MAX_STATES`]).
     #[serde(default)]

@@ -26,6 +26,10 @@
 //! pattern that matched it: such a name is never what the user meant, and
 //! printed it could inject a `cargo:` directive into their build.
 
+mod guarded;
+
+pub(crate) use guarded::LoadedGuarded;
+
 use super::locate::ProjectFile;
 use super::model::{NetSource, SupervisorSource};
 use super::parse::{names, Name, RawNet, RawSupervisor};
@@ -59,6 +63,15 @@ pub(crate) struct LoadedSupervisor {
     pub origins: Vec<ModelOrigin>,
 }
 
+/// What one `[[supervisor]]` loads: an automaton, or a symbolic
+/// supervisor's components and guards.
+pub(crate) enum LoadedEntry {
+    /// One automaton.
+    Automaton(LoadedSupervisor),
+    /// A symbolic supervisor.
+    Guarded(LoadedGuarded),
+}
+
 /// A `[[net]]` as read (and synthesised), analysed, not yet checked
 /// against the project.
 pub(crate) struct LoadedNet {
@@ -75,7 +88,7 @@ pub(crate) struct LoadedNet {
 /// What the files of a project hold.
 pub(crate) struct Sources {
     /// One per `[[supervisor]]`, in declaration order.
-    pub supervisors: Vec<LoadedSupervisor>,
+    pub supervisors: Vec<LoadedEntry>,
     /// One per `[[net]]`, in declaration order.
     pub nets: Vec<LoadedNet>,
     /// Every file the project is built from: the project file, then each
@@ -143,17 +156,50 @@ impl Loader<'_> {
 
     /// The automaton `sup` names, where it came from, and the automata of
     /// its source files.
-    fn supervisor(&mut self, sup: &Spanned<RawSupervisor>) -> Result<LoadedSupervisor> {
+    fn supervisor(&mut self, sup: &Spanned<RawSupervisor>) -> Result<LoadedEntry> {
         let header = sup.span();
         let raw = sup.get_ref();
-        match (&raw.file, &raw.synthesize) {
+        let symbolic = raw
+            .synthesize
+            .as_ref()
+            .and_then(|s| s.get_ref().symbolic.as_ref())
+            .is_some_and(|b| *b.get_ref());
+        if let Some(guards) = &raw.guards {
+            if let Some(other) = raw.file.as_ref().or(raw.component.as_ref()) {
+                return Err(self.error(
+                    &other.span(),
+                    "a supervisor with `guards` takes its components from the guard file: no `file` or `component`",
+                ));
+            }
+            if let Some(s) = &raw.synthesize {
+                return Err(self.error(
+                    &s.span(),
+                    "a supervisor has either `guards` or `synthesize`, not both",
+                ));
+            }
+            return self.guard_file(guards).map(LoadedEntry::Guarded);
+        }
+        if symbolic && raw.file.is_none() {
+            if let Some(c) = &raw.component {
+                return Err(self.error(
+                    &c.span(),
+                    "`component` selects from a `file`; a synthesised supervisor has none",
+                ));
+            }
+            let synth = raw
+                .synthesize
+                .as_ref()
+                .expect("symbolic implies synthesize");
+            return self.synthesize_symbolic(synth).map(LoadedEntry::Guarded);
+        }
+        let automaton = match (&raw.file, &raw.synthesize) {
             (Some(_), Some(s)) => Err(self.error(
                 &s.span(),
                 "a supervisor has either `file` or `synthesize`, not both",
             )),
             (None, None) => Err(self.error(
                 &header,
-                "a supervisor needs `file = \"…\"` or `synthesize = { plants = […], specs = […] }`",
+                "a supervisor needs `file = \"…\"`, `synthesize = { plants = […], specs = […] }` or `guards = \"….guards.toml\"`",
             )),
             (Some(file), None) => {
                 let path = self.dir.join(file.get_ref());
@@ -180,7 +226,8 @@ impl Loader<'_> {
                 }
                 self.synthesize(synth)
             }
-        }
+        };
+        automaton.map(LoadedEntry::Automaton)
     }
 
     /// The net of a `[[net]]`: read, its control places synthesised when

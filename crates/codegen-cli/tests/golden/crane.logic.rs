@@ -4,8 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span,
-    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
+    mask_word, Action, Config, EventSpec, GuardNode, GuardSpec, Guards, Index, InputSpec,
+    Membership, OutputSpec, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec,
+    Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -510,11 +511,12 @@ pub const CONFIG: Config<'static> = Config {
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
+    guards: Guards::NONE,
 };
 
 /// CRC of the configuration alone (the program image without tables): how recorded
 /// scenarios name the project they belong to.
-pub const CONFIG_CRC: u32 = 0x88c7f913;
+pub const CONFIG_CRC: u32 = 0xcb992b99;
 
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
@@ -776,11 +778,11 @@ pub mod logic {
 }
 
 /// CRC-32/MPEG-2 of the program image (the configuration; the supervisors are
-/// code, 708 bytes), recorded at generation. The controller checks the whole
+/// code, 720 bytes), recorded at generation. The controller checks the whole
 /// image at start-up, then in the background, 64 bytes per scan: a pass every
 /// 12 scans, a flipped bit found within 23 scans (230 ms at 10 ms a scan).
 /// See `executor::image`.
-pub const IMAGE_CRC: u32 = 0x88c7f913;
+pub const IMAGE_CRC: u32 = 0xcb992b99;
 
 /// The program's data: the configuration above, and the supervisors as
 /// minimised boolean functions (`executor::compiled`).

@@ -4,8 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span,
-    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
+    mask_word, Action, Config, EventSpec, GuardNode, GuardSpec, Guards, Index, InputSpec,
+    Membership, OutputSpec, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec,
+    Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -453,11 +454,12 @@ pub const CONFIG: Config<'static> = Config {
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
+    guards: Guards::NONE,
 };
 
 /// CRC of the configuration alone (the program image without tables): how recorded
 /// scenarios name the project they belong to.
-pub const CONFIG_CRC: u32 = 0x3a264825;
+pub const CONFIG_CRC: u32 = 0x274809e2;
 
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
@@ -593,12 +595,12 @@ const TABLES: [SupervisorTable<'static>; 1] = [
     },
 ];
 
-/// CRC-32/MPEG-2 of the program image (the configuration and the tables, 652
+/// CRC-32/MPEG-2 of the program image (the configuration and the tables, 664
 /// bytes), recorded at generation. The controller checks the whole image at
 /// start-up, then in the background, 64 bytes per scan: a pass every 11
 /// scans, a flipped bit found within 21 scans (210 ms at 10 ms a scan). See
 /// `executor::image`.
-pub const IMAGE_CRC: u32 = 0xc4ef2498;
+pub const IMAGE_CRC: u32 = 0xdaa8a494;
 
 /// The program's data: the configuration and the tables above, as constants
 /// the compiler can see through (`executor::compiled`).

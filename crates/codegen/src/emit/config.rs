@@ -362,7 +362,87 @@ pub mod places {{"
         self.actions();
         self.memberships();
         self.state_map();
+        self.guards();
         self.config_and_memory();
+    }
+
+    /// `GUARDS`, `STATE_BITS` and `GUARD_NODES`: the symbolic
+    /// supervisors' guards (nothing when the project has none; `CONFIG`
+    /// then says `Guards::NONE`).
+    fn guards(&mut self) {
+        let pools = self.pools;
+        if pools.guards.is_empty() && pools.state_bits.is_empty() {
+            return;
+        }
+        let texts: Vec<(usize, &str)> = self
+            .project
+            .guarded
+            .iter()
+            .flat_map(|g| g.guards.iter().map(|x| (x.event, x.text.as_str())))
+            .collect();
+        let mut doc = String::new();
+        let mut guards = Vec::with_capacity(pools.guards.len());
+        for (k, g) in pools.guards.iter().enumerate() {
+            let e = usize::from(g.event);
+            let text = texts
+                .iter()
+                .find(|(event, _)| *event == e)
+                .map_or("", |(_, t)| t);
+            let _ = writeln!(
+                doc,
+                "/// - {k}: {} may occur while {}",
+                self.event_name(e),
+                abbreviated(text, 160)
+            );
+            guards.push(format!(
+                "GuardSpec {{ event: event::{}, root: {}, nodes: {} }}",
+                ident(&self.project.events[e].name),
+                g.root,
+                self.span(g.nodes)
+            ));
+        }
+        self.pool(
+            "GUARDS",
+            "GuardSpec",
+            "The guarded commands: each may occur only while its guard (a decision diagram over `STATE_BITS`, its `nodes` in `GUARD_NODES`, `root` 0 false, 1 true, k ≥ 2 node k − 2 of its span) holds, by position",
+            &doc,
+            &guards,
+        );
+        let bits: Vec<String> = pools
+            .state_bits
+            .iter()
+            .map(|b| {
+                format!(
+                    "StateBit {{ component: {}, shift: {} }}",
+                    self.supervisor(b.component),
+                    b.shift
+                )
+            })
+            .collect();
+        self.pool(
+            "STATE_BITS",
+            "StateBit",
+            "The state bits the guards read: a component's state, shifted right by `shift`, bit 0",
+            "",
+            &bits,
+        );
+        let nodes: Vec<String> = pools
+            .guard_nodes
+            .iter()
+            .map(|n| {
+                format!(
+                    "GuardNode {{ bit: {}, low: {}, high: {} }}",
+                    n.bit, n.low, n.high
+                )
+            })
+            .collect();
+        self.pool(
+            "GUARD_NODES",
+            "GuardNode",
+            "Decision nodes of the guards: read `STATE_BITS[bit]`, go on at `high` when it is 1, at `low` when 0 (children first)",
+            "",
+            &nodes,
+        );
     }
 
     /// `INPUT_WORDS`, `INPUTS` (filtering and the events each input's
@@ -766,9 +846,14 @@ pub mod places {{"
         let reset = pools
             .reset
             .map_or("None".to_owned(), |r| format!("Some({})", self.input(r)));
+        let guards = if pools.guards.is_empty() && pools.state_bits.is_empty() {
+            "Guards::NONE"
+        } else {
+            "Guards { events: &GUARDS, bits: &STATE_BITS, nodes: &GUARD_NODES }"
+        };
         let _ = writeln!(
             self.out,
-            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, rom_test_bytes_per_scan: {}, inputs: &INPUTS, debounced: &DEBOUNCED, debounce_mask: {}, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_masks: &INPUT_MASKS, event_lists: &EVENT_LISTS, event_masks: &EVENT_MASKS, commands: {}, requested: {}, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP }};",
+            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, rom_test_bytes_per_scan: {}, inputs: &INPUTS, debounced: &DEBOUNCED, debounce_mask: {}, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_masks: &INPUT_MASKS, event_lists: &EVENT_LISTS, event_masks: &EVENT_MASKS, commands: {}, requested: {}, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP, guards: {guards} }};",
             pools.name,
             pools.scan_period_ms,
             pools.max_commands_per_scan,
@@ -789,6 +874,14 @@ pub mod places {{"
             self.out,
             "/// Words of an event set (32 events per word).\npub const EVENT_WORDS: usize = executor::program::words(event::COUNT);\n/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, event sets in `EVENT_WORDS` words, and one event set per supervisor.\npub type Memory = executor::memory::StaticMemory<INPUT_WORDS, {{ DEBOUNCED.len() }}, {{ output::COUNT }}, {{ timer::COUNT }}, {{ supervisor::COUNT }}, {{ event::COUNT }}, EVENT_WORDS, {{ supervisor::COUNT * EVENT_WORDS }}>;"
         );
+    }
+}
+
+/// `text` cut to at most `limit` characters, with `…` when cut.
+fn abbreviated(text: &str, limit: usize) -> String {
+    match text.char_indices().nth(limit) {
+        Some((at, _)) => format!("{}…", &text[..at]),
+        None => text.to_owned(),
     }
 }
 

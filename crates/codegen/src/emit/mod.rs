@@ -195,6 +195,11 @@ impl<'a> Emitter<'a> {
                 specs.len(),
                 if *minimized { ", minimised" } else { "" }
             ),
+            SupervisorSource::Component { guarded, file } => format!(
+                "a component of symbolic supervisor {}, from {}",
+                quoted(guarded),
+                quoted(&file.display().to_string())
+            ),
         }
     }
 }
@@ -311,7 +316,7 @@ fn write_program(project: &Project, lowered: &Lowered) -> Unformatted {
     };
     let _ = writeln!(
         e.out,
-        "#[allow(unused_imports)]\nuse executor::program::{{mask_word, Action, Config, EventSpec, Index, InputSpec, Membership, OutputSpec, Span, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy}};\n#[allow(unused_imports)]\n{uses}"
+        "#[allow(unused_imports)]\nuse executor::program::{{mask_word, Action, Config, EventSpec, GuardNode, GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy}};\n#[allow(unused_imports)]\n{uses}"
     );
     e.names();
     e.config();

@@ -63,6 +63,12 @@ pub struct ConfigPools {
     pub memberships: Vec<ex::Membership>,
     /// Pool of state-map entries.
     pub state_map: Vec<ex::StateMapEntry>,
+    /// The guards of symbolic supervisors, in event order.
+    pub guards: Vec<ex::GuardSpec>,
+    /// Pool of the state bits guards read.
+    pub state_bits: Vec<ex::StateBit>,
+    /// Pool of guard nodes (node `bit`s index `state_bits`).
+    pub guard_nodes: Vec<ex::GuardNode>,
     /// The layout of each net, in declaration order: its groups are the
     /// supervisors after the automata.
     pub nets: Vec<NetLayout>,
@@ -181,6 +187,7 @@ impl ConfigPools {
         let shapes_len = shapes.len();
         let supervisors = layout.supervisors(shapes)?;
         let (commands, requested) = layout.commands()?;
+        let guards = GuardPools::of(project)?;
 
         index(project.inputs.len(), "inputs")?;
         index(project.outputs.len(), "outputs")?;
@@ -215,6 +222,9 @@ impl ConfigPools {
             actions: layout.actions,
             memberships: layout.memberships,
             state_map: layout.state_map,
+            guards: guards.guards,
+            state_bits: guards.state_bits,
+            guard_nodes: guards.nodes,
             nets,
         })
     }
@@ -246,7 +256,75 @@ impl ConfigPools {
             actions: &self.actions,
             memberships: &self.memberships,
             state_map: &self.state_map,
+            guards: ex::Guards {
+                events: &self.guards,
+                bits: &self.state_bits,
+                nodes: &self.guard_nodes,
+            },
         }
+    }
+}
+
+/// The guards of every symbolic supervisor, with the state bits and nodes
+/// they read. A guard that always holds (root 1) is left out: the event
+/// is then never held back, as without a guard. Only the state bits some
+/// kept guard reads are stored, each supervisor's in its guard file's
+/// order, and its nodes' bit numbers are renumbered to them.
+struct GuardPools {
+    guards: Vec<ex::GuardSpec>,
+    state_bits: Vec<ex::StateBit>,
+    nodes: Vec<ex::GuardNode>,
+}
+
+impl GuardPools {
+    fn of(project: &Project) -> Result<GuardPools> {
+        let mut pools = GuardPools {
+            guards: Vec::new(),
+            state_bits: Vec::new(),
+            nodes: Vec::new(),
+        };
+        for g in &project.guarded {
+            let kept: Vec<_> = g.guards.iter().filter(|guard| guard.root != 1).collect();
+            let mut read = vec![false; g.bits.len()];
+            for guard in &kept {
+                for &[bit, _, _] in &guard.nodes {
+                    read[bit as usize] = true;
+                }
+            }
+            let mut renumbered = vec![0; g.bits.len()];
+            for (bit, &(component, shift)) in g.bits.iter().enumerate() {
+                if !read[bit] {
+                    continue;
+                }
+                renumbered[bit] = index(pools.state_bits.len(), "state bits")?;
+                pools.state_bits.push(ex::StateBit {
+                    component: index(component, "supervisors")?,
+                    shift: u8::try_from(shift).map_err(|_| Refusal::TooMany("state bits"))?,
+                });
+            }
+            for guard in kept {
+                let nodes = guard
+                    .nodes
+                    .iter()
+                    .map(|&[bit, low, high]| {
+                        Ok(ex::GuardNode {
+                            bit: renumbered[bit as usize],
+                            low: index(low as usize, "guard nodes")?,
+                            high: index(high as usize, "guard nodes")?,
+                        })
+                    })
+                    .collect::<Result<Vec<_>>>()?;
+                index(nodes.len() + 2, "guard nodes")?;
+                let span = push_span(&mut pools.nodes, &nodes, "guard nodes")?;
+                pools.guards.push(ex::GuardSpec {
+                    event: index(guard.event, "events")?,
+                    root: index(guard.root as usize, "guard nodes")?,
+                    nodes: span,
+                });
+            }
+        }
+        pools.guards.sort_by_key(|g| g.event);
+        Ok(pools)
     }
 }
 

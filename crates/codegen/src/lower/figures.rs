@@ -62,6 +62,54 @@ pub struct ScanSets {
     pub mask_bytes: usize,
     /// RAM bytes of the sets: one per supervisor, and the feasible set.
     pub ram_bytes: usize,
+    /// What the symbolic supervisors' guards cost.
+    pub guards: GuardFigures,
+}
+
+/// The guards of symbolic supervisors: how many, their size in flash, and
+/// the longest walk one takes (decision nodes read, one state bit each).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+pub struct GuardFigures {
+    /// Guarded commands.
+    pub guards: usize,
+    /// Decision nodes, all guards together.
+    pub nodes: usize,
+    /// State bits the guards read.
+    pub state_bits: usize,
+    /// Flash bytes of the guards, nodes and state bits.
+    pub bytes: usize,
+    /// The most nodes one evaluation of a guard reads.
+    pub longest_walk: usize,
+}
+
+impl GuardFigures {
+    /// The figures of `pools`' guards.
+    pub fn of(pools: &ConfigPools) -> GuardFigures {
+        let longest_walk = pools
+            .guards
+            .iter()
+            .map(|g| {
+                // Children come first: one pass gives every node's depth.
+                let nodes = g.nodes.of(&pools.guard_nodes);
+                let mut depth = vec![0usize; nodes.len() + 2];
+                for (i, n) in nodes.iter().enumerate() {
+                    let of = |k: u16| depth.get(usize::from(k)).copied().unwrap_or(0);
+                    depth[i + 2] = 1 + of(n.low).max(of(n.high));
+                }
+                depth.get(usize::from(g.root)).copied().unwrap_or(0)
+            })
+            .max()
+            .unwrap_or(0);
+        GuardFigures {
+            guards: pools.guards.len(),
+            nodes: pools.guard_nodes.len(),
+            state_bits: pools.state_bits.len(),
+            bytes: size_of::<ex::GuardSpec>() * pools.guards.len()
+                + size_of::<ex::GuardNode>() * pools.guard_nodes.len()
+                + size_of::<ex::StateBit>() * pools.state_bits.len(),
+            longest_walk,
+        }
+    }
 }
 
 impl ScanSets {
@@ -78,6 +126,7 @@ impl ScanSets {
             alphabet_bytes: 2 * alphabet,
             mask_bytes: 4 * pools.event_masks.len(),
             ram_bytes: 4 * event_words * (pools.supervisors.len() + 1),
+            guards: GuardFigures::of(pools),
         }
     }
 }

@@ -30,7 +30,7 @@ pub mod supervisors;
 mod table;
 
 pub use config::ConfigPools;
-pub use figures::{ImageCheck, ScanSets};
+pub use figures::{GuardFigures, ImageCheck, ScanSets};
 pub use logic::LogicImage;
 pub use matches::MatchImage;
 pub use nets::{NetGroups, NetLayout, PlaceField};

@@ -109,6 +109,12 @@ pub(crate) fn replay(
 ) -> Result<Vec<u32>, String> {
     let mut x = before.to_vec();
     for &e in executed {
+        if let Some(g) = project.guarded.iter().find(|g| !g.allows(e, &x)) {
+            return Err(format!(
+                "executed event {e} while the guard of symbolic supervisor `{}` does not hold in {x:?}",
+                g.name
+            ));
+        }
         for (j, sup) in project.supervisors.iter().enumerate() {
             let Some(&(_, id)) = sup.local_events.iter().find(|&&(g, _)| g == e) else {
                 continue;

@@ -107,6 +107,7 @@ pub(crate) fn hand_project(
         events,
         supervisors: Vec::new(),
         nets: Vec::new(),
+        guarded: Vec::new(),
         board: None,
         warnings: Vec::new(),
         files: Vec::new(),

@@ -135,7 +135,8 @@ use crate::hand::{
     supervisor_named, PRESS, PRESS_TRACE, RUN, TICK,
 };
 use crate::projects::{
-    add_random_nets, project, supervisor, wide_supervisor, ProjectSpec, NARROW, WIDE,
+    add_random_guards, add_random_nets, project, supervisor, wide_supervisor, ProjectSpec, NARROW,
+    WIDE,
 };
 use crate::reference::{Record, Reference};
 use crate::runs::{run, wide_run, RunSpec};
@@ -249,6 +250,27 @@ proptest! {
         let samples = run.samples(project.inputs.len(), project.scan_period_ms);
         check_run(&project, &samples).map_err(|e| match e {
             TestCaseError::Fail(why) => TestCaseError::fail(format!("{why}\n{}\nnets: {:#?}", describe(&project), project.nets)),
+            other => other,
+        })?;
+    }
+}
+
+proptest! {
+    #![proptest_config(config(1_000))]
+
+    /// Symbolic supervisors: random guards over the last supervisors'
+    /// states hold commands back, in both backends as in the reference.
+    #[test]
+    fn backends_match_reference_with_guards(
+        spec in project(&NARROW, supervisor(1..=12)),
+        run in run(),
+        seed in any::<u64>(),
+    ) {
+        let mut project = spec.build();
+        add_random_guards(&mut project, seed);
+        let samples = run.samples(project.inputs.len(), project.scan_period_ms);
+        check_run(&project, &samples).map_err(|e| match e {
+            TestCaseError::Fail(why) => TestCaseError::fail(format!("{why}\n{}\nguards: {:#?}", describe(&project), project.guarded)),
             other => other,
         })?;
     }

@@ -7,8 +7,8 @@
 use des::automaton::{EventId, StateId};
 use des::AutomatonBuilder;
 use plc_project::{
-    Action, Drive, Event, Input, Net, NetSource, Origin, Output, Project, Supervisor,
-    SupervisorSource, Timer, Trigger, Unexpected, COUNTER_BITS,
+    Action, Drive, Event, EventGuard, Guarded, GuardedSource, Input, Net, NetSource, Origin,
+    Output, Project, Supervisor, SupervisorSource, Timer, Trigger, Unexpected, COUNTER_BITS,
 };
 use proptest::collection::vec;
 use proptest::prelude::*;
@@ -190,6 +190,7 @@ impl ProjectSpec {
             events,
             supervisors,
             nets: Vec::new(),
+            guarded: Vec::new(),
             board: None,
             warnings: Vec::new(),
             files: Vec::new(),
@@ -641,4 +642,74 @@ pub(crate) fn add_random_nets(project: &mut Project, seed: u64) {
             net,
         });
     }
+}
+
+/// Makes the last supervisors of `project` (one or more, from `seed`) the
+/// components of a symbolic supervisor with random guards: each
+/// controllable event guarded or not, a guard a random decision diagram
+/// of up to 8 nodes (children first, as guard files have them) over the
+/// components' state bits, laid out as a guard file lays them out (each
+/// component's bits most significant first). A project without
+/// supervisors is left as it is.
+pub(crate) fn add_random_guards(project: &mut Project, seed: u64) {
+    let supervisors = project.supervisors.len();
+    if supervisors == 0 {
+        return;
+    }
+    let mut state = seed | 1;
+    let mut next = move |n: usize| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state % n.max(1) as u64) as usize
+    };
+    let first = supervisors - 1 - next(supervisors);
+    let mut bits = Vec::new();
+    for j in first..supervisors {
+        let states = project.supervisors[j].automaton.num_states() as u32;
+        let width = u32::BITS - states.saturating_sub(1).leading_zeros();
+        for k in 0..width {
+            bits.push((j, width - 1 - k));
+        }
+    }
+    let mut guards = Vec::new();
+    for (e, ev) in project.events.iter().enumerate() {
+        if !ev.controllable || next(3) == 0 {
+            continue;
+        }
+        let count = if bits.is_empty() { 0 } else { next(9) };
+        let nodes: Vec<[u32; 3]> = (0..count)
+            .map(|i| {
+                let at = i + 2;
+                [next(bits.len()) as u32, next(at) as u32, next(at) as u32]
+            })
+            .collect();
+        // Mostly the last node (a table's root); now and then a constant
+        // or an inner node.
+        let root = match next(6) {
+            0 => next(count + 2),
+            _ => count + 1,
+        } as u32;
+        guards.push(EventGuard {
+            event: e,
+            text: format!("random guard of event {e}"),
+            root: if count == 0 { root.min(1) } else { root },
+            nodes,
+        });
+    }
+    for j in first..supervisors {
+        project.supervisors[j].source = SupervisorSource::Component {
+            guarded: "g".to_owned(),
+            file: "random.toml".into(),
+        };
+    }
+    project.guarded.push(Guarded {
+        name: "g".to_owned(),
+        components: first..supervisors,
+        bits,
+        guards,
+        closed_loop_states: "0".to_owned(),
+        source: GuardedSource::File("random.guards.toml".into()),
+        line: 0,
+    });
 }

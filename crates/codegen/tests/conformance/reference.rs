@@ -248,11 +248,17 @@ impl<'p> Reference<'p> {
             .collect()
     }
 
-    /// Feasibility: every supervisor having `e` has a transition on it.
+    /// Feasibility: every supervisor having `e` has a transition on it,
+    /// and every symbolic supervisor's guard of `e` holds.
     pub(crate) fn feasible(&self, e: usize) -> bool {
         self.members[e]
             .iter()
             .all(|&j| self.delta[j].contains_key(&(self.states[j], e)))
+            && self
+                .project
+                .guarded
+                .iter()
+                .all(|g| g.allows(e, &self.states))
             && self
                 .project
                 .nets

@@ -135,6 +135,7 @@ fn ring_config(rom_test_bytes_per_scan: u16) -> Config<'static> {
             state: 0,
             mask: u32::MAX,
         }],
+        guards: Guards::NONE,
     }
 }
 
@@ -334,6 +335,22 @@ fn every_pool() -> TableProgram<'static> {
             state: 12,
             mask: u32::MAX,
         }],
+        guards: Guards {
+            events: leak(vec![GuardSpec {
+                event: 13,
+                root: 2,
+                nodes: Span::new(0, 1),
+            }]),
+            bits: &[StateBit {
+                component: 14,
+                shift: 15,
+            }],
+            nodes: &[GuardNode {
+                bit: 16,
+                low: 17,
+                high: 18,
+            }],
+        },
         ..ring_config(8)
     };
     let table = SupervisorTable {
@@ -367,8 +384,9 @@ fn the_crc_is_crc32_mpeg2_over_the_documented_words() {
         5, 10, 1, 0, RESET as u32, 1, 0, 0, 8, span(1, 1), span(2, 1), span(3, 1),
         // pool lengths: inputs, debounced, outputs, timers, events,
         // supervisors, input masks, event lists, event masks, actions,
-        // memberships, state map; tables
-        1, 1, 1, 1, 1, 1, 2, 4, 3, 1, 1, 1, 1,
+        // memberships, state map, guards, state bits, guard nodes;
+        // tables
+        1, 1, 1, 1, 1, 1, 2, 4, 3, 1, 1, 1, 1, 1, 1, 1,
         // name, four bytes a word, least significant first
         u32::from_le_bytes(*b"abcd"), u32::from_le_bytes([b'e', 0, 0, 0]),
         // the input: debounce, raises
@@ -389,6 +407,9 @@ fn the_crc_is_crc32_mpeg2_over_the_documented_words() {
         // start timer 0; supervisor 9's local event 10; state map
         // (supervisor, state, mask)
         2 << 16, 9 | 10 << 16, 11, 12, u32::MAX,
+        // the guard (event, root, nodes); its state bit (component |
+        // shift << 16); its node (bit | low << 16, high)
+        13, 2, span(0, 1), 14 | 15 << 16, 16 | 17 << 16, 18,
         // table header: events, state bits, sparse, start bits, lengths
         2, 2, 1, 2, 1, 1, 1,
         // defined, targets, row starts
@@ -581,9 +602,9 @@ fn the_bound_is_reached_by_a_word_read_just_before_it_flips() {
 #[test]
 fn a_flipped_configuration_byte_is_found() {
     // The high byte of the length of the event's `members` span: word 6
-    // of the event, after the header (25 words), the name (1), the inputs
+    // of the event, after the header (28 words), the name (1), the inputs
     // (2 × 2), no debounced input, the output (2) and no timer: stream
-    // word 38.
+    // word 41.
     let program = ring(16);
     let (n, pass) = shares(&program);
     let mut event = program.config.events[0];
@@ -598,16 +619,16 @@ fn a_flipped_configuration_byte_is_found() {
     let flippable = Flippable::new(program, corrupt);
     assert_eq!(
         scan_of_fault(&flippable, 5, 4 * pass),
-        Some(predicted(38, 5, n, pass))
+        Some(predicted(41, 5, n, pass))
     );
     let flippable = Flippable::new(program, corrupt);
     assert_eq!(
-        scan_of_fault(&flippable, pass + 10, 4 * pass),
-        Some(predicted(38, pass + 10, n, pass))
+        scan_of_fault(&flippable, pass + 11, 4 * pass),
+        Some(predicted(41, pass + 11, n, pass))
     );
-    // Stream word 38 is read in the tenth scan of a pass (16 bytes a
+    // Stream word 41 is read in the eleventh scan of a pass (16 bytes a
     // scan): flipped after it, it is found by the next pass.
-    assert_eq!(predicted(38, pass + 10, n, pass), 3 * pass - 1);
+    assert_eq!(predicted(41, pass + 11, n, pass), 3 * pass - 1);
 }
 
 #[test]

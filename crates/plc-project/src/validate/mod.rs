@@ -16,7 +16,8 @@
 //! - [`events`]: sources and conditions, events no supervisor knows;
 //!   [`actions`]: what an event does, and in which order;
 //! - [`supervisors`]: supervisors against the declared events; [`nets`]:
-//!   Petri nets against them, and their counters;
+//!   Petri nets against them, and their counters; [`guarded`]: symbolic
+//!   supervisors, their components and guards;
 //! - [`nonconflict`]: `check_nonconflicting`, the supervisors proven not
 //!   to block each other;
 //! - [`board`]: the `[board]` pin map.
@@ -44,6 +45,7 @@ use std::ops::Range;
 pub mod actions;
 pub mod board;
 pub mod events;
+pub mod guarded;
 pub mod names;
 pub mod nets;
 pub mod nonconflict;
@@ -156,13 +158,15 @@ impl Validator<'_> {
             switches: &switches,
         };
         let events = self.events(&raw.events, &env, &mut output_uses)?;
-        let supervisors = self.supervisors(&raw.supervisor, sources.supervisors, &events)?;
+        let (supervisors, guarded) =
+            self.supervisors(&raw.supervisor, sources.supervisors, &events)?;
         let nets = self.nets(&raw.net, sources.nets, &events)?;
         self.events_no_supervisor_knows(&events, &supervisors.items, &nets.items)?;
         self.nonconflicting(
             raw.plc.get_ref().check_nonconflicting.as_ref(),
             &supervisors.items,
             &nets.items,
+            &guarded,
         )?;
         let outputs = self.outputs(&raw.outputs, &output_uses.items, &supervisors, &nets)?;
         self.timers_nothing_starts(&timers, &events.items);
@@ -191,6 +195,7 @@ impl Validator<'_> {
             events: events.items,
             supervisors: supervisors.items,
             nets: nets.items,
+            guarded,
             board,
             warnings: std::mem::take(&mut self.warnings),
             files: sources.files,

@@ -8,10 +8,10 @@
 //! The check runs on BDDs (`des_symbolic::verify`), never building the
 //! supervisors' product, so it holds for sets of supervisors whose product
 //! is far beyond what could be enumerated. It covers automaton supervisors;
-//! a project with Petri nets is refused at the flag (a net is not an
-//! automaton the check reads).
+//! a project with Petri nets or symbolic supervisors is refused at the
+//! flag (a net is not an automaton the check reads, nor are guards).
 
-use super::super::model::{Net, Supervisor};
+use super::super::model::{Guarded, Net, Supervisor};
 use super::Validator;
 use des::error::Result;
 use des::StateId;
@@ -28,6 +28,7 @@ impl Validator<'_> {
         flag: Option<&Spanned<bool>>,
         supervisors: &[Supervisor],
         nets: &[Net],
+        guarded: &[Guarded],
     ) -> Result<()> {
         let Some(flag) = flag.filter(|f| *f.get_ref()) else {
             return Ok(());
@@ -39,6 +40,15 @@ impl Validator<'_> {
                 format!(
                     "check_nonconflicting covers automaton supervisors, and net `{}` (line {}) is not one: remove the flag, or check the net with `codegen petri`",
                     net.name, net.line
+                ),
+            ));
+        }
+        if let Some(g) = guarded.first() {
+            return Err(self.error(
+                &span,
+                format!(
+                    "check_nonconflicting covers automaton supervisors, and symbolic supervisor `{}` (line {}) restricts its components by guards the check does not read: remove the flag (symbolic synthesis is nonblocking by construction), or verify with `codegen verify --nonblocking --symbolic`",
+                    g.name, g.line
                 ),
             ));
         }

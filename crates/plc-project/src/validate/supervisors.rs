@@ -9,52 +9,82 @@
 //!   and states controllability (for a synthesised supervisor: every plant
 //!   and specification file it was synthesised from).
 
-use super::super::model::{Event, Supervisor, SupervisorSource};
+use super::super::model::{Event, Guarded, Supervisor, SupervisorSource};
 use super::super::parse::RawSupervisor;
-use super::super::sources::LoadedSupervisor;
+use super::super::sources::{LoadedEntry, LoadedSupervisor};
 use super::{Declared, Validator};
 use des::automaton::EventId;
 use des::error::Result;
+use std::ops::Range;
 use toml::Spanned;
 
 impl Validator<'_> {
-    /// Checks every `[[supervisor]]` (`raw`) and its automaton (`loaded`,
-    /// one per supervisor) against the events.
+    /// Checks every `[[supervisor]]` (`raw`) and what it loaded (`loaded`,
+    /// one per entry) against the events: the supervisors (a symbolic
+    /// supervisor's components among them) and the symbolic supervisors.
     pub(super) fn supervisors(
         &mut self,
         raw: &[Spanned<RawSupervisor>],
-        loaded: Vec<LoadedSupervisor>,
+        loaded: Vec<LoadedEntry>,
         events: &Declared<Event>,
-    ) -> Result<Declared<Supervisor>> {
+    ) -> Result<(Declared<Supervisor>, Vec<Guarded>)> {
         let mut supervisors = Declared::new("supervisor", "[supervisor]");
+        let mut guarded = Vec::new();
         for (raw, loaded) in raw.iter().zip(loaded) {
-            let sup = self.supervisor(raw, loaded, events)?;
-            let name = sup.name.clone();
-            supervisors.push(&name, raw.span(), sup);
+            match loaded {
+                LoadedEntry::Automaton(loaded) => {
+                    let header = raw.span();
+                    let (name, name_span) = match &raw.get_ref().name {
+                        Some(n) => (n.get_ref().clone(), n.span()),
+                        None => (loaded.automaton.name().to_owned(), header.clone()),
+                    };
+                    self.claim("supervisor", &name, &name_span)?;
+                    let max_logic_effort = self.max_logic_effort(raw.get_ref())?;
+                    let sup = self.supervisor(&header, name, loaded, events, max_logic_effort)?;
+                    let name = sup.name.clone();
+                    supervisors.push(&name, header, sup);
+                }
+                LoadedEntry::Guarded(loaded) => {
+                    let g = self.guarded(raw, loaded, events, &mut supervisors)?;
+                    guarded.push(g);
+                }
+            }
         }
-        Ok(supervisors)
+        Ok((supervisors, guarded))
     }
 
-    fn supervisor(
+    /// `max_logic_effort` of an entry, positive when given.
+    pub(super) fn max_logic_effort(&self, sup: &RawSupervisor) -> Result<Option<u64>> {
+        match &sup.max_logic_effort {
+            None => Ok(None),
+            Some(n) if *n.get_ref() > 0 => Ok(Some(*n.get_ref())),
+            Some(n) => Err(self.error(&n.span(), "max_logic_effort must be a positive number")),
+        }
+    }
+
+    /// One supervisor, named `name` (already claimed), declared at
+    /// `header`.
+    pub(super) fn supervisor(
         &mut self,
-        sup: &Spanned<RawSupervisor>,
+        header: &Range<usize>,
+        name: String,
         loaded: LoadedSupervisor,
         events: &Declared<Event>,
+        max_logic_effort: Option<u64>,
     ) -> Result<Supervisor> {
-        let header = sup.span();
+        let header = header.clone();
         let LoadedSupervisor {
             automaton,
             source,
             origins,
         } = loaded;
-        let (name, name_span) = match &sup.get_ref().name {
-            Some(n) => (n.get_ref().clone(), n.span()),
-            None => (automaton.name().to_owned(), header.clone()),
-        };
-        self.claim("supervisor", &name, &name_span)?;
         let described = match &source {
             SupervisorSource::File(p) => format!("supervisor `{name}` (`{}`)", p.display()),
             SupervisorSource::Synthesized { .. } => format!("synthesised supervisor `{name}`"),
+            SupervisorSource::Component { guarded, file } => format!(
+                "component `{name}` of symbolic supervisor `{guarded}` (`{}`)",
+                file.display()
+            ),
         };
         if automaton.is_empty() {
             return Err(self.error(&header, format!("{described} has no states")));
@@ -68,7 +98,7 @@ impl Validator<'_> {
         for (id, e) in alphabet.iter() {
             let Some(&g) = events.index.get(&e.name) else {
                 let whose = match source {
-                    SupervisorSource::File(_) => None,
+                    SupervisorSource::File(_) | SupervisorSource::Component { .. } => None,
                     SupervisorSource::Synthesized { .. } => {
                         origins.iter().find(|o| o.alphabet.contains(&e.name))
                     }
@@ -101,7 +131,9 @@ impl Validator<'_> {
                 if theirs != event.controllable {
                     let word = |c: bool| if c { "controllable" } else { "uncontrollable" };
                     let model = match source {
-                        SupervisorSource::File(_) => described.clone(),
+                        SupervisorSource::File(_) | SupervisorSource::Component { .. } => {
+                            described.clone()
+                        }
                         SupervisorSource::Synthesized { .. } => format!(
                             "`{}` (`{}`), a model of {described}",
                             o.name,
@@ -121,13 +153,6 @@ impl Validator<'_> {
             }
         }
 
-        let max_logic_effort = match &sup.get_ref().max_logic_effort {
-            None => None,
-            Some(n) if *n.get_ref() > 0 => Some(*n.get_ref()),
-            Some(n) => {
-                return Err(self.error(&n.span(), "max_logic_effort must be a positive number"))
-            }
-        };
         Ok(Supervisor {
             name,
             automaton,
