@@ -502,15 +502,34 @@ fn allowed_of(allowed: &mut [u32], event_words: usize, j: usize) -> &mut [u32] {
 /// event, whose guard holds ([`crate::guards`]). A guard is evaluated only
 /// when the supervisors enable its event.
 fn refresh_feasible(config: &Config<'_>, ram: &mut Ram<'_>) {
-    let ew = ram.feasible.len();
-    for (k, word) in ram.feasible.iter_mut().enumerate() {
-        *word = ram
-            .allowed
-            .iter()
-            .skip(k)
-            .step_by(ew.max(1))
-            .fold(u32::MAX, |w, a| w & a);
+    // Up to 96 events the words are held in registers across the rows
+    // (a row is a few loads and ANDs, whatever the supervisor count);
+    // wider sets go word by word.
+    match ram.feasible.len() {
+        1 => ram.feasible.copy_from_slice(&and_rows::<1>(ram.allowed)),
+        2 => ram.feasible.copy_from_slice(&and_rows::<2>(ram.allowed)),
+        3 => ram.feasible.copy_from_slice(&and_rows::<3>(ram.allowed)),
+        ew => {
+            for (k, word) in ram.feasible.iter_mut().enumerate() {
+                *word = ram
+                    .allowed
+                    .iter()
+                    .skip(k)
+                    .step_by(ew.max(1))
+                    .fold(u32::MAX, |w, a| w & a);
+            }
+        }
     }
+    if !config.guards.events.is_empty() {
+        apply_guards(config, ram);
+    }
+}
+
+/// Removes from the feasible set every guarded event whose guard does not
+/// hold. Out of line: a program without guards never enters it, and its
+/// scan keeps the code it had before guards existed.
+#[inline(never)]
+fn apply_guards(config: &Config<'_>, ram: &mut Ram<'_>) {
     let guards = &config.guards;
     for guard in guards.events {
         let e = usize::from(guard.event);
@@ -518,6 +537,18 @@ fn refresh_feasible(config: &Config<'_>, ram: &mut Ram<'_>) {
             bits::remove(ram.feasible, e);
         }
     }
+}
+
+/// The AND of the `N`-word rows of `allowed`.
+#[inline(always)]
+fn and_rows<const N: usize>(allowed: &[u32]) -> [u32; N] {
+    let mut words = [u32::MAX; N];
+    for row in allowed.chunks_exact(N) {
+        for (word, &a) in words.iter_mut().zip(row) {
+            *word &= a;
+        }
+    }
+    words
 }
 
 /// Word `k` of the commands the controller may choose now: those without

@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 /// Largest number of inputs (and of outputs) a recorded scan holds.
 pub const MAX_INPUTS: usize = 128;
 /// Largest number of supervisors a recorded scan holds.
-pub const MAX_SUPERVISORS: usize = 32;
+pub const MAX_SUPERVISORS: usize = 64;
 /// Largest number of executed (or unexpected) events in one recorded scan.
 pub const MAX_EVENTS: usize = 64;
 
