@@ -19,6 +19,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod guards;
 pub mod ladder;
 pub mod names;
 pub mod plcopen;
