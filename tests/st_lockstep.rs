@@ -232,6 +232,7 @@ random_tests! {
     mixers_random_inputs_give_the_same_trace: 8, 9;
     cell_random_inputs_give_the_same_trace: 9, 10;
     iec_names_random_inputs_give_the_same_trace: 10, 11;
+    module_random_inputs_give_the_same_trace: 11, 12;
 }
 
 #[test]
@@ -505,4 +506,123 @@ fn a_corrupt_state_faults_to_the_safe_image_until_reset() {
             .collect();
         assert_eq!(seen.outputs, image, "{rel}: the initial output image");
     }
+}
+
+/// The scans whose end state holds a command of a symbolic supervisor
+/// back by its guard alone: every supervisor having it allows it, it was
+/// not executed in the scan, and its guard does not hold. (With every
+/// command allowed once per scan, as in the module, such a command was
+/// infeasible in the scan's last round because of its guard.)
+fn held_back(project: &Project, seen: &Observed) -> usize {
+    if seen.fault.is_some() {
+        return 0;
+    }
+    let states = &seen.states;
+    project
+        .guarded
+        .iter()
+        .flat_map(|g| g.guards.iter().map(move |eg| (g, eg)))
+        .filter(|(g, eg)| {
+            let allowed = project.supervisors.iter().enumerate().all(|(j, sup)| {
+                sup.local(eg.event).is_none_or(|(_, id)| {
+                    sup.automaton
+                        .successor(des::automaton::StateId(states[j]), id)
+                        .is_some()
+                })
+            });
+            allowed && !seen.executed.contains(&(eg.event as u16)) && !g.allows(eg.event, states)
+        })
+        .count()
+}
+
+/// Guards in action: the conveyor module's ten guards, each an inline
+/// state comparison, hold commands back in the exported ST exactly when
+/// the executor's guards do, and the runs reach such states.
+#[test]
+fn the_modules_guards_hold_commands_back_as_the_executor_does() {
+    let project = load("models/module.plc.toml");
+    assert_eq!(
+        project.max_commands_per_scan, 0,
+        "every command once a scan"
+    );
+    let text = st_text(&project);
+    assert!(text.contains("(* guard of stop_1 (module): LS1 = off *)"));
+    // Noisy guided inputs: sensors change where the plant would not let
+    // them, which is where guards hold stops back.
+    let rows = guided_inputs(&project, 2_000, 13, 3).expect("inputs");
+    let mut st = StController::new(&project, &text);
+    let mut held = 0;
+    let cov = compare(&project, &rows, "guards", |_, row| {
+        st.scan(row.time_ms, &row.values);
+        let seen = observe_st(&project, &st);
+        held += held_back(&project, &seen);
+        seen
+    });
+    assert_eq!(cov.scans, rows.len());
+    assert!(held > 0, "no guard ever held a command back");
+}
+
+/// The comparison sees guards: the module exported without them (its
+/// components only) runs commands the executor holds back.
+#[test]
+fn a_dropped_guard_is_found() {
+    let project = load("models/module.plc.toml");
+    let mut unguarded = project.clone();
+    unguarded.guarded.clear();
+    let text = st_text(&unguarded);
+    assert!(!text.contains("guard of"));
+    let rows = guided_inputs(&project, 2_000, 13, 3).expect("inputs");
+    let outcome = std::panic::catch_unwind(|| lockstep(&project, &text, &rows, "unguarded"));
+    let text = lockstep::panic_text(outcome.expect_err("the unguarded export must differ"));
+    assert!(text.contains("differs"), "{text}");
+}
+
+/// Guards too large for a sum of products, written as chains of
+/// temporaries: the module's commands each given a random decision
+/// diagram over the components' state bits (a valid node table, children
+/// first), in lockstep with the executor running the same guards.
+#[test]
+fn guards_written_as_chains_give_the_same_trace() {
+    let mut project = load("models/module.plc.toml");
+    let mut x: u64 = 0x00C0_FFEE;
+    let mut below = |n: u64| {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        x % n
+    };
+    let g = &mut project.guarded[0];
+    let bits = g.bits.len() as u64;
+    for eg in &mut g.guards {
+        // Chains of random nodes, each reading one of a few components'
+        // bits so that the guard depends on states the scan moves.
+        let nodes = 24 + below(16) as u32;
+        let window = below(bits.saturating_sub(8)).min(bits - 1);
+        eg.nodes = (0..nodes)
+            .map(|k| {
+                let bit = (window + below(8)).min(bits - 1) as u32;
+                [
+                    bit,
+                    below(u64::from(k) + 2) as u32,
+                    below(u64::from(k) + 2) as u32,
+                ]
+            })
+            .collect();
+        eg.root = nodes + 1;
+        eg.text = format!("random guard of {nodes} nodes");
+    }
+    let text = st_text(&project);
+    let chains = text.matches("GN[0] := ").count();
+    assert!(chains >= 5, "{chains} guards written as chains");
+    let rows = guided_inputs(&project, 2_000, 14, 3).expect("inputs");
+    let mut st = StController::new(&project, &text);
+    let mut held = 0;
+    let cov = compare(&project, &rows, "random guards", |_, row| {
+        st.scan(row.time_ms, &row.values);
+        let seen = observe_st(&project, &st);
+        held += held_back(&project, &seen);
+        seen
+    });
+    assert!(!cov.executed.is_empty());
+    assert!(held > 0, "no random guard ever held a command back");
 }
