@@ -59,7 +59,7 @@ fn random_instance(seed: u64) -> Instance {
     let events: Vec<(String, bool)> = (0..3)
         .flat_map(|i| [(format!("a{i}"), true), (format!("u{i}"), false)])
         .collect();
-    let mut automaton = |name: String, rng: &mut Rng, pool: &[usize]| {
+    let automaton = |name: String, rng: &mut Rng, pool: &[usize]| {
         let mut alphabet: Vec<usize> = pool.iter().copied().filter(|_| rng.below(2) == 0).collect();
         if alphabet.is_empty() {
             alphabet.push(pool[rng.below(pool.len())]);

@@ -8,6 +8,10 @@
 //! or, where that is smaller ([`sparse_layout`]), a sparse table (row starts
 //! `DR_<name>`, local events `DE_<name>`, targets `DT_<name>`) searched
 //! into `NX_<name>`; each Petri net a marking array `M_<name>[place]`.
+//! A command of a symbolic supervisor also needs its guards to hold:
+//! each is written by [`super::guards`] over the components' state
+//! variables, inline or as a chain of temporaries `GN[k]` computed just
+//! before the command's test.
 //! Steps are written in the order of the specification, each event as
 //! its own block, so a reader can follow one event from its occurrence
 //! to its actions.
