@@ -583,34 +583,7 @@ fn a_dropped_guard_is_found() {
 /// first), in lockstep with the executor running the same guards.
 #[test]
 fn guards_written_as_chains_give_the_same_trace() {
-    let mut project = load("models/module.plc.toml");
-    let mut x: u64 = 0x00C0_FFEE;
-    let mut below = |n: u64| {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        x % n
-    };
-    let g = &mut project.guarded[0];
-    let bits = g.bits.len() as u64;
-    for eg in &mut g.guards {
-        // Chains of random nodes, each reading one of a few components'
-        // bits so that the guard depends on states the scan moves.
-        let nodes = 24 + below(16) as u32;
-        let window = below(bits.saturating_sub(8)).min(bits - 1);
-        eg.nodes = (0..nodes)
-            .map(|k| {
-                let bit = (window + below(8)).min(bits - 1) as u32;
-                [
-                    bit,
-                    below(u64::from(k) + 2) as u32,
-                    below(u64::from(k) + 2) as u32,
-                ]
-            })
-            .collect();
-        eg.root = nodes + 1;
-        eg.text = format!("random guard of {nodes} nodes");
-    }
+    let project = lockstep::module_with_random_guards(0x00C0_FFEE);
     let text = st_text(&project);
     let chains = text.matches("GN[0] := ").count();
     assert!(chains >= 5, "{chains} guards written as chains");
