@@ -311,12 +311,14 @@ pub enum Form {
     /// An expression, inline in the feasibility test.
     Inline(String),
     /// Statements computing temporaries `GN[first..]`, children first,
-    /// whose last (`GN[result]`) is the guard's value.
+    /// one of which (`GN[root]`) is the guard's value.
     Chain {
         /// The assignments, one per node.
         statements: Vec<String>,
         /// The temporaries used.
         nodes: usize,
+        /// The temporary holding the guard's value (`first` included).
+        root: usize,
     },
 }
 
@@ -392,9 +394,15 @@ pub fn form(
             format!("{} := {};", temp(k), terms.join(" OR "))
         })
         .collect();
+    let root = match diagram.root {
+        Ref::Node(k) => first + k,
+        // A terminal root is one product or none: written inline above.
+        Ref::False | Ref::True => unreachable!("a constant guard has a sum of products"),
+    };
     Form::Chain {
         statements,
         nodes: diagram.nodes.len(),
+        root,
     }
 }
 
@@ -541,8 +549,13 @@ mod tests {
             let names: Vec<String> = (0..sizes.len()).map(|j| format!("S{j}")).collect();
             match form(&d, &names, &sizes, "GN", 0) {
                 Form::Inline(_) => inline += 1,
-                Form::Chain { statements, nodes } => {
+                Form::Chain {
+                    statements,
+                    nodes,
+                    root,
+                } => {
                     assert_eq!(statements.len(), nodes);
+                    assert!(root < nodes);
                     chained += 1;
                 }
             }

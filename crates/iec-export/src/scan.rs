@@ -174,9 +174,7 @@ fn event_guards(project: &Project, names: &Names) -> Vec<Vec<Guard>> {
             let form = guards::form(&diagram, &names.states, &sizes, GUARD_NODES, first);
             let term = match &form {
                 guards::Form::Inline(e) => e.clone(),
-                guards::Form::Chain { nodes, .. } => {
-                    format!("{GUARD_NODES}[{}]", first + nodes - 1)
-                }
+                guards::Form::Chain { root, .. } => format!("{GUARD_NODES}[{root}]"),
             };
             out[eg.event].push(Guard {
                 supervisor: comment_text(&g.name),
