@@ -143,8 +143,8 @@ struct Guard {
     text: String,
     /// The expression or the chain.
     form: guards::Form,
-    /// The term of the feasibility test: the expression, or the chain's
-    /// last temporary.
+    /// The term of the feasibility test: the expression, or the
+    /// temporary of the chain's root.
     term: String,
 }
 
@@ -757,8 +757,9 @@ impl Builder<'_> {
     }
 
     /// Whether the controllable phase needs the `CHOSEN` flag: some
-    /// command looks its target up in a sparse table, which takes
-    /// statements that an `ELSIF` chain has no room for.
+    /// command looks its target up in a sparse table or computes a guard
+    /// as a chain of temporaries, which takes statements that an `ELSIF`
+    /// chain has no room for.
     fn chosen_flag(&self) -> bool {
         self.commands().any(|(e, _)| {
             self.columns(e).any(|(j, _)| self.names.sparse[j].is_some()) || self.chained(e)
