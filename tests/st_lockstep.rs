@@ -16,6 +16,8 @@
 
 #[path = "common/lockstep.rs"]
 mod lockstep;
+#[path = "common/symbolic.rs"]
+mod symbolic;
 
 use host_sim::inputs::InputRow;
 use host_sim::random_inputs::guided_inputs;
@@ -598,4 +600,59 @@ fn guards_written_as_chains_give_the_same_trace() {
     });
     assert!(!cov.executed.is_empty());
     assert!(held > 0, "no random guard ever held a command back");
+}
+
+/// Guards as synthesis makes them: symbolic supervisors of the
+/// `des_symbolic` families (rings of machines and buffers, transfer
+/// lines, dining philosophers, the module), synthesised at build time,
+/// exported and run in lockstep with the executor; their guards come out
+/// inline (`¬(a ∧ b ∧ …)` as `(S_a <> 1) OR (S_b <> 1) OR …`) and, for
+/// the rings' larger ones, as chains.
+#[test]
+fn synthesised_guards_of_the_families_give_the_same_trace() {
+    let (mut inline, mut chains, mut held, mut scans) = (0, 0, 0, 0);
+    for (k, (family, n)) in [
+        ("ring", 5),
+        ("ring", 8),
+        ("ringb", 4),
+        ("tline", 5),
+        ("phil", 5),
+        ("phil", 8),
+        ("module", 3),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let f = des_symbolic::families::by_name(family, n)
+            .expect("a family")
+            .expect("an instance");
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let events = symbolic::write_models(dir.path(), &f.plants, &f.specs);
+        let text = symbolic::project_text(&events, true, "ignore", 0);
+        let project = plc_project::from_str(&text, &dir.path().join("x.plc.toml"))
+            .unwrap_or_else(|e| panic!("{family} {n}: {e}"));
+        let st = st_text(&project);
+        let guards = project.guarded[0]
+            .guards
+            .iter()
+            .filter(|g| g.root != 1)
+            .count();
+        let chained = st.matches("GN[0] := ").count();
+        assert_eq!(st.matches("(* guard of ").count(), guards, "{family} {n}");
+        chains += chained;
+        inline += guards - chained;
+        let rows = guided_inputs(&project, 1_000, 40 + k as u64, 3).expect("inputs");
+        let mut plc = StController::new(&project, &st);
+        let cov = compare(&project, &rows, &format!("{family} {n}"), |_, row| {
+            plc.scan(row.time_ms, &row.values);
+            let seen = observe_st(&project, &plc);
+            held += held_back(&project, &seen);
+            seen
+        });
+        assert!(!cov.executed.is_empty(), "{family} {n}: nothing executed");
+        scans += cov.scans;
+    }
+    println!("{scans} scans, {inline} guards inline, {chains} as chains, {held} commands held back by guards");
+    assert!(inline > 0 && chains > 0, "{inline} inline, {chains} chains");
+    assert!(held > 0, "no guard ever held a command back");
 }

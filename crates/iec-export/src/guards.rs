@@ -54,6 +54,31 @@ pub struct Node {
     pub branches: Vec<(Vec<u32>, Ref)>,
 }
 
+impl Node {
+    /// The states of branch `i`, or, where that takes fewer comparisons
+    /// ([`comparisons`]), those and the states of the branch leading to
+    /// true: a state of that branch makes the node true whatever follows,
+    /// so `(c ∧ f) ∨ t` is `((c ∨ t) ∧ f) ∨ t`. (`¬(a ∧ b)` is then
+    /// `¬a ∨ ¬b` rather than `¬a ∨ (a ∧ ¬b)`.)
+    pub fn relaxed(&self, i: usize) -> Vec<u32> {
+        let size: usize = self.branches.iter().map(|(set, _)| set.len()).sum();
+        let (set, to) = &self.branches[i];
+        let Some((t, _)) = self.branches.iter().find(|(_, to)| *to == Ref::True) else {
+            return set.clone();
+        };
+        if *to == Ref::True {
+            return set.clone();
+        }
+        let mut wide: Vec<u32> = set.iter().chain(t).copied().collect();
+        wide.sort_unstable();
+        if comparisons(&wide, size) < comparisons(set, size) {
+            wide
+        } else {
+            set.clone()
+        }
+    }
+}
+
 /// A guard as a decision diagram over component states, nodes children
 /// first.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -190,9 +215,9 @@ impl Diagram {
         }
     }
 
-    /// The paths to true as a sum of products (a component tested twice
-    /// on a path: the intersection), or `None` when there are more than
-    /// `limit` paths.
+    /// The paths to true as a sum of products, each branch's states
+    /// [`Node::relaxed`] (a component tested twice on a path: the
+    /// intersection), or `None` when there are more than `limit` paths.
     pub fn products(&self, limit: usize) -> Option<Vec<Product>> {
         // Paths to true from each node, saturating past the limit.
         let mut paths = vec![0usize; self.nodes.len()];
@@ -236,8 +261,8 @@ impl Diagram {
             }
             Ref::Node(k) => {
                 let node = &self.nodes[k];
-                for (set, to) in &node.branches {
-                    path.push((node.supervisor, set.clone()));
+                for (i, (_, to)) in node.branches.iter().enumerate() {
+                    path.push((node.supervisor, node.relaxed(i)));
                     self.collect(*to, path, out);
                     path.pop();
                 }
@@ -381,8 +406,9 @@ pub fn form(
             let terms: Vec<String> = node
                 .branches
                 .iter()
-                .filter_map(|(set, to)| {
-                    let c = cond(node.supervisor, set).map(|c| c.join(" AND "));
+                .enumerate()
+                .filter_map(|(i, (_, to))| {
+                    let c = cond(node.supervisor, &node.relaxed(i)).map(|c| c.join(" AND "));
                     match (to, c) {
                         (Ref::False, _) => None,
                         (Ref::True, c) => Some(c.unwrap_or_else(|| "TRUE".into())),
