@@ -18,14 +18,16 @@
 //! that the guards matter: its traces must differ from the others' on
 //! some instances, or the comparison would prove nothing.
 
+#[path = "common/symbolic.rs"]
+mod symbolic;
+
 use codegen::lower::TableImage;
-use des::formats::{write_file, Component, Kind};
 use des::{Automaton, AutomatonBuilder};
 use des_symbolic::families;
 use executor::memory::HeapMemory;
 use executor::{Controller, Fault, Program};
 use plc_project::Project;
-use std::path::Path;
+use symbolic::{project_text, write_models};
 
 /// A small deterministic generator (xorshift64).
 struct Rng(u64);
@@ -59,7 +61,7 @@ fn random_instance(seed: u64) -> Instance {
     let events: Vec<(String, bool)> = (0..3)
         .flat_map(|i| [(format!("a{i}"), true), (format!("u{i}"), false)])
         .collect();
-    let mut automaton = |name: String, rng: &mut Rng, pool: &[usize]| {
+    let automaton = |name: String, rng: &mut Rng, pool: &[usize]| {
         let mut alphabet: Vec<usize> = pool.iter().copied().filter(|_| rng.below(2) == 0).collect();
         if alphabet.is_empty() {
             alphabet.push(pool[rng.below(pool.len())]);
@@ -135,61 +137,6 @@ fn family_instances() -> Vec<Instance> {
         .collect()
 }
 
-/// Writes the components under `dir/plant` and `dir/spec`; the events,
-/// in first-seen order, with their controllability.
-fn write_models(dir: &Path, inst: &Instance) -> Vec<(String, bool)> {
-    let mut events: Vec<(String, bool)> = Vec::new();
-    for (kind, sub, automata) in [
-        (Kind::Plant, "plant", &inst.plants),
-        (Kind::Spec, "spec", &inst.specs),
-    ] {
-        std::fs::create_dir_all(dir.join(sub)).unwrap();
-        for a in automata.iter() {
-            for (id, e) in a.alphabet().iter() {
-                if !events.iter().any(|(n, _)| *n == e.name) {
-                    events.push((e.name.clone(), a.alphabet().is_controllable(id)));
-                }
-            }
-            let component = Component {
-                kind,
-                automaton: a.clone(),
-            };
-            write_file(
-                &dir.join(sub).join(format!("{}.toml", a.name())),
-                &[component],
-            )
-            .unwrap();
-        }
-    }
-    events
-}
-
-/// The project text: each uncontrollable event the rising edge of its own
-/// input, each controllable one a command without actions.
-fn project_text(events: &[(String, bool)], symbolic: bool, policy: &str, commands: u16) -> String {
-    let mut text = format!(
-        "[plc]\nname = \"x\"\nscan_period_ms = 10\nmax_commands_per_scan = {commands}\nunexpected = \"{policy}\"\nreset = \"reset\"\n[inputs]\nreset = {{}}\n"
-    );
-    for (e, controllable) in events {
-        if !controllable {
-            text.push_str(&format!("in_{e} = {{}}\n"));
-        }
-    }
-    text.push_str("[events]\n");
-    for (e, controllable) in events {
-        if *controllable {
-            text.push_str(&format!("{e} = {{ controllable = true }}\n"));
-        } else {
-            text.push_str(&format!("{e} = {{ rising = \"in_{e}\" }}\n"));
-        }
-    }
-    text.push_str(&format!(
-        "[[supervisor]]\nname = \"sup\"\nsynthesize = {{ plants = [\"plant/*.toml\"], specs = [\"spec/*.toml\"]{} }}\n",
-        if symbolic { ", symbolic = true" } else { "" }
-    ));
-    text
-}
-
 /// One scan as compared: executed and unexpected events, the fault.
 type Step = (Vec<u16>, Vec<u16>, Option<Fault>);
 
@@ -235,7 +182,7 @@ fn guards_executed_equal_the_monolithic_table_executed() {
         (0, 0, 0, 0usize, 0usize);
     for inst in instances {
         let dir = tempfile::tempdir().unwrap();
-        let events = write_models(dir.path(), &inst);
+        let events = write_models(dir.path(), &inst.plants, &inst.specs);
         let policy = if rng.one_in(2) { "ignore" } else { "fault" };
         let commands = rng.below(3) as u16;
         let load = |symbolic: bool| {

@@ -373,8 +373,13 @@ fn random_lockstep(
 
 /// A project's three texts compiled and run.
 fn project_lockstep(rel: &str, seed: u64) {
-    let project = load(rel);
-    let export = iec::export(&project, &IoMap::sequential(), "codegen st (test)")
+    texts_lockstep(&load(rel), rel, seed);
+}
+
+/// The three texts of `project` (called `rel` in messages) compiled and
+/// run.
+fn texts_lockstep(project: &Project, rel: &str, seed: u64) {
+    let export = iec::export(project, &IoMap::sequential(), "codegen st (test)")
         .unwrap_or_else(|e| panic!("{rel}: {e}"));
     let names = &export.names;
     let st = iec::st::print(&export);
@@ -387,10 +392,10 @@ fn project_lockstep(rel: &str, seed: u64) {
         (&configured, Drive::Task, "codegen st --configuration"),
         (&xml, Drive::Task, "codegen plcopen"),
     ] {
-        let cov = random_lockstep(&project, names, text, drive, what, seed);
+        let cov = random_lockstep(project, names, text, drive, what, seed);
         assert!(cov.scans >= 10_000, "{rel} ({what}): {} scans", cov.scans);
-        cov.assert_exercised(&project, &format!("{rel} ({what})"));
-        report.push(format!("{what}: {}", cov.summary(&project)));
+        cov.assert_exercised(project, &format!("{rel} ({what})"));
+        report.push(format!("{what}: {}", cov.summary(project)));
     }
     println!(
         "{rel}: compiled by iec2c and gcc, 0 differences; {}",
@@ -420,6 +425,19 @@ matiec_tests! {
     mixers_compiles_and_runs_in_lockstep: 8, 29;
     cell_compiles_and_runs_in_lockstep: 9, 30;
     iec_names_compile_and_run_in_lockstep: 10, 31;
+    module_compiles_and_runs_in_lockstep: 11, 32;
+}
+
+/// Guards written as chains of BOOL temporaries (`GN[k]`, the `CHOSEN`
+/// flag): the module with random guards, compiled and run in lockstep.
+#[test]
+#[ignore = "needs matiec (MATIEC_DIR) and gcc: cargo xtask matiec"]
+fn guards_written_as_chains_compile_and_run_in_lockstep() {
+    let project = lockstep::module_with_random_guards(0x00C0_FFEE);
+    let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
+    let chains = iec::st::print(&export).matches("GN[0] := ").count();
+    assert!(chains >= 5, "{chains} guards written as chains");
+    texts_lockstep(&project, "module with random guards", 33);
 }
 
 /// The boiler's closed-loop scenarios, replayed into the compiled block of

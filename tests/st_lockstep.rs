@@ -16,6 +16,8 @@
 
 #[path = "common/lockstep.rs"]
 mod lockstep;
+#[path = "common/symbolic.rs"]
+mod symbolic;
 
 use host_sim::inputs::InputRow;
 use host_sim::random_inputs::guided_inputs;
@@ -232,6 +234,7 @@ random_tests! {
     mixers_random_inputs_give_the_same_trace: 8, 9;
     cell_random_inputs_give_the_same_trace: 9, 10;
     iec_names_random_inputs_give_the_same_trace: 10, 11;
+    module_random_inputs_give_the_same_trace: 11, 12;
 }
 
 #[test]
@@ -505,4 +508,151 @@ fn a_corrupt_state_faults_to_the_safe_image_until_reset() {
             .collect();
         assert_eq!(seen.outputs, image, "{rel}: the initial output image");
     }
+}
+
+/// The scans whose end state holds a command of a symbolic supervisor
+/// back by its guard alone: every supervisor having it allows it, it was
+/// not executed in the scan, and its guard does not hold. (With every
+/// command allowed once per scan, as in the module, such a command was
+/// infeasible in the scan's last round because of its guard.)
+fn held_back(project: &Project, seen: &Observed) -> usize {
+    if seen.fault.is_some() {
+        return 0;
+    }
+    let states = &seen.states;
+    project
+        .guarded
+        .iter()
+        .flat_map(|g| g.guards.iter().map(move |eg| (g, eg)))
+        .filter(|(g, eg)| {
+            let allowed = project.supervisors.iter().enumerate().all(|(j, sup)| {
+                sup.local(eg.event).is_none_or(|(_, id)| {
+                    sup.automaton
+                        .successor(des::automaton::StateId(states[j]), id)
+                        .is_some()
+                })
+            });
+            allowed && !seen.executed.contains(&(eg.event as u16)) && !g.allows(eg.event, states)
+        })
+        .count()
+}
+
+/// Guards in action: the conveyor module's ten guards, each an inline
+/// state comparison, hold commands back in the exported ST exactly when
+/// the executor's guards do, and the runs reach such states.
+#[test]
+fn the_modules_guards_hold_commands_back_as_the_executor_does() {
+    let project = load("models/module.plc.toml");
+    assert_eq!(
+        project.max_commands_per_scan, 0,
+        "every command once a scan"
+    );
+    let text = st_text(&project);
+    assert!(text.contains("(* guard of stop_1 (module): LS1 = off *)"));
+    // Noisy guided inputs: sensors change where the plant would not let
+    // them, which is where guards hold stops back.
+    let rows = guided_inputs(&project, 2_000, 13, 3).expect("inputs");
+    let mut st = StController::new(&project, &text);
+    let mut held = 0;
+    let cov = compare(&project, &rows, "guards", |_, row| {
+        st.scan(row.time_ms, &row.values);
+        let seen = observe_st(&project, &st);
+        held += held_back(&project, &seen);
+        seen
+    });
+    assert_eq!(cov.scans, rows.len());
+    assert!(held > 0, "no guard ever held a command back");
+}
+
+/// The comparison sees guards: the module exported without them (its
+/// components only) runs commands the executor holds back.
+#[test]
+fn a_dropped_guard_is_found() {
+    let project = load("models/module.plc.toml");
+    let mut unguarded = project.clone();
+    unguarded.guarded.clear();
+    let text = st_text(&unguarded);
+    assert!(!text.contains("guard of"));
+    let rows = guided_inputs(&project, 2_000, 13, 3).expect("inputs");
+    let outcome = std::panic::catch_unwind(|| lockstep(&project, &text, &rows, "unguarded"));
+    let text = lockstep::panic_text(outcome.expect_err("the unguarded export must differ"));
+    assert!(text.contains("differs"), "{text}");
+}
+
+/// Guards too large for a sum of products, written as chains of
+/// temporaries: the module's commands each given a random decision
+/// diagram over the components' state bits (a valid node table, children
+/// first), in lockstep with the executor running the same guards.
+#[test]
+fn guards_written_as_chains_give_the_same_trace() {
+    let project = lockstep::module_with_random_guards(0x00C0_FFEE);
+    let text = st_text(&project);
+    let chains = text.matches("GN[0] := ").count();
+    assert!(chains >= 5, "{chains} guards written as chains");
+    let rows = guided_inputs(&project, 2_000, 14, 3).expect("inputs");
+    let mut st = StController::new(&project, &text);
+    let mut held = 0;
+    let cov = compare(&project, &rows, "random guards", |_, row| {
+        st.scan(row.time_ms, &row.values);
+        let seen = observe_st(&project, &st);
+        held += held_back(&project, &seen);
+        seen
+    });
+    assert!(!cov.executed.is_empty());
+    assert!(held > 0, "no random guard ever held a command back");
+}
+
+/// Guards as synthesis makes them: symbolic supervisors of the
+/// `des_symbolic` families (rings of machines and buffers, transfer
+/// lines, dining philosophers, the module), synthesised at build time,
+/// exported and run in lockstep with the executor; their guards come out
+/// inline (`¬(a ∧ b ∧ …)` as `(S_a <> 1) OR (S_b <> 1) OR …`) and, for
+/// the rings' larger ones, as chains.
+#[test]
+fn synthesised_guards_of_the_families_give_the_same_trace() {
+    let (mut inline, mut chains, mut held, mut scans) = (0, 0, 0, 0);
+    for (k, (family, n)) in [
+        ("ring", 5),
+        ("ring", 8),
+        ("ringb", 4),
+        ("tline", 5),
+        ("phil", 5),
+        ("phil", 8),
+        ("module", 3),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let f = des_symbolic::families::by_name(family, n)
+            .expect("a family")
+            .expect("an instance");
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let events = symbolic::write_models(dir.path(), &f.plants, &f.specs);
+        let text = symbolic::project_text(&events, true, "ignore", 0);
+        let project = plc_project::from_str(&text, &dir.path().join("x.plc.toml"))
+            .unwrap_or_else(|e| panic!("{family} {n}: {e}"));
+        let st = st_text(&project);
+        let guards = project.guarded[0]
+            .guards
+            .iter()
+            .filter(|g| g.root != 1)
+            .count();
+        let chained = st.matches("GN[0] := ").count();
+        assert_eq!(st.matches("(* guard of ").count(), guards, "{family} {n}");
+        chains += chained;
+        inline += guards - chained;
+        let rows = guided_inputs(&project, 1_000, 40 + k as u64, 3).expect("inputs");
+        let mut plc = StController::new(&project, &st);
+        let cov = compare(&project, &rows, &format!("{family} {n}"), |_, row| {
+            plc.scan(row.time_ms, &row.values);
+            let seen = observe_st(&project, &plc);
+            held += held_back(&project, &seen);
+            seen
+        });
+        assert!(!cov.executed.is_empty(), "{family} {n}: nothing executed");
+        scans += cov.scans;
+    }
+    println!("{scans} scans, {inline} guards inline, {chains} as chains, {held} commands held back by guards");
+    assert!(inline > 0 && chains > 0, "{inline} inline, {chains} chains");
+    assert!(held > 0, "no guard ever held a command back");
 }

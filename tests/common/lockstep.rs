@@ -22,8 +22,9 @@ pub fn load(rel: &str) -> Project {
 }
 
 /// Every project with `[board]` or without: the seeds, the benchmark AGV,
-/// the boiler both ways, the nets, and names IEC compilers reserve.
-pub const PROJECTS: [&str; 11] = [
+/// the boiler both ways, the nets, names IEC compilers reserve and the
+/// conveyor module's symbolic supervisor (guards).
+pub const PROJECTS: [&str; 12] = [
     "models/motivating.plc.toml",
     "models/press.plc.toml",
     "models/press7.plc.toml",
@@ -35,6 +36,7 @@ pub const PROJECTS: [&str; 11] = [
     "models/petri/mixers.plc.toml",
     "models/petri/cell/cell.plc.toml",
     "tests/fixtures/iec_names/iec_names.plc.toml",
+    "models/module.plc.toml",
 ];
 
 /// What one scan left, on either side, in the executor's terms.
@@ -284,4 +286,39 @@ pub fn panic_text(payload: Box<dyn std::any::Any + Send>) -> String {
         .cloned()
         .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
         .unwrap_or_default()
+}
+
+/// The conveyor module (`models/module.plc.toml`) with every command's
+/// guard replaced by a random decision diagram of 24 to 39 nodes over a
+/// window of eight state bits (a valid node table: children first), which
+/// the export writes as chains of temporaries where no short sum of
+/// products states it; the executor runs the same guards.
+pub fn module_with_random_guards(seed: u64) -> Project {
+    let mut project = load("models/module.plc.toml");
+    let mut x = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    let mut below = |n: u64| {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        x % n.max(1)
+    };
+    let g = &mut project.guarded[0];
+    let bits = g.bits.len() as u64;
+    for eg in &mut g.guards {
+        // Nodes reading the bits of a few neighbouring components, so
+        // that the guard depends on states the scan moves.
+        let nodes = 24 + below(16) as u32;
+        let window = below(bits.saturating_sub(8));
+        eg.nodes = (0..nodes)
+            .map(|k| {
+                let bit = (window + below(8)).min(bits - 1) as u32;
+                let low = below(u64::from(k) + 2) as u32;
+                let high = below(u64::from(k) + 2) as u32;
+                [bit, low, high]
+            })
+            .collect();
+        eg.root = nodes + 1;
+        eg.text = format!("random guard of {nodes} nodes");
+    }
+    project
 }

@@ -90,7 +90,13 @@
 //! [`render`] refuses a ladder over its limit naming the line of the
 //! supervisor that makes most of the rungs, the rung count and the
 //! limit. Petri nets (`[[net]]`) are not rendered: a project with one is
-//! refused, since enables without the net's places would be wrong.
+//! refused, since enables without the net's places would be wrong. Nor are
+//! the guards of symbolic supervisors (`[[supervisor]]` with `guards` or a
+//! symbolic `synthesize`): a guard is any Boolean function of the
+//! components' states, which a rung of contacts in parallel and blocks in
+//! series cannot state in general, so a project with a guard that does not
+//! always hold is refused at the line of its `[[supervisor]]` rather than
+//! rendered with enables that would allow what the guards hold back.
 
 use super::comment_text;
 use super::names::{identifier, Namer};
@@ -270,8 +276,9 @@ pub fn pou_name(project: &Project) -> String {
 }
 
 /// `project`'s supervisors as a ladder function block; refuses a project
-/// with Petri nets, and one whose ladder would have more than `limit`
-/// rungs.
+/// with Petri nets, one with a symbolic supervisor whose guards do not
+/// all always hold (at the line of its `[[supervisor]]`), and one whose
+/// ladder would have more than `limit` rungs.
 pub fn render(project: &Project, limit: usize) -> Result<Ladder> {
     if let Some(net) = project.nets.first() {
         return Err(Error::model(
@@ -279,6 +286,23 @@ pub fn render(project: &Project, limit: usize) -> Result<Ladder> {
             format!(
                 "net `{}`: the ladder (LD) rendering covers automaton supervisors only; export this project as Structured Text",
                 net.name
+            ),
+        ));
+    }
+    // A guard is any Boolean function of the components' states: its
+    // enable would need a rung per path or coils of its own, which the
+    // rungs here (contacts in parallel, blocks in series) do not have.
+    if let Some(g) = project
+        .guarded
+        .iter()
+        .find(|g| g.guards.iter().any(|eg| eg.root != 1))
+    {
+        let guarded = g.guards.iter().filter(|eg| eg.root != 1).count();
+        return Err(Error::model(
+            Location::new(&project.path, g.line, 1),
+            format!(
+                "symbolic supervisor `{}`: the ladder (LD) rendering has no rungs for guards ({guarded} command(s) guarded), and enables without them would allow what the guards hold back; export this project as Structured Text",
+                g.name
             ),
         ));
     }

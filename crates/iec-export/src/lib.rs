@@ -5,7 +5,8 @@
 //! ([`scan::controller`], the whole scan of docs/semantics.md: debounce,
 //! edges, timers on a millisecond clock input, the uncontrollable then
 //! the controllable phase, actions, state maps, fault mode and reset,
-//! supervisors as constant transition arrays) and a program that calls
+//! supervisors as constant transition arrays, the guards of symbolic
+//! supervisors as Boolean expressions, [`guards`]) and a program that calls
 //! it once per task cycle with the inputs and outputs at `%I`/`%Q`
 //! addresses ([`program`]). Names go through [`names`]. What the PLC
 //! must provide (the task cycle, the image check) is in the README,
@@ -19,6 +20,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod guards;
 pub mod ladder;
 pub mod names;
 pub mod plcopen;

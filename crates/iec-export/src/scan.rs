@@ -8,6 +8,10 @@
 //! or, where that is smaller ([`sparse_layout`]), a sparse table (row starts
 //! `DR_<name>`, local events `DE_<name>`, targets `DT_<name>`) searched
 //! into `NX_<name>`; each Petri net a marking array `M_<name>[place]`.
+//! A command of a symbolic supervisor also needs its guards to hold:
+//! each is written by [`super::guards`] over the components' state
+//! variables, inline or as a chain of temporaries `GN[k]` computed just
+//! before the command's test.
 //! Steps are written in the order of the specification, each event as
 //! its own block, so a reader can follow one event from its occurrence
 //! to its actions.
@@ -22,7 +26,7 @@
 
 use super::names::Namer;
 use super::pou::{Init, Pou, PouKind, Section, Type, Var, VarBlock};
-use super::{comment_text, Names, SparseNames};
+use super::{comment_text, guards, Names, SparseNames};
 use des::automaton::StateId;
 use plc_project::{Action, Drive, Event, Project, Supervisor, Trigger, Unexpected};
 
@@ -95,6 +99,7 @@ pub fn controller(project: &Project, names: &Names) -> Pou {
                 .map(Shape::of)
                 .collect::<Vec<_>>(),
         ),
+        guards: event_guards(project, names),
     };
     Pou {
         name: names.controller.clone(),
@@ -120,6 +125,66 @@ struct Builder<'a> {
     names: &'a Names,
     /// The type of sparse tables' row starts and of `J`.
     position: Type,
+    /// Per event, its guards as written (commands of symbolic
+    /// supervisors).
+    guards: Vec<Vec<Guard>>,
+}
+
+/// The temporaries of guards written as chains ([`guards::Form::Chain`]):
+/// one array, each command's guards using it from index 0 when it is
+/// tested.
+pub const GUARD_NODES: &str = "GN";
+
+/// One guard of a command, as the block writes it.
+struct Guard {
+    /// The symbolic supervisor's name.
+    supervisor: String,
+    /// Its text for the comment ([`guards::text`]).
+    text: String,
+    /// The expression or the chain.
+    form: guards::Form,
+    /// The term of the feasibility test: the expression, or the
+    /// temporary of the chain's root.
+    term: String,
+}
+
+/// The guards of every event of `project` that has one that does not
+/// always hold, as the block writes them: in the order of
+/// `project.guarded`, chains of one event numbered on from each other.
+fn event_guards(project: &Project, names: &Names) -> Vec<Vec<Guard>> {
+    let sizes: Vec<usize> = project
+        .supervisors
+        .iter()
+        .map(|s| s.automaton.num_states())
+        .collect();
+    let mut out: Vec<Vec<Guard>> = project.events.iter().map(|_| Vec::new()).collect();
+    for g in &project.guarded {
+        for eg in &g.guards {
+            if eg.root == 1 {
+                continue;
+            }
+            let diagram = guards::Diagram::of(eg, &g.bits, &sizes);
+            let first: usize = out[eg.event]
+                .iter()
+                .map(|guard: &Guard| match &guard.form {
+                    guards::Form::Chain { nodes, .. } => *nodes,
+                    guards::Form::Inline(_) => 0,
+                })
+                .sum();
+            let form = guards::form(&diagram, &names.states, &sizes, GUARD_NODES, first);
+            let term = match &form {
+                guards::Form::Inline(e) => e.clone(),
+                guards::Form::Chain { root, .. } => format!("{GUARD_NODES}[{root}]"),
+            };
+            out[eg.event].push(Guard {
+                supervisor: comment_text(&g.name),
+                text: guards::text(&eg.text),
+                form,
+                term,
+            });
+        }
+    }
+    out
 }
 
 fn bool_lit(b: bool) -> String {
@@ -478,8 +543,9 @@ impl Builder<'_> {
         vars
     }
 
-    /// What sparse tables' searches need: the position `J`, the `CHOSEN`
-    /// flag and each sparse supervisor's last target.
+    /// What sparse tables' searches and guard chains need: the position
+    /// `J`, the `CHOSEN` flag, the guard temporaries `GN` and each sparse
+    /// supervisor's last target.
     fn search_vars(&self) -> Vec<Var> {
         let mut vars = Vec::new();
         if self.names.sparse.iter().any(Option::is_some) {
@@ -488,13 +554,21 @@ impl Builder<'_> {
                 self.position.clone(),
                 "position in a sparse table",
             ));
-            if self.chosen_flag() {
-                vars.push(Var::new(
-                    "CHOSEN",
-                    Type::Bool,
-                    "a command was executed in this round",
-                ));
-            }
+        }
+        if self.chosen_flag() {
+            vars.push(Var::new(
+                "CHOSEN",
+                Type::Bool,
+                "a command was executed in this round",
+            ));
+        }
+        let nodes = self.guard_nodes();
+        if nodes > 0 {
+            vars.push(Var::new(
+                GUARD_NODES,
+                Type::array(nodes, Type::Bool),
+                "the guard nodes of the command being tested, children first",
+            ));
         }
         for (j, sup) in self.project.supervisors.iter().enumerate() {
             if let Some(sparse) = &self.names.sparse[j] {
@@ -683,11 +757,64 @@ impl Builder<'_> {
     }
 
     /// Whether the controllable phase needs the `CHOSEN` flag: some
-    /// command looks its target up in a sparse table, which takes
-    /// statements that an `ELSIF` chain has no room for.
+    /// command looks its target up in a sparse table or computes a guard
+    /// as a chain of temporaries, which takes statements that an `ELSIF`
+    /// chain has no room for.
     fn chosen_flag(&self) -> bool {
-        self.commands()
-            .any(|(e, _)| self.columns(e).any(|(j, _)| self.names.sparse[j].is_some()))
+        self.commands().any(|(e, _)| {
+            self.columns(e).any(|(j, _)| self.names.sparse[j].is_some()) || self.chained(e)
+        })
+    }
+
+    /// Whether a guard of event `e` is written as a chain of temporaries.
+    fn chained(&self, e: usize) -> bool {
+        self.guards[e]
+            .iter()
+            .any(|g| matches!(g.form, guards::Form::Chain { .. }))
+    }
+
+    /// The temporaries the longest chains of one command take.
+    fn guard_nodes(&self) -> usize {
+        self.guards
+            .iter()
+            .map(|gs| {
+                gs.iter()
+                    .map(|g| match &g.form {
+                        guards::Form::Chain { nodes, .. } => *nodes,
+                        guards::Form::Inline(_) => 0,
+                    })
+                    .sum::<usize>()
+            })
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// A comment per guard of command `e`: the symbolic supervisor and
+    /// the guard's text.
+    fn guard_comments(&self, b: &mut Body, e: usize) {
+        for g in &self.guards[e] {
+            b.comment(format!(
+                "(* guard of {} ({}): {} *)",
+                comment_text(&self.project.events[e].name),
+                g.supervisor,
+                g.text
+            ));
+        }
+    }
+
+    /// The comments of command `e`'s guards and the statements computing
+    /// the temporaries of those written as chains, from the current
+    /// states: written just before its feasibility test, so each test
+    /// sees the states the commands before it left.
+    fn guard_chains(&self, b: &mut Body, e: usize) {
+        self.guard_comments(b, e);
+        for g in &self.guards[e] {
+            if let guards::Form::Chain { statements, .. } = &g.form {
+                for statement in statements {
+                    b.line(statement);
+                }
+            }
+        }
     }
 
     /// The number of commands the controllable phase may execute per scan.
@@ -801,7 +928,9 @@ impl Builder<'_> {
             })
     }
 
-    /// Whether every supervisor and net having event `e` lets it occur.
+    /// Whether every supervisor and net having event `e` lets it occur
+    /// and, for a command of a symbolic supervisor, its guards hold (the
+    /// chains' temporaries computed first by [`Builder::guard_chains`]).
     fn feasible(&self, e: usize) -> String {
         let mut terms: Vec<String> = self
             .columns(e)
@@ -818,6 +947,7 @@ impl Builder<'_> {
                 terms.push(format!("{}[{place}] >= {w}", self.names.nets[n]));
             }
         }
+        terms.extend(self.guards[e].iter().map(|g| g.term.clone()));
         if terms.is_empty() {
             "TRUE".into()
         } else {
@@ -1095,7 +1225,14 @@ impl Builder<'_> {
         let p = self.project;
         let commands: Vec<(usize, &Event)> = self.commands().collect();
         b.comment("(* 5. Controllable phase: the first command in declaration order that every");
-        b.comment("   supervisor having it allows and, if it has a request input, is requested;");
+        if self.guards.iter().any(|g| !g.is_empty()) {
+            b.comment("   supervisor having it allows, whose guards hold and, if it has a request");
+            b.comment("   input, is requested;");
+        } else {
+            b.comment(
+                "   supervisor having it allows and, if it has a request input, is requested;",
+            );
+        }
         let limit = self.command_limit();
         b.comment(format!(
             "   at most {} per scan{}. *)",
@@ -1164,6 +1301,13 @@ impl Builder<'_> {
             if feasible != "TRUE" || terms.is_empty() {
                 terms.push(feasible);
             }
+            if k == 0 {
+                self.guard_comments(b, e);
+            } else {
+                b.depth -= 1;
+                self.guard_comments(b, e);
+                b.depth += 1;
+            }
             let keyword = if k == 0 { "IF" } else { "ELSIF" };
             let head = format!(
                 "{keyword} {} THEN (* {} *)",
@@ -1198,6 +1342,7 @@ impl Builder<'_> {
                 comment_text(&event.name)
             ));
             self.lookups(b, e);
+            self.guard_chains(b, e);
             b.open(format!("IF {} THEN", self.feasible(e)));
             self.executed(b, e);
             b.line("CHOSEN := TRUE;");
@@ -1325,6 +1470,7 @@ pub fn names(project: &Project, namer: &mut Namer, program_ids: &[&str]) -> Name
         "CMD",
         "J",
         "CHOSEN",
+        GUARD_NODES,
     ]
     .iter()
     .chain(program_ids)

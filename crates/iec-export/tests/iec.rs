@@ -429,3 +429,44 @@ fn every_constant_fits_its_declared_type() {
     assert_eq!(last.ty.iec(), "DINT");
     assert!(assert_values_fit(&export, "32,770 inputs") > 32_770);
 }
+
+/// The conveyor module's symbolic supervisor: every guard that does not
+/// always hold is a term of its command's feasibility test, as the state
+/// comparison its text states, with its text in a comment; the whole file
+/// stays under the 2,000 lines issue 24 sets, and nothing needs the chain
+/// temporaries.
+#[test]
+fn the_modules_guards_are_state_comparisons_in_their_commands_tests() {
+    let project = load("models/module.plc.toml");
+    let export = iec::export(&project, &IoMap::sequential(), "t").expect("exports");
+    let text = iec::st::print(&export);
+    let lines = text.lines().count();
+    assert!(lines <= 2_000, "{lines} lines");
+    assert!(!text.contains("GN["), "no chain needed");
+    let g = &project.guarded[0];
+    let guarded: Vec<_> = g.guards.iter().filter(|eg| eg.root != 1).collect();
+    assert_eq!(guarded.len(), 10);
+    for eg in guarded {
+        // `C = s`: component C's state variable equals s's number.
+        let event = &project.events[eg.event].name;
+        let (component, state) = eg.text.split_once(" = ").expect("C = s");
+        let j = project
+            .supervisors
+            .iter()
+            .position(|s| s.name == format!("module.{component}"))
+            .expect("a component");
+        let a = &project.supervisors[j].automaton;
+        let s = a
+            .states()
+            .find(|&s| a.state_name(s) == state)
+            .expect("a state");
+        let comment = format!("(* guard of {event} (module): {} *)", eg.text);
+        let at = text.find(&comment).unwrap_or_else(|| panic!("{comment}"));
+        let head = text[at..].lines().nth(1).expect("the test");
+        assert!(
+            head.contains(&format!("NOT DONE[EV_{event}]"))
+                && head.contains(&format!("AND ({} = {}) THEN", export.names.states[j], s.0)),
+            "{head}"
+        );
+    }
+}

@@ -747,6 +747,32 @@ fn a_project_with_a_petri_net_is_refused() {
     assert!(message.contains("net `mixers`"), "{err}");
 }
 
+/// A symbolic supervisor's guards have no rungs: the conveyor module is
+/// refused at the line of its `[[supervisor]]`, whatever the rung limit;
+/// with guards that always hold it is its components' ladder.
+#[test]
+fn a_project_with_guards_is_refused_at_its_supervisor() {
+    let p = load("module.plc.toml");
+    let g = &p.guarded[0];
+    let err = ladder::render(&p, usize::MAX).unwrap_err();
+    let (location, message) = err.located().expect("a located error");
+    assert!(location.file.ends_with("module.plc.toml"), "{err}");
+    assert_eq!(location.line, g.line, "{err}");
+    assert!(
+        message.contains("symbolic supervisor `module`")
+            && message.contains("10 command(s) guarded")
+            && message.contains("Structured Text"),
+        "{err}"
+    );
+    let mut always = p.clone();
+    for eg in &mut always.guarded[0].guards {
+        eg.root = 1;
+        eg.nodes.clear();
+    }
+    let ladder = ladder::render(&always, usize::MAX).expect("no guard that matters");
+    assert_eq!(ladder.interface.states.len(), p.supervisors.len());
+}
+
 /// `codegen plcopen --ladder`'s document: the controller, the program and
 /// the ladder function block side by side in one project, the ladder's
 /// rungs as rendered alone.
