@@ -459,7 +459,7 @@ fn initialise<P: Program, M: Memory>(program: &P, config: &Config<'_>, memory: &
             allowed_of(ram.allowed, ew, j),
         );
     }
-    refresh_feasible(config, ram);
+    refresh_feasible(ram);
 }
 
 /// Supervisor `j`'s `allowed` set for its current state: the events
@@ -498,57 +498,64 @@ fn allowed_of(allowed: &mut [u32], event_words: usize, j: usize) -> &mut [u32] {
         .unwrap_or_default()
 }
 
-/// The feasible events: those no supervisor blocks and, for a guarded
-/// event, whose guard holds ([`crate::guards`]). A guard is evaluated only
-/// when the supervisors enable its event.
-fn refresh_feasible(config: &Config<'_>, ram: &mut Ram<'_>) {
-    // Up to 96 events the words are held in registers across the rows
-    // (a row is a few loads and ANDs, whatever the supervisor count);
-    // wider sets go word by word.
-    match ram.feasible.len() {
-        1 => ram.feasible.copy_from_slice(&and_rows::<1>(ram.allowed)),
-        2 => ram.feasible.copy_from_slice(&and_rows::<2>(ram.allowed)),
-        3 => ram.feasible.copy_from_slice(&and_rows::<3>(ram.allowed)),
-        ew => {
-            for (k, word) in ram.feasible.iter_mut().enumerate() {
-                *word = ram
-                    .allowed
-                    .iter()
-                    .skip(k)
-                    .step_by(ew.max(1))
-                    .fold(u32::MAX, |w, a| w & a);
-            }
-        }
+/// The events no supervisor blocks (feasible, unless a guard holds a
+/// command back: [`next_command`]).
+fn refresh_feasible(ram: &mut Ram<'_>) {
+    // With two or three words the words are held in registers across the
+    // rows (a row is a few loads and ANDs); otherwise word by word.
+    let ew = ram.feasible.len();
+    if ew == 2 || ew == 3 {
+        return and_rows(ram.allowed, ram.feasible);
     }
-    if !config.guards.events.is_empty() {
-        apply_guards(config, ram);
+    for (k, word) in ram.feasible.iter_mut().enumerate() {
+        *word = ram
+            .allowed
+            .iter()
+            .skip(k)
+            .step_by(ew.max(1))
+            .fold(u32::MAX, |w, a| w & a);
     }
 }
 
-/// Removes from the feasible set every guarded event whose guard does not
-/// hold. Out of line: a program without guards never enters it, and its
-/// scan keeps the code it had before guards existed.
+/// `feasible` (two or three words) := the AND of the rows of `allowed`,
+/// the words held in registers across the rows (a row is a few loads and
+/// ANDs, whatever the supervisor count). Out of line: inlined, it would
+/// cost a one-word program's scan more than it saves.
 #[inline(never)]
-fn apply_guards(config: &Config<'_>, ram: &mut Ram<'_>) {
+fn and_rows(allowed: &[u32], feasible: &mut [u32]) {
+    fn and<const N: usize>(allowed: &[u32], feasible: &mut [u32]) {
+        let mut words = [u32::MAX; N];
+        for row in allowed.chunks_exact(N) {
+            for (word, &a) in words.iter_mut().zip(row) {
+                *word &= a;
+            }
+        }
+        for (out, word) in feasible.iter_mut().zip(words) {
+            *out = word;
+        }
+    }
+    if feasible.len() == 2 {
+        and::<2>(allowed, feasible);
+    } else {
+        and::<3>(allowed, feasible);
+    }
+}
+
+/// Word `k` of `candidates` (commands the supervisors allow) without the
+/// guarded ones whose guard does not hold in `states` ([`crate::guards`]).
+/// Guards hold only commands back, and only states move them, so they are
+/// asked here, of the candidates, rather than kept with the feasible set.
+#[inline]
+fn unguarded(config: &Config<'_>, states: &[u32], k: usize, mut candidates: u32) -> u32 {
     let guards = &config.guards;
     for guard in guards.events {
         let e = usize::from(guard.event);
-        if bits::contains(ram.feasible, e) && !guards.holds(guard, ram.states) {
-            bits::remove(ram.feasible, e);
+        let bit = 1u32 << (e % 32);
+        if e / 32 == k && candidates & bit != 0 && !guards.holds(guard, states) {
+            candidates &= !bit;
         }
     }
-}
-
-/// The AND of the `N`-word rows of `allowed`.
-#[inline(always)]
-fn and_rows<const N: usize>(allowed: &[u32]) -> [u32; N] {
-    let mut words = [u32::MAX; N];
-    for row in allowed.chunks_exact(N) {
-        for (word, &a) in words.iter_mut().zip(row) {
-            *word &= a;
-        }
-    }
-    words
+    candidates
 }
 
 /// Word `k` of the commands the controller may choose now: those without
@@ -578,6 +585,9 @@ fn commands_word(config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
 /// chosen now and has not run in this scan.
 #[inline]
 fn next_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> Option<usize> {
+    if !config.guards.events.is_empty() {
+        return next_guarded_command(config, memory);
+    }
     let ram = &memory.ram();
     (0..ram.feasible.len()).find_map(|k| {
         let candidates = ram.feasible[k] & commands_word(config, ram, k) & !ram.done[k];
@@ -585,11 +595,39 @@ fn next_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> Option<usize>
     })
 }
 
+/// [`next_command`] of a program with guards: the candidates' guards are
+/// asked too. Out of line, so that a program without guards keeps its
+/// scan's code as it was before guards.
+#[inline(never)]
+fn next_guarded_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> Option<usize> {
+    let ram = &memory.ram();
+    (0..ram.feasible.len()).find_map(|k| {
+        let mut candidates = ram.feasible[k] & commands_word(config, ram, k) & !ram.done[k];
+        if candidates != 0 {
+            candidates = unguarded(config, ram.states, k, candidates);
+        }
+        (candidates != 0).then(|| k * 32 + candidates.trailing_zeros() as usize)
+    })
+}
+
 /// Some command is feasible and may be chosen now, executed in this scan
 /// or not.
 fn any_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> bool {
+    if !config.guards.events.is_empty() {
+        return any_guarded_command(config, memory);
+    }
     let ram = &memory.ram();
     (0..ram.feasible.len()).any(|k| ram.feasible[k] & commands_word(config, ram, k) != 0)
+}
+
+/// [`any_command`] of a program with guards.
+#[inline(never)]
+fn any_guarded_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> bool {
+    let ram = &memory.ram();
+    (0..ram.feasible.len()).any(|k| {
+        let candidates = ram.feasible[k] & commands_word(config, ram, k);
+        candidates != 0 && unguarded(config, ram.states, k, candidates) != 0
+    })
 }
 
 /// An edge event whose binding changed: its edge happened and its
@@ -655,7 +693,7 @@ fn execute<P: Program, M: Memory>(
         }
     }
     if moved {
-        refresh_feasible(config, ram);
+        refresh_feasible(ram);
     }
     let mut timers = false;
     for action in spec.actions.of(config.actions) {

@@ -5,8 +5,11 @@
 //! controllable event: a Boolean function of the components' current
 //! states. A controllable event with a guard ([`Guards::events`]) is
 //! feasible when every supervisor having it enables it *and* its guard
-//! holds (docs/semantics.md, "Guards"). The controller evaluates the
-//! guards of the events the supervisors enable whenever a state moves.
+//! holds (docs/semantics.md, "Feasible"). Guards hold only commands back
+//! and only moves change them, so the controller asks them where it
+//! chooses commands: of the commands the supervisors allow, in
+//! declaration order, the first whose guard holds (a program without
+//! guards runs the scan it had before them).
 //!
 //! Each guard is a decision diagram written as a node table. Evaluation
 //! starts at the root and reads one state bit per node, so it takes at
