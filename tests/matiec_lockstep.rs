@@ -420,6 +420,7 @@ matiec_tests! {
     mixers_compiles_and_runs_in_lockstep: 8, 29;
     cell_compiles_and_runs_in_lockstep: 9, 30;
     iec_names_compile_and_run_in_lockstep: 10, 31;
+    testbed_compiles_and_runs_in_lockstep: 11, 32;
 }
 
 /// The boiler's closed-loop scenarios, replayed into the compiled block of

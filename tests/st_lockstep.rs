@@ -232,6 +232,7 @@ random_tests! {
     mixers_random_inputs_give_the_same_trace: 8, 9;
     cell_random_inputs_give_the_same_trace: 9, 10;
     iec_names_random_inputs_give_the_same_trace: 10, 11;
+    testbed_random_inputs_give_the_same_trace: 11, 12;
 }
 
 #[test]

@@ -22,8 +22,9 @@ pub fn load(rel: &str) -> Project {
 }
 
 /// Every project with `[board]` or without: the seeds, the benchmark AGV,
-/// the boiler both ways, the nets, and names IEC compilers reserve.
-pub const PROJECTS: [&str; 11] = [
+/// the boiler both ways, the nets, names IEC compilers reserve, and the
+/// manufacturing testbed (45 automata).
+pub const PROJECTS: [&str; 12] = [
     "models/motivating.plc.toml",
     "models/press.plc.toml",
     "models/press7.plc.toml",
@@ -35,6 +36,7 @@ pub const PROJECTS: [&str; 11] = [
     "models/petri/mixers.plc.toml",
     "models/petri/cell/cell.plc.toml",
     "tests/fixtures/iec_names/iec_names.plc.toml",
+    "models/testbed/testbed.plc.toml",
 ];
 
 /// What one scan left, on either side, in the executor's terms.
