@@ -89,7 +89,9 @@ fn both_trains_lap_their_routes_and_every_crane_loads_its_trains() {
             assert_eq!(loads, 0, "crane {crane}, train {train}");
         }
     }
-    // Every switch was thrown both ways, every request served.
+    // Every request served by its switch command and no command unasked;
+    // every switch set diverging, and straight where a route bypasses
+    // (cranes 2 and 3: both trains take crane 1's siding).
     for w in 1..=6 {
         for x in ['s', 'd'] {
             let cmd = format!("sw{w}_{x}");
@@ -99,8 +101,10 @@ fn both_trains_lap_their_routes_and_every_crane_loads_its_trains() {
             assert_eq!(run.count(&cmd), asked, "{cmd}");
         }
         assert!(run.count(&format!("sw{w}_d")) > 0, "switch {w}");
+        if w >= 3 {
+            assert!(run.count(&format!("sw{w}_s")) > 0, "switch {w}");
+        }
     }
-    assert!(run.count("sw2_s") + run.count("sw4_s") + run.count("sw6_s") > 0);
 
     // The run's inputs replayed open loop give the same events: the
     // scenario of the QEMU harness (`cargo xtask qemu testbed` records it
