@@ -426,6 +426,7 @@ matiec_tests! {
     cell_compiles_and_runs_in_lockstep: 9, 30;
     iec_names_compile_and_run_in_lockstep: 10, 31;
     module_compiles_and_runs_in_lockstep: 11, 32;
+    testbed_compiles_and_runs_in_lockstep: 12, 34;
 }
 
 /// Guards written as chains of BOOL temporaries (`GN[k]`, the `CHOSEN`

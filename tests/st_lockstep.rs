@@ -235,6 +235,7 @@ random_tests! {
     cell_random_inputs_give_the_same_trace: 9, 10;
     iec_names_random_inputs_give_the_same_trace: 10, 11;
     module_random_inputs_give_the_same_trace: 11, 12;
+    testbed_random_inputs_give_the_same_trace: 12, 13;
 }
 
 #[test]

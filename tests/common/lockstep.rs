@@ -22,9 +22,10 @@ pub fn load(rel: &str) -> Project {
 }
 
 /// Every project with `[board]` or without: the seeds, the benchmark AGV,
-/// the boiler both ways, the nets, names IEC compilers reserve and the
-/// conveyor module's symbolic supervisor (guards).
-pub const PROJECTS: [&str; 12] = [
+/// the boiler both ways, the nets, names IEC compilers reserve, the
+/// conveyor module's symbolic supervisor (guards) and the manufacturing
+/// testbed (45 automata).
+pub const PROJECTS: [&str; 13] = [
     "models/motivating.plc.toml",
     "models/press.plc.toml",
     "models/press7.plc.toml",
@@ -37,6 +38,7 @@ pub const PROJECTS: [&str; 12] = [
     "models/petri/cell/cell.plc.toml",
     "tests/fixtures/iec_names/iec_names.plc.toml",
     "models/module.plc.toml",
+    "models/testbed/testbed.plc.toml",
 ];
 
 /// What one scan left, on either side, in the executor's terms.

@@ -33,6 +33,18 @@ pub struct ModelBudget {
     /// `match` program).
     #[serde(default = "yes")]
     pub baseline: bool,
+    /// Whether `cargo xtask size` builds the board firmware for it
+    /// (default: yes; a project without a `[board]` section, such as the
+    /// testbed with more signals than the board has pins, has none).
+    #[serde(default = "yes")]
+    pub board: bool,
+    /// The QEMU scenario's inputs from a closed-loop run instead of
+    /// guided random inputs: `host-sim <inputs_from…> --project PROJECT
+    /// --inputs-csv FILE` (`["testbed", "laps"]`). For a model whose
+    /// random inputs mostly fault and reset, which is not the work its
+    /// budget is for. Empty: random inputs.
+    #[serde(default)]
+    pub inputs_from: Vec<String>,
     /// Median instructions per scan (QEMU harness, table backend).
     pub instr_median: Option<u64>,
     /// Largest instructions per scan (QEMU harness, table backend).
@@ -88,6 +100,8 @@ impl ModelBudget {
             project: project.to_owned(),
             backends: default_backends(),
             baseline: true,
+            board: true,
+            inputs_from: Vec::new(),
             instr_median: None,
             instr_max: None,
             qemu_flash: None,

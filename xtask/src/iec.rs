@@ -63,6 +63,7 @@ const PROJECTS: &[&str] = &[
     "models/boiler/boiler_mono.plc.toml",
     "models/petri/mixers.plc.toml",
     "models/petri/cell/cell.plc.toml",
+    "models/testbed/testbed.plc.toml",
     "tests/fixtures/hostile/hostile.plc.toml",
     "tests/fixtures/iec_names/iec_names.plc.toml",
 ];

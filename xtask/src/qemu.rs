@@ -2,8 +2,9 @@
 //! under QEMU (mps2-an386, Cortex-M4), for every model of `budgets.toml`
 //! or just PROJECT.
 //!
-//! Per model: record a scenario with host-sim (guided random inputs, or
-//! SCENARIO: an `inputs.csv` or a recorded `.scenario`), build the harness
+//! Per model: record a scenario with host-sim (guided random inputs, the
+//! inputs of the closed-loop run its `inputs_from` names, or SCENARIO: an
+//! `inputs.csv` or a recorded `.scenario`), build the harness
 //! for each backend (table and logic: ours; match: the baseline a
 //! hand-written state machine would be), run it under `-icount shift=9`,
 //! and read its last line. Fails unless every run has zero mismatches and
@@ -128,7 +129,12 @@ pub fn run_task(args: &[String]) -> Result {
     for (name, model) in &models {
         let scenario = match &scenario {
             Some(s) if is_recorded(s) => s.clone(),
-            other => record(name, &model.project, other.as_deref(), &dir)?,
+            Some(csv) => record(name, &model.project, Some(csv.as_path()), &dir)?,
+            None if !model.inputs_from.is_empty() => {
+                let csv = closed_loop_inputs(name, model, &dir)?;
+                record(name, &model.project, Some(&csv), &dir)?
+            }
+            None => record(name, &model.project, None, &dir)?,
         };
         let mut per_backend = Vec::new();
         let backends = model
@@ -201,6 +207,20 @@ fn select(budgets: &Budgets, args: &[String]) -> Result<(Models, Option<PathBuf>
 
 fn is_recorded(path: &Path) -> bool {
     path.extension().is_some_and(|e| e == "scenario")
+}
+
+/// The inputs of `model`'s closed-loop run (`inputs_from`), written by
+/// host-sim as `<name>.inputs.csv` in `dir`.
+fn closed_loop_inputs(name: &str, model: &ModelBudget, dir: &Path) -> Result<PathBuf> {
+    let csv = dir.join(format!("{name}.inputs.csv"));
+    let mut cmd = cargo();
+    cmd.args(["run", "-q", "--release", "-p", "host-sim", "--"])
+        .args(&model.inputs_from)
+        .args(["--project", &model.project, "--inputs-csv"])
+        .arg(&csv)
+        .stdout(Stdio::null());
+    run(&mut cmd)?;
+    Ok(csv)
 }
 
 /// Records the scenario of `project` with host-sim.

@@ -65,6 +65,9 @@ pub fn run_task(args: &[String]) -> Result {
         if !args.is_empty() && !args.iter().any(|a| a == name || *a == model.project) {
             continue;
         }
+        if !model.board {
+            continue;
+        }
         run(cargo()
             .args([
                 "build",

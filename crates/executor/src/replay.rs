@@ -16,7 +16,10 @@ use serde::{Deserialize, Serialize};
 
 /// Largest number of inputs (and of outputs) a recorded scan holds.
 pub const MAX_INPUTS: usize = 128;
-/// Largest number of supervisors a recorded scan holds.
+/// Largest number of supervisors a recorded scan holds (64: the
+/// manufacturing testbed runs 45, its 29 supervisors and 16 plant
+/// components; a record holds its states on the harness's stack, 4 bytes
+/// each).
 pub const MAX_SUPERVISORS: usize = 64;
 /// Largest number of executed (or unexpected) events in one recorded scan.
 pub const MAX_EVENTS: usize = 64;

@@ -17,7 +17,10 @@
 //!     and sensor faults, scripts of operator actions and faults, the
 //!     named scenarios, the safety checker, and a run's SVG and VCD;
 //!   - [`cell`]: the batch process cell (two mixing tanks, two reactors)
-//!     with its controlled Petri net, every scan checked.
+//!     with its controlled Petri net, every scan checked;
+//!   - [`testbed`]: the manufacturing testbed (two trains, three cranes,
+//!     six switches) with its 29 modular supervisors (`host-sim
+//!     testbed`), every scan checked.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -33,6 +36,7 @@ pub mod replay;
 pub mod rng;
 pub mod scenario;
 pub mod sim;
+pub mod testbed;
 pub mod trace;
 pub mod vcd;
 
