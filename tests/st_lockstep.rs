@@ -544,10 +544,6 @@ fn held_back(project: &Project, seen: &Observed) -> usize {
 #[test]
 fn the_modules_guards_hold_commands_back_as_the_executor_does() {
     let project = load("models/module.plc.toml");
-    assert_eq!(
-        project.max_commands_per_scan, 0,
-        "every command once a scan"
-    );
     let text = st_text(&project);
     assert!(text.contains("(* guard of stop_1 (module): LS1 = off *)"));
     // Noisy guided inputs: sensors change where the plant would not let

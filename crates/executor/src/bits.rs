@@ -13,11 +13,3 @@ pub(crate) fn insert(set: &mut [u32], i: usize) {
         *w |= 1 << (i % 32);
     }
 }
-
-/// Removes `i` from `set` (no effect past its end).
-#[inline]
-pub(crate) fn remove(set: &mut [u32], i: usize) {
-    if let Some(w) = set.get_mut(i / 32) {
-        *w &= !(1 << (i % 32));
-    }
-}

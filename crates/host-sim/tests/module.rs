@@ -18,20 +18,14 @@
 use codegen::backend::Backend;
 use des::automaton::StateId;
 use des::Automaton;
+use host_sim::rng::Rng;
 use host_sim::sim::Sim;
 use plc_project::{GuardedSource, Trigger};
 use std::collections::BTreeMap;
 
-/// A small deterministic generator (xorshift64).
-struct Rng(u64);
-
-impl Rng {
-    fn below(&mut self, n: usize) -> usize {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 % n.max(1) as u64) as usize
-    }
+/// A number in `0..n` (`n > 0`).
+fn below(rng: &mut Rng, n: usize) -> usize {
+    (rng.next_u64() % n as u64) as usize
 }
 
 /// The plant: its automata and their states.
@@ -111,13 +105,13 @@ fn drive(
     let sensors = sensor_events(sim);
     let mut executed = BTreeMap::new();
     for _ in 0..scans {
-        if rng.below(3) == 0 {
+        if below(rng, 3) == 0 {
             let possible: Vec<&(String, String, bool)> = sensors
                 .iter()
                 .filter(|(e, _, rising)| (arrivals || !rising) && plant.allows(e))
                 .collect();
             if !possible.is_empty() {
-                let (event, input, rising) = possible[rng.below(possible.len())];
+                let (event, input, rising) = possible[below(rng, possible.len())];
                 assert!(plant.take(event));
                 sim.set(input, *rising).unwrap();
             }
@@ -169,7 +163,7 @@ fn the_module_runs_its_plant_without_a_fault_and_comes_to_rest() {
     assert_eq!(sim.project().supervisors.len(), 40, "40 components");
     assert_eq!(sim.project().guarded[0].closed_loop_states, "3570467226624");
     let mut plant = Plant::of(&sim);
-    let mut rng = Rng(0xB0DE);
+    let mut rng = Rng::new(0xB0DE);
     let mut total: BTreeMap<String, usize> = BTreeMap::new();
     let mut rests = 0;
     for round in 0..8 {

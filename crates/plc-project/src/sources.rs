@@ -85,6 +85,20 @@ pub(crate) struct LoadedNet {
     pub control_places: usize,
 }
 
+/// The models a `synthesize` names (explicit or symbolic).
+struct SynthesisModels {
+    /// Plant files.
+    plants: Vec<PathBuf>,
+    /// Their automata.
+    plant_automata: Vec<Automaton>,
+    /// Specification files.
+    specs: Vec<PathBuf>,
+    /// Their automata.
+    spec_automata: Vec<Automaton>,
+    /// Where each automaton came from, plants first.
+    origins: Vec<ModelOrigin>,
+}
+
 /// What the files of a project hold.
 pub(crate) struct Sources {
     /// One per `[[supervisor]]`, in declaration order.
@@ -386,23 +400,13 @@ impl Loader<'_> {
         synth: &Spanned<super::parse::RawSynthesize>,
     ) -> Result<LoadedSupervisor> {
         let s = synth.get_ref();
-        let plant_patterns = names(Some(&s.plants));
-        if plant_patterns.is_empty() {
-            return Err(self.error(&s.plants.span(), "synthesis needs at least one plant"));
-        }
-        let mut origins = Vec::new();
-        let (plants, plant_automata) = self.synthesis_inputs(
-            &plant_patterns,
-            &[Kind::Plant, Kind::Unspecified],
-            "plant",
-            &mut origins,
-        )?;
-        let (specs, spec_automata) = self.synthesis_inputs(
-            &names(s.specs.as_ref()),
-            &[Kind::Spec, Kind::Supervisor, Kind::Unspecified],
-            "specification",
-            &mut origins,
-        )?;
+        let SynthesisModels {
+            plants,
+            plant_automata,
+            specs,
+            spec_automata,
+            origins,
+        } = self.synthesis_models(s)?;
         let max_states = match &s.max_states {
             None => ops::sync::DEFAULT_MAX_STATES,
             Some(n) => match usize::try_from(*n.get_ref()) {
@@ -654,6 +658,37 @@ impl Loader<'_> {
             }
         }
         Ok(())
+    }
+
+    /// The plant and specification files of `synthesize` and their
+    /// automata: every plant and unspecified one of the `plants` files,
+    /// every specification, supervisor and unspecified one of the `specs`
+    /// files.
+    fn synthesis_models(&mut self, s: &super::parse::RawSynthesize) -> Result<SynthesisModels> {
+        let plant_patterns = names(Some(&s.plants));
+        if plant_patterns.is_empty() {
+            return Err(self.error(&s.plants.span(), "synthesis needs at least one plant"));
+        }
+        let mut origins = Vec::new();
+        let (plants, plant_automata) = self.synthesis_inputs(
+            &plant_patterns,
+            &[Kind::Plant, Kind::Unspecified],
+            "plant",
+            &mut origins,
+        )?;
+        let (specs, spec_automata) = self.synthesis_inputs(
+            &names(s.specs.as_ref()),
+            &[Kind::Spec, Kind::Supervisor, Kind::Unspecified],
+            "specification",
+            &mut origins,
+        )?;
+        Ok(SynthesisModels {
+            plants,
+            plant_automata,
+            specs,
+            spec_automata,
+            origins,
+        })
     }
 
     /// The components of `patterns`' files whose kind is in `kinds`, and

@@ -12,10 +12,9 @@
 
 use super::{Loader, ModelOrigin};
 use crate::model::GuardedSource;
-use crate::parse::{names, Name, RawSynthesize};
+use crate::parse::{Name, RawSynthesize};
 use des::automaton::Automaton;
 use des::error::{Error, Location, Result};
-use des::formats::Kind;
 use des_symbolic::guard_file::GuardFile;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -139,23 +138,13 @@ impl Loader<'_> {
                 "`max_states` limits explicit compositions; symbolic synthesis builds none",
             ));
         }
-        let plant_patterns = names(Some(&s.plants));
-        if plant_patterns.is_empty() {
-            return Err(self.error(&s.plants.span(), "synthesis needs at least one plant"));
-        }
-        let mut origins = Vec::new();
-        let (plants, plant_automata) = self.synthesis_inputs(
-            &plant_patterns,
-            &[Kind::Plant, Kind::Unspecified],
-            "plant",
-            &mut origins,
-        )?;
-        let (specs, spec_automata) = self.synthesis_inputs(
-            &names(s.specs.as_ref()),
-            &[Kind::Spec, Kind::Supervisor, Kind::Unspecified],
-            "specification",
-            &mut origins,
-        )?;
+        let super::SynthesisModels {
+            plants,
+            plant_automata,
+            specs,
+            spec_automata,
+            origins,
+        } = self.synthesis_models(s)?;
         let synthesis = des_symbolic::synthesize(&plant_automata, &spec_automata).map_err(|e| {
             self.error(
                 &synth.span(),
