@@ -163,6 +163,8 @@ fn the_module_runs_its_plant_without_a_fault_and_comes_to_rest() {
     assert_eq!(sim.project().supervisors.len(), 40, "40 components");
     assert_eq!(sim.project().guarded[0].closed_loop_states, "3570467226624");
     let mut plant = Plant::of(&sim);
+    // Scan 0 sees no edges (docs/semantics.md): the plant starts after it.
+    assert_eq!(sim.scan().fault, None);
     let mut rng = Rng::new(0xB0DE);
     let mut total: BTreeMap<String, usize> = BTreeMap::new();
     let mut rests = 0;
