@@ -107,13 +107,20 @@ pub struct GuardTable {
 impl GuardTable {
     /// The guard's value for the state bits `bit` reads.
     pub fn eval(&self, bit: impl Fn(u32) -> bool) -> bool {
-        let mut at = self.root;
-        while at >= 2 {
-            let [b, low, high] = self.nodes[at as usize - 2];
-            at = if bit(b) { high } else { low };
-        }
-        at == 1
+        walk(self.root, &self.nodes, bit)
     }
+}
+
+/// The value of the node table `root`, `nodes` (as in [`GuardTable`]) for
+/// the state bits `bit` reads. The table must be well formed (children
+/// before parents, as [`GuardFile::parse`] checks).
+pub fn walk(root: u32, nodes: &[[u32; 3]], bit: impl Fn(u32) -> bool) -> bool {
+    let mut at = root;
+    while at >= 2 {
+        let [b, low, high] = nodes[at as usize - 2];
+        at = if bit(b) { high } else { low };
+    }
+    at == 1
 }
 
 /// Where each bit of the state code is: (component, shift in its state).
@@ -355,6 +362,12 @@ impl GuardFile {
             None => true,
             Some(g) => g.eval(|b| self.bit(&places, states, b)),
         })
+    }
+
+    /// Where each state bit is: (component, by position among
+    /// [`GuardFile::components`]; the bit's shift in its state number).
+    pub fn bit_places(&self) -> Vec<(usize, u32)> {
+        bit_places(&self.components)
     }
 
     /// Nodes of every guard's table, summed.

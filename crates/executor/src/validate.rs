@@ -362,9 +362,6 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
 /// of range ([`crate::guards`]).
 fn validate_guards(c: &Config<'_>) -> Result<(), Invalid> {
     let guards = &c.guards;
-    if guards.events.len() > usize::from(Index::MAX) + 1 {
-        return fail(Part::Counts, Flaw::TooMany);
-    }
     for (k, b) in guards.bits.iter().enumerate() {
         in_range(Part::StateBit(k), b.component.into(), c.supervisors.len())?;
         if b.shift >= 32 {

@@ -204,17 +204,10 @@ impl EventGuard {
     /// The guard's value when the supervisors are in `states` (indexed as
     /// [`Project::supervisors`]), its bits placed by `bits`.
     pub fn holds(&self, bits: &[(usize, u32)], states: &[u32]) -> bool {
-        let mut at = self.root;
-        while at >= 2 {
-            let [b, low, high] = self.nodes[at as usize - 2];
+        des_symbolic::guard_file::walk(self.root, &self.nodes, |b| {
             let (component, shift) = bits[b as usize];
-            at = if states[component] >> shift & 1 == 1 {
-                high
-            } else {
-                low
-            };
-        }
-        at == 1
+            states[component] >> shift & 1 == 1
+        })
     }
 }
 

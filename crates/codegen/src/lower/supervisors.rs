@@ -128,7 +128,8 @@ impl<'a> Supervisors<'a> {
     }
 
     /// Whether every supervisor, in the states `states` (the executor's
-    /// state vector), lets event `e` occur.
+    /// state vector), lets event `e` occur, and every symbolic
+    /// supervisor's guard of it holds.
     pub fn event_feasible(&self, e: usize, states: &[u32]) -> bool {
         let automata = self.project.supervisors.iter().enumerate().all(|(j, sup)| {
             sup.local(e).is_none_or(|(_, id)| {
@@ -138,7 +139,13 @@ impl<'a> Supervisors<'a> {
                 })
             })
         });
+        let guards = self
+            .project
+            .guarded
+            .iter()
+            .all(|g| states.len() >= self.project.supervisors.len() && g.allows(e, states));
         automata
+            && guards
             && (0..self.nets.len()).all(|n| {
                 let groups = states.get(self.net_supervisors(n)).unwrap_or(&[]);
                 self.net(n).event_enabled(e, groups)

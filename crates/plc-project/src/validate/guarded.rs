@@ -66,12 +66,11 @@ impl Validator<'_> {
             supervisors.push(&component, header.clone(), sup);
         }
 
-        let mut bits = vec![(0, 0); file.components.iter().map(|c| c.bits as usize).sum()];
-        for (c, comp) in file.components.iter().enumerate() {
-            for k in 0..comp.bits {
-                bits[(comp.first_bit + k) as usize] = (first + c, comp.bits - 1 - k);
-            }
-        }
+        let bits = file
+            .bit_places()
+            .into_iter()
+            .map(|(c, shift)| (first + c, shift))
+            .collect();
 
         let mut guards = Vec::with_capacity(file.guards.len());
         for g in &file.guards {
