@@ -140,6 +140,14 @@ fn print_scan_sets(out: &mut Out, sets: &codegen::lower::ScanSets) {
         sets.mask_bytes,
         sets.ram_bytes
     );
+    outln!(
+        out,
+        "  allowed sets: stored for {} of {} supervisor(s), a move copies {} word(s) (index {} bytes, the sets among the masks); the others scatter their enabled row (`[plc] stored_sets_bytes`)",
+        sets.stored,
+        sets.supervisors,
+        sets.event_words,
+        sets.index_bytes
+    );
     let g = &sets.guards;
     if g.guards != 0 {
         outln!(

@@ -128,6 +128,19 @@ pub enum Error {
         /// The parser's complaint.
         source: syn::Error,
     },
+    /// A stored allowed set is not its supervisor's
+    /// ([`executor::validate::validate_allowed_sets`]): a bug in the
+    /// lowering, never the project's fault.
+    #[error(
+        "{}: internal error: {invalid}; please report it with the project file",
+        project.display()
+    )]
+    AllowedSets {
+        /// The project file.
+        project: std::path::PathBuf,
+        /// Where and what.
+        invalid: executor::validate::Invalid,
+    },
     /// A build that needs a pin map ([`crate::build::Build::require_board`])
     /// of a project without a `[board]` section.
     #[error(

@@ -41,6 +41,7 @@
 //!         memberships: &[],
 //!         state_map: &[],
 //!         guards: Guards::NONE,
+//!         allowed_index: &[],
 //!     };
 //!     const IMAGE_CRC: u32 = 0;
 //!     fn next_state(_supervisor: Index, state: u32, local: Index) -> Option<u32> {

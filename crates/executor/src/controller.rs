@@ -4,9 +4,12 @@ use crate::bits;
 use crate::inputs;
 use crate::memory::{Memory, Ram};
 use crate::pacing::{Pacer, ScanStart};
-use crate::program::{Action, Config, EventSpec, Index, Program, Trigger, UnexpectedPolicy};
+use crate::program::{
+    Action, Config, EventSpec, Index, Program, SupervisorSpec, Trigger, UnexpectedPolicy,
+};
 use crate::record::{Counters, Fault, ScanRecord};
 use crate::rom_test::{ImageTest, RomTest};
+use crate::table::read_bits;
 use crate::timers::{due, earliest};
 
 /// The memory does not match the program's sizes.
@@ -464,7 +467,7 @@ fn initialise<P: Program, M: Memory>(program: &P, config: &Config<'_>, memory: &
 
 /// Supervisor `j`'s `allowed` set for its current state: the events
 /// outside its alphabet, and the local events its program enables there
-/// mapped to their event numbers.
+/// mapped to their event numbers; copied when stored ([`crate::program::AllowedSets`]).
 fn refresh_allowed<P: Program>(
     program: &P,
     config: &Config<'_>,
@@ -473,6 +476,9 @@ fn refresh_allowed<P: Program>(
     allowed: &mut [u32],
 ) {
     let spec = &config.supervisors[j];
+    if let Some(k) = stored_set(config, spec, state) {
+        return copy_set(config, k, allowed);
+    }
     let outside = spec.outside.of(config.event_masks);
     for (k, word) in allowed.iter_mut().enumerate() {
         *word = outside.get(k).copied().unwrap_or(0);
@@ -487,6 +493,31 @@ fn refresh_allowed<P: Program>(
                 bits::insert(allowed, usize::from(e));
             }
         }
+    }
+}
+
+/// The number of `spec`'s stored allowed set in `state`, `None` when its
+/// sets are computed.
+#[inline]
+fn stored_set(config: &Config<'_>, spec: &SupervisorSpec, state: u32) -> Option<usize> {
+    let sets = spec.allowed;
+    sets.is_stored().then(|| {
+        read_bits(
+            sets.index.of(config.allowed_index),
+            state as usize,
+            sets.bits,
+        ) as usize
+    })
+}
+
+/// `allowed` := stored event set `k` (all zeros, which blocks every event,
+/// past the pool: the structure check rules that out).
+#[inline]
+fn copy_set(config: &Config<'_>, k: usize, allowed: &mut [u32]) {
+    let w = allowed.len();
+    match config.event_masks.get(k * w..k * w + w) {
+        Some(set) => allowed.copy_from_slice(set),
+        None => allowed.fill(0),
     }
 }
 
@@ -653,7 +684,8 @@ fn conditions_hold(config: &Config<'_>, ram: &Ram<'_>, spec: &EventSpec) -> bool
 }
 
 /// Moves every supervisor having the (feasible) event, refreshes the
-/// enabled sets of those that moved and applies the event's actions.
+/// allowed sets of those that moved to a state with another set (and then
+/// the feasible set) and applies the event's actions.
 /// `Some(true)` when a timer was started or stopped; `None` when a
 /// supervisor's state is out of range, its program refuses the event its
 /// enabled set allowed (corrupt memory) or gives a state out of range (a
@@ -680,16 +712,25 @@ fn execute<P: Program, M: Memory>(
             return None;
         }
         if next != ram.states[j] {
-            ram.states[j] = next;
+            let spec = &config.supervisors[j];
             let ew = ram.feasible.len();
-            refresh_allowed(
-                program,
-                config,
-                j,
-                ram.states[j],
-                allowed_of(ram.allowed, ew, j),
-            );
-            moved = true;
+            let allowed = allowed_of(ram.allowed, ew, j);
+            match (
+                stored_set(config, spec, ram.states[j]),
+                stored_set(config, spec, next),
+            ) {
+                // Most moves keep the set: nothing to copy or AND.
+                (Some(old), Some(new)) if old == new => {}
+                (Some(_), Some(new)) => {
+                    copy_set(config, new, allowed);
+                    moved = true;
+                }
+                _ => {
+                    refresh_allowed(program, config, j, next, allowed);
+                    moved = true;
+                }
+            }
+            ram.states[j] = next;
         }
     }
     if moved {

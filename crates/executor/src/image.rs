@@ -18,14 +18,14 @@
 //!
 //! | run | words per item | content |
 //! |---|---|---|
-//! | header | 28 | name length in bytes, `scan_period_ms`, `max_commands_per_scan`, `unexpected` (0 fault, 1 ignore), `reset`, `overrun_limit`, `overrun_fault`, `lost_edge_fault`, `rom_test_bytes_per_scan`, the spans `debounce_mask`, `commands` and `requested`; the lengths of the fifteen pools below (inputs … guard nodes) and the number of tables |
+//! | header | 29 | name length in bytes, `scan_period_ms`, `max_commands_per_scan`, `unexpected` (0 fault, 1 ignore), `reset`, `overrun_limit`, `overrun_fault`, `lost_edge_fault`, `rom_test_bytes_per_scan`, the spans `debounce_mask`, `commands` and `requested`; the lengths of the sixteen pools below (inputs … allowed index) and the number of tables |
 //! | name | ⌈bytes / 4⌉ | the name's UTF-8 bytes, four per word, first byte least significant, the last word padded with zeros |
 //! | inputs | 2 | `debounce_scans`; `raises` |
 //! | debounced | 1 | the input |
 //! | outputs | 2 | `safe \| initial << 1`; `state_map` |
 //! | timers | 2 | `preset_ms`; `raises` |
 //! | events | 7 | trigger (0 command, 1 rising, 2 falling, 3 expired); its mask span or timer (0 for a command); `when`; `unless`; `request`; `actions`; `members` |
-//! | supervisors | 4 | `states`; `initial`; `alphabet`; `outside` |
+//! | supervisors | 6 | `states`; `initial`; `alphabet`; `outside`; `allowed.index`; `allowed.bits` |
 //! | input masks | 1 | the word as stored |
 //! | event lists | 1 | the event |
 //! | event masks | 1 | the word as stored |
@@ -35,6 +35,7 @@
 //! | guards | 3 | `event`; `root`; `nodes` |
 //! | state bits | 1 | `component \| shift << 16` |
 //! | guard nodes | 2 | `bit \| low << 16`; `high` |
+//! | allowed index | 1 | the word as stored |
 //!
 //! then, per table in supervisor order, four runs: a 7-word header
 //! (events, state bits, layout (0 dense, 1 sparse, 2 net), row-start bits
@@ -84,13 +85,15 @@ const _: () = assert!(
 pub(crate) const CRC_START: u32 = CRC_32_MPEG_2.init;
 
 /// Runs of the configuration, before the tables.
-const CONFIG_RUNS: usize = 17;
+const CONFIG_RUNS: usize = 18;
 /// Runs per table: header, `defined`, `targets`, `row_starts`.
 const TABLE_RUNS: usize = 4;
 /// Words of the header run.
-const HEADER_WORDS: usize = 28;
+const HEADER_WORDS: usize = 29;
 /// Words of an event's record.
 const EVENT_WORDS: usize = 7;
+/// Words of a supervisor's record.
+const SUPERVISOR_WORDS: usize = 6;
 /// Words of a table's header run.
 const TABLE_HEADER_WORDS: usize = 7;
 
@@ -246,6 +249,7 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
             14 => Run::Guards(c.guards.events),
             15 => Run::StateBits(c.guards.bits),
             16 => Run::GuardNodes(c.guards.nodes),
+            17 => Run::Stored(c.allowed_index),
             _ => {
                 let r = r - CONFIG_RUNS;
                 let table = self.table(r / TABLE_RUNS)?;
@@ -304,7 +308,14 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
                 ]
             }),
             Run::Supervisors(supervisors) => feed_records(supervisors, from, to, feeder, |s| {
-                [s.states, s.initial, span(s.alphabet), span(s.outside)]
+                [
+                    s.states,
+                    s.initial,
+                    span(s.alphabet),
+                    span(s.outside),
+                    span(s.allowed.index),
+                    s.allowed.bits.into(),
+                ]
             }),
             Run::Actions(actions) => feed_records(actions, from, to, feeder, |a| {
                 [match *a {
@@ -386,6 +397,7 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
             24 => c.guards.events.len() as u32,
             25 => c.guards.bits.len() as u32,
             26 => c.guards.nodes.len() as u32,
+            27 => c.allowed_index.len() as u32,
             _ => self.tables() as u32,
         }
     }
@@ -439,7 +451,7 @@ impl Run<'_> {
             Run::Outputs(x) => 2 * x.len(),
             Run::Timers(x) => 2 * x.len(),
             Run::Events(x) => EVENT_WORDS * x.len(),
-            Run::Supervisors(x) => 4 * x.len(),
+            Run::Supervisors(x) => SUPERVISOR_WORDS * x.len(),
             Run::Indices(x) => x.len(),
             Run::Actions(x) => x.len(),
             Run::Memberships(x) => x.len(),

@@ -19,7 +19,7 @@
 //! ```
 //! use executor::memory::StaticMemory;
 //! use executor::program::{
-//!     mask_word, Action, Config, EventSpec, Guards, Index, InputSpec, Membership, OutputSpec,
+//!     mask_word, Action, AllowedSets, Config, EventSpec, Guards, Index, InputSpec, Membership, OutputSpec,
 //!     Program, Span, SupervisorSpec, Trigger, UnexpectedPolicy,
 //! };
 //! use executor::table::SupervisorTable;
@@ -77,6 +77,9 @@
 //!         initial: IDLE,
 //!         alphabet: Span::new(1, 2),
 //!         outside: Span::EMPTY,
+//!         // Computed from `next_state` as it moves (a generator may store
+//!         // them: `AllowedSets`).
+//!         allowed: AllowedSets::COMPUTED,
 //!     }],
 //!     // One word per mask (32 inputs per word): the button alone.
 //!     input_masks: &[mask_word(0, &[START_PB])],
@@ -92,6 +95,7 @@
 //!     ],
 //!     state_map: &[],
 //!     guards: Guards::NONE,
+//!     allowed_index: &[],
 //! };
 //!
 //! /// The supervisor as a `match` on (state, local event); its image is

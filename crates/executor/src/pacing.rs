@@ -217,6 +217,7 @@ mod tests {
             memberships: &[],
             state_map: &[],
             guards: crate::program::Guards::NONE,
+            allowed_index: &[],
         }
     }
 

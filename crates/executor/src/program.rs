@@ -36,6 +36,22 @@ pub const fn mask_word(word: u16, members: &[Index]) -> u32 {
     bits
 }
 
+/// Word `word` of the set of every one of the first `count` members but
+/// `members`: [`mask_word`]'s complement among `count` members, which
+/// names a set that holds most of them by what it leaves out
+/// (`mask_word_except(0, event::COUNT, &[event::STOP])`).
+pub const fn mask_word_except(word: u16, count: usize, members: &[Index]) -> u32 {
+    let first = word as usize * 32;
+    let all = if count <= first {
+        0
+    } else if count - first >= 32 {
+        u32::MAX
+    } else {
+        (1 << (count - first)) - 1
+    };
+    all & !mask_word(word, members)
+}
+
 /// A range `start..start + len` of one of the [`Config`] pools.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Span {
@@ -228,6 +244,43 @@ pub struct SupervisorSpec {
     /// The events outside its alphabet, which it never blocks (span of
     /// [`Config::event_masks`]).
     pub outside: Span,
+    /// Its allowed set in each state, stored ([`AllowedSets`]), or
+    /// [`AllowedSets::COMPUTED`] from its program when it moves.
+    pub allowed: AllowedSets,
+}
+
+/// A supervisor's *allowed set* in each of its states, stored in the form
+/// the scan reads: the events outside its alphabet and the local events it
+/// enables there, in event numbering. Entry `x` of the packed array
+/// [`AllowedSets::index`] (`bits` bits an entry, [`crate::table::read_bits`])
+/// is the number `k` of state `x`'s set in [`Config::event_masks`], which
+/// holds it in words `k·w .. (k + 1)·w` (`w` = [`words`]`(events)`). A
+/// supervisor's states share few distinct sets, each stored once.
+///
+/// A move then copies `w` words instead of scattering its enabled row
+/// over the event numbers, and none when the new state's set is the old
+/// one's (docs/semantics.md, "Feasible").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AllowedSets {
+    /// Packed set numbers, one per state (span of [`Config::allowed_index`]).
+    pub index: Span,
+    /// Bits per entry, `1..=16` when stored.
+    pub bits: u8,
+}
+
+impl AllowedSets {
+    /// Not stored: computed from [`Program::enabled`] when the supervisor
+    /// moves.
+    pub const COMPUTED: AllowedSets = AllowedSets {
+        index: Span::EMPTY,
+        bits: 0,
+    };
+
+    /// Whether the sets are stored.
+    #[inline]
+    pub const fn is_stored(&self) -> bool {
+        !self.index.is_empty()
+    }
 }
 
 /// What to do with an uncontrollable event no supervisor can explain.
@@ -285,7 +338,8 @@ pub struct Config<'a> {
     /// supervisor's alphabet (in its local order).
     pub event_lists: &'a [Index],
     /// Pool of event sets, each [`words`]`(events.len())` long: what each
-    /// supervisor never blocks, and [`Config::commands`].
+    /// supervisor never blocks, [`Config::commands`], and the stored
+    /// allowed sets ([`AllowedSets`]).
     pub event_masks: &'a [u32],
     /// The controllable events without a request input (span of
     /// [`Config::event_masks`]): the controller may choose them whenever
@@ -303,6 +357,9 @@ pub struct Config<'a> {
     /// Guards of controllable events (symbolic supervisors:
     /// [`crate::guards`]); [`Guards::NONE`] without.
     pub guards: Guards<'a>,
+    /// Pool of the packed set numbers of stored allowed sets
+    /// ([`AllowedSets::index`]).
+    pub allowed_index: &'a [u32],
 }
 
 /// Where one state bit comes from: a supervisor (a component of a

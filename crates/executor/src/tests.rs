@@ -144,6 +144,7 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
             initial: 0,
             alphabet: Span { start: 3, len: 4 },
             outside: Span { start: 0, len: 1 },
+            allowed: AllowedSets::COMPUTED,
         }],
         input_masks: &INPUT_MASKS,
         event_lists: &EVENT_LISTS,
@@ -166,6 +167,7 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
             mask: u32::MAX,
         }],
         guards: Guards::NONE,
+        allowed_index: &[],
     }
 }
 
@@ -590,4 +592,123 @@ fn the_structure_check_refuses_a_malformed_guard() {
         }]),
         Err((Part::StateBit(0), Flaw::Shift))
     );
+}
+
+/// The belt's allowed sets stored: `cleared` (outside its alphabet) and
+/// the one event it enables in each state, sets 3–6 after the pool's
+/// three; `index` packs the set numbers of states 0–3 in 3 bits each.
+fn stored(index: u32, bits: u8) -> Config<'static> {
+    let c = config(0, UnexpectedPolicy::Fault, None);
+    let mut masks = EVENT_MASKS.to_vec();
+    for e in [LS_ON, START, LS_OFF, STOP] {
+        masks.push(1 << CLEARED | 1 << e);
+    }
+    let supervisors = Box::leak(Box::new([SupervisorSpec {
+        allowed: AllowedSets {
+            index: Span::new(0, 1),
+            bits,
+        },
+        ..c.supervisors[0]
+    }]));
+    Config {
+        supervisors,
+        event_masks: Box::leak(masks.into_boxed_slice()),
+        allowed_index: Box::leak(Box::new([index])),
+        ..c
+    }
+}
+
+/// Set numbers 3, 4, 5, 6 for states 0–3.
+const BELT_INDEX: u32 = 3 | 4 << 3 | 5 << 6 | 6 << 9;
+
+#[test]
+fn stored_allowed_sets_give_the_trace_of_computed_ones() {
+    let mut computed = plain();
+    let mut from_sets = controller(stored(BELT_INDEX, 3));
+    assert_eq!(from_sets.fault(), None, "the stored sets pass the check");
+    // A pseudo-random sensor, with a reset now and then.
+    let mut x = 0x2545_f491_u32;
+    let mut ran = 0;
+    for scan in 0..2_000u32 {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        let inputs = io(x & 3 == 0, x >> 8 & 31 == 0);
+        let a = computed.scan(scan * 10, &inputs);
+        let (executed, states, outputs, fault) = (
+            a.executed.to_vec(),
+            a.states.to_vec(),
+            a.outputs.to_vec(),
+            a.fault,
+        );
+        let b = from_sets.scan(scan * 10, &inputs);
+        assert_eq!(
+            (b.executed, b.states, b.outputs, b.fault),
+            (&executed[..], &states[..], &outputs[..], fault),
+            "scan {scan}"
+        );
+        ran += executed.len();
+    }
+    assert!(ran > 100, "the run moves the belt ({ran} events)");
+}
+
+#[test]
+fn stored_sets_that_are_not_the_programs_are_refused() {
+    use crate::validate::{validate, validate_allowed_sets, Flaw, Part};
+    let check = |config: Config<'static>| {
+        let program = Conveyor {
+            config,
+            intact: true,
+        };
+        validate(&program)
+            .and_then(|()| validate_allowed_sets(&program))
+            .map_err(|e| (e.part, e.flaw))
+    };
+    let at = Part::Supervisor(0);
+    assert_eq!(check(stored(BELT_INDEX, 3)), Ok(()));
+    // State 1 given state 2's set: `ls_off` instead of `start`.
+    let swapped = 3 | 5 << 3 | 5 << 6 | 6 << 9;
+    assert_eq!(
+        check(stored(swapped, 3)),
+        Err((at, Flaw::AllowedSet { state: 1 }))
+    );
+    // The controller's own check leaves that to generation: such a set
+    // only holds events back or ends in a `Corrupt` fault.
+    let program = Conveyor {
+        config: stored(swapped, 3),
+        intact: true,
+    };
+    assert_eq!(validate(&program), Ok(()));
+    // A set without `cleared`, outside the alphabet: set 1 is `stop` alone.
+    assert_eq!(
+        check(stored(3 | 4 << 3 | 5 << 6 | 1 << 9, 3)),
+        Err((at, Flaw::AllowedSet { state: 3 }))
+    );
+    // A set number past the pool, a width of 0 or past 16 bits, an index
+    // too long for four 2-bit entries.
+    assert_eq!(
+        check(stored(BELT_INDEX | 7 << 9, 3)),
+        Err((at, Flaw::AllowedIndex))
+    );
+    assert_eq!(check(stored(BELT_INDEX, 0)), Err((at, Flaw::AllowedIndex)));
+    assert_eq!(check(stored(BELT_INDEX, 17)), Err((at, Flaw::AllowedIndex)));
+    let long = Config {
+        allowed_index: Box::leak(Box::new([BELT_INDEX, 0])),
+        supervisors: Box::leak(Box::new([SupervisorSpec {
+            allowed: AllowedSets {
+                index: Span::new(0, 2),
+                bits: 3,
+            },
+            ..stored(BELT_INDEX, 3).supervisors[0]
+        }])),
+        ..stored(BELT_INDEX, 3)
+    };
+    assert_eq!(check(long), Err((at, Flaw::AllowedIndex)));
+    // A stray bit past the last event in a stored set: the controller
+    // could choose it as a command.
+    let mut c = stored(BELT_INDEX, 3);
+    let mut masks = c.event_masks.to_vec();
+    masks[6] |= 1 << 9;
+    c.event_masks = Box::leak(masks.into_boxed_slice());
+    assert_eq!(check(c), Err((at, Flaw::AllowedIndex)));
 }

@@ -7,7 +7,8 @@
 //! on to index without a check: every index is in range, every span lies
 //! inside its pool and has the length its kind needs, sets have no bits
 //! past their last member, alphabets and memberships agree, and every table
-//! decodes to states of its supervisor. A controller whose image fails it
+//! decodes to states of its supervisor. That stored allowed sets are
+//! their supervisors' is [`validate_allowed_sets`], checked at generation. A controller whose image fails it
 //! starts in fault mode (`Corrupt`) and no reset can leave it. Host tools
 //! call [`validate`] themselves to print where an image is wrong.
 
@@ -15,7 +16,9 @@ use core::fmt;
 
 use crate::bits;
 use crate::pacing::SCAN_PERIOD_MS;
-use crate::program::{words, Action, Config, EventSpec, Index, Program, Span, Trigger};
+use crate::program::{
+    words, Action, Config, EventSpec, Index, Program, Span, SupervisorSpec, Trigger,
+};
 use crate::table::{bit, read_bits, Rows, SupervisorTable};
 
 /// Where in the image a flaw lies: a field, or an item of a list or pool
@@ -134,6 +137,17 @@ pub enum Flaw {
     },
     /// A state bit's shift is 32 or more.
     Shift,
+    /// A supervisor's stored allowed sets: an entry width outside 1..=16,
+    /// an index of the wrong length, a set number past the event sets, or
+    /// a set with a bit past the last event.
+    AllowedIndex,
+    /// A supervisor's stored allowed set in `state` is not the events
+    /// outside its alphabet plus those its program enables there
+    /// ([`validate_allowed_sets`]).
+    AllowedSet {
+        /// The state.
+        state: u32,
+    },
 }
 
 /// An image that fails the structure check: where, and what.
@@ -198,6 +212,8 @@ impl fmt::Display for Flaw {
             Flaw::Guarded => f.write_str("a guard on an event that is not a command, or out of event order"),
             Flaw::GuardNode { node } => write!(f, "node {node} points up, past the table or to a missing bit"),
             Flaw::Shift => f.write_str("a shift of 32 bits or more"),
+            Flaw::AllowedIndex => f.write_str("stored allowed sets with a wrong width, length or set number"),
+            Flaw::AllowedSet { state } => write!(f, "the stored allowed set of state {state} differs from its program's"),
         }
     }
 }
@@ -231,6 +247,60 @@ pub fn validate<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
     for j in 0..tables {
         if let Some(table) = Index::try_from(j).ok().and_then(|j| program.table(j)) {
             validate_table(&config, j, &core::hint::black_box(table))?;
+        }
+    }
+    Ok(())
+}
+
+/// Whether every stored allowed set of `program` is its supervisor's: in
+/// every state, the events outside its alphabet and exactly the local
+/// events its program enables ([`Program::enabled`]). Checked when a
+/// program is generated and by host tools, not by the controller: a wrong
+/// set can only hold an event back (an unexpected event, a command not
+/// chosen) or let the controller choose one its program refuses (a
+/// `Corrupt` fault), never move a supervisor its program does not; and
+/// the CRC guards the sets a generator checked. Assumes a program that
+/// passes [`validate`].
+pub fn validate_allowed_sets<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
+    let c = program.config();
+    for (j, spec) in c.supervisors.iter().enumerate() {
+        if spec.allowed.is_stored() {
+            allowed_sets_of(program, &c, j)?;
+        }
+    }
+    Ok(())
+}
+
+/// [`validate_allowed_sets`] for supervisor `j`.
+fn allowed_sets_of<P: Program + ?Sized>(
+    program: &P,
+    c: &Config<'_>,
+    j: usize,
+) -> Result<(), Invalid> {
+    let spec = &c.supervisors[j];
+    let part = Part::Supervisor(j);
+    let w = words(c.events.len());
+    let index = spec.allowed.index.of(c.allowed_index);
+    let outside = spec.outside.of(c.event_masks);
+    let alphabet = spec.alphabet.of(c.event_lists);
+    for state in 0..spec.states {
+        let k = read_bits(index, state as usize, spec.allowed.bits) as usize;
+        let set = c.event_masks.get(k * w..k * w + w).unwrap_or_default();
+        let wrong = fail(part, Flaw::AllowedSet { state });
+        let keeps_outside = (0..w).all(|i| {
+            let o = outside.get(i).copied().unwrap_or(0);
+            set.get(i).is_some_and(|&s| s & o == o)
+        });
+        if !keeps_outside {
+            return wrong;
+        }
+        for (chunk, local) in alphabet.chunks(32).enumerate() {
+            let row = program.enabled(j as Index, state, (chunk * 32) as Index, local.len() as u8);
+            for (k, &e) in local.iter().enumerate() {
+                if bits::contains(set, usize::from(e)) != (row >> k & 1 == 1) {
+                    return wrong;
+                }
+            }
         }
     }
     Ok(())
@@ -329,6 +399,7 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
                 return fail(part, Flaw::Outside);
             }
         }
+        allowed_index(part, spec, c)?;
     }
     // Spans checked above: now whether each membership is its alphabet's.
     for (e, spec) in c.events.iter().enumerate() {
@@ -528,6 +599,39 @@ fn in_range(part: Part, index: usize, count: usize) -> Result<(), Invalid> {
         Ok(())
     } else {
         fail(part, out_of_range(index as u32, count as u32))
+    }
+}
+
+/// A supervisor's index of stored allowed sets: none, or entries of 1 to
+/// 16 bits, exactly one word per 32 bits of entries (one per state), each
+/// the number of an event set inside `event_masks` with no bit past the
+/// last event (the controller may choose any command of the set).
+/// Whether the sets are the supervisor's is [`validate_allowed_sets`].
+fn allowed_index(part: Part, spec: &SupervisorSpec, c: &Config<'_>) -> Result<(), Invalid> {
+    let sets = spec.allowed;
+    if !sets.is_stored() {
+        return if sets.bits == 0 {
+            Ok(())
+        } else {
+            fail(part, Flaw::AllowedIndex)
+        };
+    }
+    let index = pool(part, sets.index, c.allowed_index)?;
+    let entries = u64::from(spec.states) * u64::from(sets.bits);
+    let w = words(c.events.len());
+    let spare = w * 32 - c.events.len();
+    let named = |x: u32| {
+        let k = read_bits(index, x as usize, sets.bits) as usize;
+        let set = c.event_masks.get(k * w..k * w + w).unwrap_or_default();
+        set.len() == w && (spare == 0 || set[w - 1] >> (32 - spare) == 0)
+    };
+    let fits = (1..=16).contains(&sets.bits)
+        && index.len() as u64 == entries.div_ceil(32)
+        && (0..spec.states).all(named);
+    if fits {
+        Ok(())
+    } else {
+        fail(part, Flaw::AllowedIndex)
     }
 }
 

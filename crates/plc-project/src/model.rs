@@ -439,6 +439,10 @@ pub struct Project {
     pub lost_edge_fault: bool,
     /// Bytes of the program image the background test checks per scan.
     pub rom_test_bytes_per_scan: u16,
+    /// The most flash one supervisor's stored allowed sets may take (its
+    /// index and the sets it adds); a supervisor needing more computes
+    /// them when it moves (docs/formats.md, `[plc]`). 0: none stored.
+    pub stored_sets_bytes: u32,
     /// Inputs in declaration order.
     pub inputs: Vec<Input>,
     /// Outputs in declaration order.

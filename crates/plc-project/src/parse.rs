@@ -147,6 +147,8 @@ pub(crate) struct RawPlc {
     #[serde(default)]
     pub rom_test_bytes_per_scan: Option<Spanned<i64>>,
     #[serde(default)]
+    pub stored_sets_bytes: Option<Spanned<i64>>,
+    #[serde(default)]
     pub check_nonconflicting: Option<Spanned<bool>>,
 }
 

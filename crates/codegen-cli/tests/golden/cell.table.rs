@@ -4,9 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, Action, Config, EventSpec, GuardNode, GuardSpec, Guards, Index, InputSpec,
-    Membership, OutputSpec, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec,
-    Trigger, UnexpectedPolicy,
+    mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode,
+    GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit,
+    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -973,7 +973,7 @@ const EVENTS: [EventSpec; 28] = [
     },
 ];
 
-/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
 /// - 0 `cell.1`: 2147483648 states, initial `0`
 /// - 1 `cell.2`: 65536 states, initial `ra13 + rb13 + c1 + c2 + c3 + c4 + c5`
 const SUPERVISORS: [SupervisorSpec; 2] = [
@@ -982,12 +982,14 @@ const SUPERVISORS: [SupervisorSpec; 2] = [
         initial: 0,
         alphabet: Span::new(6, 24),
         outside: Span::new(0, 1),
+        allowed: AllowedSets::COMPUTED,
     },
     SupervisorSpec {
         states: 65536,
         initial: 64513,
         alphabet: Span::new(30, 18),
         outside: Span::new(1, 1),
+        allowed: AllowedSets::COMPUTED,
     },
 ];
 
@@ -1084,7 +1086,7 @@ const EVENT_LISTS: [Index; 66] = [
     event::T_RB7,
 ];
 
-/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position:
+/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position:
 /// - 0: outside the alphabet of `cell.1`
 /// - 1: outside the alphabet of `cell.2`
 /// - 2: the commands without a request input
@@ -1395,11 +1397,12 @@ pub const CONFIG: Config<'static> = Config {
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
     guards: Guards::NONE,
+    allowed_index: &[],
 };
 
 /// CRC of the configuration alone (the program image without tables): how recorded
 /// scenarios name the project they belong to.
-pub const CONFIG_CRC: u32 = 0x0ca495fb;
+pub const CONFIG_CRC: u32 = 0x7da32bdf;
 
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
@@ -1833,12 +1836,12 @@ const TABLES: [SupervisorTable<'static>; 2] = [
     },
 ];
 
-/// CRC-32/MPEG-2 of the program image (the configuration and the tables, 2644
+/// CRC-32/MPEG-2 of the program image (the configuration and the tables, 2664
 /// bytes), recorded at generation. The controller checks the whole image at
 /// start-up, then in the background, 64 bytes per scan: a pass every 42
 /// scans, a flipped bit found within 83 scans (8300 ms at 100 ms a scan). See
 /// `executor::image`.
-pub const IMAGE_CRC: u32 = 0xa3170a0a;
+pub const IMAGE_CRC: u32 = 0xfb61a4d4;
 
 /// The program's data: the configuration and the tables above, as constants
 /// the compiler can see through (`executor::compiled`).

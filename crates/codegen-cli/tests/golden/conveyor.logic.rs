@@ -4,9 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, Action, Config, EventSpec, GuardNode, GuardSpec, Guards, Index, InputSpec,
-    Membership, OutputSpec, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec,
-    Trigger, UnexpectedPolicy,
+    mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode,
+    GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit,
+    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -206,7 +206,7 @@ const EVENTS: [EventSpec; 5] = [
     },
 ];
 
-/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
 /// - 0 `conveyor`: 8 states, initial `clear.off.idle.idle`
 const SUPERVISORS: [SupervisorSpec; 1] = [
     SupervisorSpec {
@@ -214,6 +214,10 @@ const SUPERVISORS: [SupervisorSpec; 1] = [
         initial: 0,
         alphabet: Span::new(3, 5),
         outside: Span::EMPTY,
+        allowed: AllowedSets {
+            index: Span::new(0, 1),
+            bits: 3,
+        },
     },
 ];
 
@@ -236,9 +240,25 @@ const EVENT_LISTS: [Index; 8] = [
     event::STOP,
 ];
 
-/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position:
-/// - 0: the commands without a request input
-const EVENT_MASKS: [u32; 1] = [mask_word(0, &[event::START, event::STOP])];
+/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position:
+/// - 0: allowed by `conveyor`
+/// - 1: allowed by `conveyor`
+/// - 2: allowed by `conveyor`
+/// - 3: allowed by `conveyor`
+/// - 4: allowed by `conveyor`
+/// - 5: allowed by `conveyor`
+/// - 6: allowed by `conveyor`
+/// - 7: the commands without a request input
+const EVENT_MASKS: [u32; 8] = [
+    mask_word(0, &[event::RE_LS]),
+    mask_word(0, &[event::FE_LS, event::START]),
+    mask_word_except(0, event::COUNT, &[event::FE_LS, event::STOP]),
+    mask_word(0, &[event::FE_LS]),
+    mask_word(0, &[event::GONE, event::RE_LS]),
+    mask_word(0, &[event::RE_LS, event::START]),
+    mask_word(0, &[event::RE_LS, event::STOP]),
+    mask_word(0, &[event::START, event::STOP]),
+];
 
 /// Event actions, by position:
 /// - 0: `re_ls`
@@ -284,6 +304,10 @@ const MEMBERSHIPS: [Membership; 5] = [
 /// Moore outputs: (supervisor, state) pairs, by position.
 const STATE_MAP: [StateMapEntry; 0] = [];
 
+/// The stored allowed sets: in each state, the number `k` of the supervisor's allowed set, words `k·EVENT_WORDS ..` of `EVENT_MASKS`, packed; by position:
+/// - 0: `conveyor` (3-bit set numbers by state: `clear.off.idle.idle` 0, `blocked.off.idle.wanted` 1, `clear.off.timing.wanted` 2, `blocked.on.idle.running` 3, `clear.on.timing.running` 4, `clear.off.idle.wanted` 5, `clear.on.idle.done` 6, `clear.on.idle.running` 0)
+const ALLOWED_INDEX: [u32; 1] = [0x001ac688];
+
 /// The executor's description of the project.
 pub const CONFIG: Config<'static> = Config {
     name: "conveyor",
@@ -305,17 +329,18 @@ pub const CONFIG: Config<'static> = Config {
     input_masks: &INPUT_MASKS,
     event_lists: &EVENT_LISTS,
     event_masks: &EVENT_MASKS,
-    commands: Span::new(0, 1),
+    commands: Span::new(7, 1),
     requested: Span::EMPTY,
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
     guards: Guards::NONE,
+    allowed_index: &ALLOWED_INDEX,
 };
 
 /// CRC of the configuration alone (the program image without tables): how recorded
 /// scenarios name the project they belong to.
-pub const CONFIG_CRC: u32 = 0xef0ca4dc;
+pub const CONFIG_CRC: u32 = 0x18137833;
 
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
@@ -452,11 +477,11 @@ pub mod logic {
 }
 
 /// CRC-32/MPEG-2 of the program image (the configuration; the supervisors are
-/// code, 388 bytes), recorded at generation. The controller checks the whole
+/// code, 432 bytes), recorded at generation. The controller checks the whole
 /// image at start-up, then in the background, 64 bytes per scan: a pass every
 /// 7 scans, a flipped bit found within 13 scans (130 ms at 10 ms a scan). See
 /// `executor::image`.
-pub const IMAGE_CRC: u32 = 0xef0ca4dc;
+pub const IMAGE_CRC: u32 = 0x18137833;
 
 /// The program's data: the configuration above, and the supervisors as
 /// minimised boolean functions (`executor::compiled`).

@@ -4,9 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, Action, Config, EventSpec, GuardNode, GuardSpec, Guards, Index, InputSpec,
-    Membership, OutputSpec, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec,
-    Trigger, UnexpectedPolicy,
+    mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode,
+    GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit,
+    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -340,7 +340,7 @@ const EVENTS: [EventSpec; 8] = [
     },
 ];
 
-/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
 /// - 0 `sup_crane1`: 3 states, initial `idle`
 /// - 1 `sup_section`: 3 states, initial `free`
 const SUPERVISORS: [SupervisorSpec; 2] = [
@@ -348,13 +348,21 @@ const SUPERVISORS: [SupervisorSpec; 2] = [
         states: 3,
         initial: 0,
         alphabet: Span::new(5, 6),
-        outside: Span::new(0, 1),
+        outside: Span::new(3, 1),
+        allowed: AllowedSets {
+            index: Span::new(0, 1),
+            bits: 2,
+        },
     },
     SupervisorSpec {
         states: 3,
         initial: 0,
         alphabet: Span::new(11, 4),
-        outside: Span::new(1, 1),
+        outside: Span::new(7, 1),
+        allowed: AllowedSets {
+            index: Span::new(1, 1),
+            bits: 3,
+        },
     },
 ];
 
@@ -404,11 +412,23 @@ const EVENT_LISTS: [Index; 18] = [
     event::RUN_T2,
 ];
 
-/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position:
-/// - 0: outside the alphabet of `sup_crane1`
-/// - 1: outside the alphabet of `sup_section`
-const EVENT_MASKS: [u32; 2] = [
+/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position:
+/// - 0: allowed by `sup_crane1`
+/// - 1: allowed by `sup_crane1`
+/// - 2: allowed by `sup_crane1`
+/// - 3: outside the alphabet of `sup_crane1`
+/// - 4: allowed by `sup_section`
+/// - 5: allowed by `sup_section`
+/// - 6: allowed by `sup_section`
+/// - 7: outside the alphabet of `sup_section`
+const EVENT_MASKS: [u32; 8] = [
+    mask_word_except(0, event::COUNT, &[event::F_LD1, event::ST_LD1]),
+    mask_word_except(0, event::COUNT, &[event::T1_AT13, event::T2_AT13, event::RUN_T1]),
+    mask_word_except(0, event::COUNT, &[event::T1_AT13, event::T2_AT13, event::RUN_T2]),
     mask_word(0, &[event::T1_AT14, event::T2_AT14]),
+    mask_word_except(0, event::COUNT, &[event::T1_AT14, event::T2_AT14]),
+    mask_word_except(0, event::COUNT, &[event::T2_AT14, event::RUN_T1, event::RUN_T2]),
+    mask_word_except(0, event::COUNT, &[event::T1_AT14, event::RUN_T1, event::RUN_T2]),
     mask_word(0, &[event::T1_AT13, event::T2_AT13, event::F_LD1, event::ST_LD1]),
 ];
 
@@ -485,6 +505,11 @@ const STATE_MAP: [StateMapEntry; 6] = [
     StateMapEntry::in_state(supervisor::SUP_SECTION, 2),
 ];
 
+/// The stored allowed sets: in each state, the number `k` of the supervisor's allowed set, words `k·EVENT_WORDS ..` of `EVENT_MASKS`, packed; by position:
+/// - 0: `sup_crane1` (2-bit set numbers by state: `idle` 0, `train1` 1, `train2` 2)
+/// - 1: `sup_section` (3-bit set numbers by state: `free` 4, `t1_in` 5, `t2_in` 6)
+const ALLOWED_INDEX: [u32; 2] = [0x00000024, 0x000001ac];
+
 /// The executor's description of the project.
 pub const CONFIG: Config<'static> = Config {
     name: "crane",
@@ -512,11 +537,12 @@ pub const CONFIG: Config<'static> = Config {
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
     guards: Guards::NONE,
+    allowed_index: &ALLOWED_INDEX,
 };
 
 /// CRC of the configuration alone (the program image without tables): how recorded
 /// scenarios name the project they belong to.
-pub const CONFIG_CRC: u32 = 0xcb992b99;
+pub const CONFIG_CRC: u32 = 0x9f1d38d4;
 
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
@@ -778,11 +804,11 @@ pub mod logic {
 }
 
 /// CRC-32/MPEG-2 of the program image (the configuration; the supervisors are
-/// code, 720 bytes), recorded at generation. The controller checks the whole
+/// code, 772 bytes), recorded at generation. The controller checks the whole
 /// image at start-up, then in the background, 64 bytes per scan: a pass every
-/// 12 scans, a flipped bit found within 23 scans (230 ms at 10 ms a scan).
+/// 13 scans, a flipped bit found within 25 scans (250 ms at 10 ms a scan).
 /// See `executor::image`.
-pub const IMAGE_CRC: u32 = 0xcb992b99;
+pub const IMAGE_CRC: u32 = 0x9f1d38d4;
 
 /// The program's data: the configuration above, and the supervisors as
 /// minimised boolean functions (`executor::compiled`).

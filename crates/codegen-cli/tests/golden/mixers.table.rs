@@ -4,9 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, Action, Config, EventSpec, GuardNode, GuardSpec, Guards, Index, InputSpec,
-    Membership, OutputSpec, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec,
-    Trigger, UnexpectedPolicy,
+    mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode,
+    GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit,
+    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -363,7 +363,7 @@ const EVENTS: [EventSpec; 8] = [
     },
 ];
 
-/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
 /// - 0 `mixers`: 1024 states, initial `ma1 + mb1 + c1`
 const SUPERVISORS: [SupervisorSpec; 1] = [
     SupervisorSpec {
@@ -371,6 +371,7 @@ const SUPERVISORS: [SupervisorSpec; 1] = [
         initial: 545,
         alphabet: Span::new(0, 8),
         outside: Span::EMPTY,
+        allowed: AllowedSets::COMPUTED,
     },
 ];
 
@@ -399,7 +400,7 @@ const EVENT_LISTS: [Index; 16] = [
     event::T8,
 ];
 
-/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position.
+/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position.
 const EVENT_MASKS: [u32; 0] = [];
 
 /// Event actions, by position.
@@ -494,11 +495,12 @@ pub const CONFIG: Config<'static> = Config {
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
     guards: Guards::NONE,
+    allowed_index: &[],
 };
 
 /// CRC of the configuration alone (the program image without tables): how recorded
 /// scenarios name the project they belong to.
-pub const CONFIG_CRC: u32 = 0x9a8ce24a;
+pub const CONFIG_CRC: u32 = 0x330d9a4a;
 
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
@@ -679,12 +681,12 @@ const TABLES: [SupervisorTable<'static>; 1] = [
     },
 ];
 
-/// CRC-32/MPEG-2 of the program image (the configuration and the tables, 792
+/// CRC-32/MPEG-2 of the program image (the configuration and the tables, 804
 /// bytes), recorded at generation. The controller checks the whole image at
 /// start-up, then in the background, 64 bytes per scan: a pass every 13
 /// scans, a flipped bit found within 25 scans (250 ms at 10 ms a scan). See
 /// `executor::image`.
-pub const IMAGE_CRC: u32 = 0xc57975a5;
+pub const IMAGE_CRC: u32 = 0x38660a3e;
 
 /// The program's data: the configuration and the tables above, as constants
 /// the compiler can see through (`executor::compiled`).

@@ -4,9 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, Action, Config, EventSpec, GuardNode, GuardSpec, Guards, Index, InputSpec,
-    Membership, OutputSpec, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec,
-    Trigger, UnexpectedPolicy,
+    mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode,
+    GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit,
+    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -305,7 +305,7 @@ const EVENTS: [EventSpec; 9] = [
     },
 ];
 
-/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
 /// - 0 `motivating`: 10 states, initial `0`
 const SUPERVISORS: [SupervisorSpec; 1] = [
     SupervisorSpec {
@@ -313,6 +313,10 @@ const SUPERVISORS: [SupervisorSpec; 1] = [
         initial: 0,
         alphabet: Span::new(4, 9),
         outside: Span::EMPTY,
+        allowed: AllowedSets {
+            index: Span::new(0, 1),
+            bits: 3,
+        },
     },
 ];
 
@@ -352,9 +356,25 @@ const EVENT_LISTS: [Index; 14] = [
     event::C_LO,
 ];
 
-/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position:
-/// - 0: the commands without a request input
-const EVENT_MASKS: [u32; 1] = [
+/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position:
+/// - 0: allowed by `motivating`
+/// - 1: allowed by `motivating`
+/// - 2: allowed by `motivating`
+/// - 3: allowed by `motivating`
+/// - 4: allowed by `motivating`
+/// - 5: allowed by `motivating`
+/// - 6: allowed by `motivating`
+/// - 7: allowed by `motivating`
+/// - 8: the commands without a request input
+const EVENT_MASKS: [u32; 9] = [
+    mask_word(0, &[event::A]),
+    mask_word(0, &[event::B]),
+    mask_word(0, &[event::C_LO, event::C_HI]),
+    mask_word(0, &[event::E, event::D_ON]),
+    mask_word(0, &[event::B, event::F]),
+    mask_word(0, &[event::F]),
+    mask_word(0, &[event::C_CL]),
+    mask_word(0, &[event::D_OFF]),
     mask_word(0, &[event::C_HI, event::C_CL, event::D_ON, event::D_OFF]),
 ];
 
@@ -427,6 +447,10 @@ const MEMBERSHIPS: [Membership; 9] = [
 /// Moore outputs: (supervisor, state) pairs, by position.
 const STATE_MAP: [StateMapEntry; 0] = [];
 
+/// The stored allowed sets: in each state, the number `k` of the supervisor's allowed set, words `k·EVENT_WORDS ..` of `EVENT_MASKS`, packed; by position:
+/// - 0: `motivating` (3-bit set numbers by state: `0` 0, `1` 1, `2` 2, `3` 3, `4` 4, `5` 5, `6` 6, `7` 7, …)
+const ALLOWED_INDEX: [u32; 1] = [0x37fac688];
+
 /// The executor's description of the project.
 pub const CONFIG: Config<'static> = Config {
     name: "motivating",
@@ -448,17 +472,18 @@ pub const CONFIG: Config<'static> = Config {
     input_masks: &INPUT_MASKS,
     event_lists: &EVENT_LISTS,
     event_masks: &EVENT_MASKS,
-    commands: Span::new(0, 1),
+    commands: Span::new(8, 1),
     requested: Span::new(13, 1),
     actions: &ACTIONS,
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
     guards: Guards::NONE,
+    allowed_index: &ALLOWED_INDEX,
 };
 
 /// CRC of the configuration alone (the program image without tables): how recorded
 /// scenarios name the project they belong to.
-pub const CONFIG_CRC: u32 = 0x274809e2;
+pub const CONFIG_CRC: u32 = 0x686d5b07;
 
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
@@ -668,11 +693,11 @@ pub mod logic {
 }
 
 /// CRC-32/MPEG-2 of the program image (the configuration; the supervisors are
-/// code, 608 bytes), recorded at generation. The controller checks the whole
+/// code, 656 bytes), recorded at generation. The controller checks the whole
 /// image at start-up, then in the background, 64 bytes per scan: a pass every
-/// 10 scans, a flipped bit found within 19 scans (190 ms at 10 ms a scan).
+/// 11 scans, a flipped bit found within 21 scans (210 ms at 10 ms a scan).
 /// See `executor::image`.
-pub const IMAGE_CRC: u32 = 0x274809e2;
+pub const IMAGE_CRC: u32 = 0x686d5b07;
 
 /// The program's data: the configuration above, and the supervisors as
 /// minimised boolean functions (`executor::compiled`).

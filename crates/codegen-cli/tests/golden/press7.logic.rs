@@ -4,9 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, Action, Config, EventSpec, GuardNode, GuardSpec, Guards, Index, InputSpec,
-    Membership, OutputSpec, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec,
-    Trigger, UnexpectedPolicy,
+    mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode,
+    GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit,
+    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -284,7 +284,7 @@ const EVENTS: [EventSpec; 7] = [
     },
 ];
 
-/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
 /// - 0 `press`: 7 states, initial `1`
 const SUPERVISORS: [SupervisorSpec; 1] = [
     SupervisorSpec {
@@ -292,6 +292,10 @@ const SUPERVISORS: [SupervisorSpec; 1] = [
         initial: 0,
         alphabet: Span::new(7, 7),
         outside: Span::EMPTY,
+        allowed: AllowedSets {
+            index: Span::new(0, 1),
+            bits: 3,
+        },
     },
 ];
 
@@ -336,8 +340,27 @@ const EVENT_LISTS: [Index; 14] = [
     event::AT_TOP,
 ];
 
-/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position.
-const EVENT_MASKS: [u32; 0] = [];
+/// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position:
+/// - 0: allowed by `press`
+/// - 1: allowed by `press`
+/// - 2: allowed by `press`
+/// - 3: allowed by `press`
+/// - 4: allowed by `press`
+const EVENT_MASKS: [u32; 5] = [
+    mask_word_except(
+        0,
+        event::COUNT,
+        &[event::PART_OUT, event::AT_BOTTOM, event::AT_TOP],
+    ),
+    mask_word_except(0, event::COUNT, &[event::PART_IN, event::PART_OUT, event::AT_TOP]),
+    mask_word_except(
+        0,
+        event::COUNT,
+        &[event::PART_IN, event::PART_OUT, event::AT_BOTTOM],
+    ),
+    mask_word(0, &[event::AUTO, event::STOP, event::RESET]),
+    mask_word_except(0, event::COUNT, &[event::PART_IN, event::AT_BOTTOM, event::AT_TOP]),
+];
 
 /// Event actions, by position.
 const ACTIONS: [Action; 0] = [];
@@ -398,6 +421,10 @@ const STATE_MAP: [StateMapEntry; 9] = [
     StateMapEntry::in_state(supervisor::PRESS, 2),
 ];
 
+/// The stored allowed sets: in each state, the number `k` of the supervisor's allowed set, words `k·EVENT_WORDS ..` of `EVENT_MASKS`, packed; by position:
+/// - 0: `press` (3-bit set numbers by state: `1` 0, `2` 0, `3` 1, `4` 2, `5` 3, `6` 4, `7` 2)
+const ALLOWED_INDEX: [u32; 1] = [0x000a3440];
+
 /// The executor's description of the project.
 pub const CONFIG: Config<'static> = Config {
     name: "stamping-press-7",
@@ -425,11 +452,12 @@ pub const CONFIG: Config<'static> = Config {
     memberships: &MEMBERSHIPS,
     state_map: &STATE_MAP,
     guards: Guards::NONE,
+    allowed_index: &ALLOWED_INDEX,
 };
 
 /// CRC of the configuration alone (the program image without tables): how recorded
 /// scenarios name the project they belong to.
-pub const CONFIG_CRC: u32 = 0x1a9b14e8;
+pub const CONFIG_CRC: u32 = 0x7c8677de;
 
 /// Words of an event set (32 events per word).
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
@@ -623,11 +651,11 @@ pub mod logic {
 }
 
 /// CRC-32/MPEG-2 of the program image (the configuration; the supervisors are
-/// code, 640 bytes), recorded at generation. The controller checks the whole
+/// code, 676 bytes), recorded at generation. The controller checks the whole
 /// image at start-up, then in the background, 64 bytes per scan: a pass every
-/// 10 scans, a flipped bit found within 19 scans (190 ms at 10 ms a scan).
+/// 11 scans, a flipped bit found within 21 scans (210 ms at 10 ms a scan).
 /// See `executor::image`.
-pub const IMAGE_CRC: u32 = 0x1a9b14e8;
+pub const IMAGE_CRC: u32 = 0x7c8677de;
 
 /// The program's data: the configuration above, and the supervisors as
 /// minimised boolean functions (`executor::compiled`).

@@ -28,7 +28,7 @@ use codegen::emit::generate;
 use codegen::lower::TableImage;
 use executor::memory::HeapMemory;
 use executor::program::Program;
-use executor::validate::validate;
+use executor::validate::{validate, validate_allowed_sets};
 use executor::Controller;
 use plc_project::{self as project, Project};
 use std::collections::HashSet;
@@ -152,6 +152,11 @@ fn check_valid(project: &Project, path: &Path) {
         .unwrap_or_else(|e| panic!("a validated project cannot be named to cargo: {e}"));
     let image = TableImage::new(project).expect("a validated project has a table image");
     assert_eq!(validate(&image), Ok(()), "the structure check");
+    assert_eq!(
+        validate_allowed_sets(&image),
+        Ok(()),
+        "the stored allowed sets"
+    );
     assert_eq!(image.computed_crc(), image.crc, "the recorded CRC");
     let config = image.config();
     let controller = Controller::new(&image, HeapMemory::for_config(&config)).unwrap();

@@ -48,7 +48,7 @@ pub fn bits_for(max: u64) -> u8 {
 }
 
 /// Appends `value` as a `width`-bit entry at entry index `index`.
-fn write_bits(words: &mut Vec<u32>, index: usize, width: u8, value: u32) {
+pub(crate) fn write_bits(words: &mut Vec<u32>, index: usize, width: u8, value: u32) {
     let width = width as usize;
     let bit = index * width;
     let end_word = (bit + width).div_ceil(32);

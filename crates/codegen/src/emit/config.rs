@@ -8,6 +8,7 @@
 //! not the project, so the comments describe exactly the data below them.
 
 use super::{ident, listed, positions, quoted, Emitter};
+use crate::lower::ConfigPools;
 
 /// The members of a bit set, in order.
 fn mask_members(mask: &[u32]) -> Vec<ex::Index> {
@@ -201,16 +202,31 @@ pub mod places {{"
     }
 
     /// An event-set word as Rust: `mask_word(k, &[event::A, event::B])`,
-    /// or `0`.
+    /// `mask_word_except(k, event::COUNT, &[event::C])` when that names
+    /// fewer events, or `0`.
     fn event_word_expr(&self, k: usize, word: u32) -> String {
         if word == 0 {
             return "0".to_owned();
         }
-        let names: Vec<String> = (0..32)
-            .filter(|b| word >> b & 1 == 1)
-            .map(|b| format!("event::{}", ident(&self.project.events[k * 32 + b].name)))
-            .collect();
-        format!("mask_word({k}, &[{}])", names.join(", "))
+        let events = &self.project.events;
+        let in_word = (events.len() - k * 32).min(32);
+        let names = |member: bool| -> Vec<String> {
+            (0..in_word)
+                .filter(|b| (word >> b & 1 == 1) == member)
+                .map(|b| format!("event::{}", ident(&events[k * 32 + b].name)))
+                .collect()
+        };
+        let (members, others) = (names(true), names(false));
+        // A set that holds most of the word's events is written by what it
+        // leaves out.
+        if others.len() < members.len() {
+            format!(
+                "mask_word_except({k}, event::COUNT, &[{}])",
+                others.join(", ")
+            )
+        } else {
+            format!("mask_word({k}, &[{}])", members.join(", "))
+        }
     }
 
     /// The events whose actions include `wanted`.
@@ -363,7 +379,52 @@ pub mod places {{"
         self.memberships();
         self.state_map();
         self.guards();
+        self.allowed_index();
         self.config_and_memory();
+    }
+
+    /// `ALLOWED_INDEX`: for each supervisor that stores its allowed sets,
+    /// the number of its set in `EVENT_MASKS` in each state (nothing when
+    /// none does; `CONFIG` then has an empty pool).
+    fn allowed_index(&mut self) {
+        let pools = self.pools;
+        if pools.allowed_index.is_empty() {
+            return;
+        }
+        let mut doc = String::new();
+        for (j, sup) in pools.supervisors.iter().enumerate() {
+            if !sup.allowed.is_stored() {
+                continue;
+            }
+            let index = j as ex::Index;
+            let sets = stored_sets(pools, j);
+            let by_state: Vec<String> = (sets.iter().enumerate().take(STATES_LISTED))
+                .map(|(x, k)| format!("{} {k}", self.state_name(index, x as u32)))
+                .collect();
+            let more = if sets.len() > STATES_LISTED {
+                ", …"
+            } else {
+                ""
+            };
+            let _ = writeln!(
+                doc,
+                "/// - {}: {} ({}-bit set numbers by state: {}{more})",
+                positions(sup.allowed.index),
+                self.supervisor_name(index),
+                sup.allowed.bits,
+                by_state.join(", ")
+            );
+        }
+        let words: Vec<String> = (pools.allowed_index.iter())
+            .map(|w| format!("{w:#010x}"))
+            .collect();
+        self.pool(
+            "ALLOWED_INDEX",
+            "u32",
+            "The stored allowed sets: in each state, the number `k` of the supervisor's allowed set, words `k·EVENT_WORDS ..` of `EVENT_MASKS`, packed; by position",
+            &doc,
+            &words,
+        );
     }
 
     /// `GUARDS`, `STATE_BITS` and `GUARD_NODES`: the symbolic
@@ -640,8 +701,17 @@ pub mod places {{"
             .supervisors
             .iter()
             .map(|s| {
+                let allowed = if s.allowed.is_stored() {
+                    format!(
+                        "AllowedSets {{ index: {}, bits: {} }}",
+                        self.span(s.allowed.index),
+                        s.allowed.bits
+                    )
+                } else {
+                    "AllowedSets::COMPUTED".to_owned()
+                };
                 format!(
-                    "SupervisorSpec {{ states: {}, initial: {}, alphabet: {}, outside: {} }}",
+                    "SupervisorSpec {{ states: {}, initial: {}, alphabet: {}, outside: {}, allowed: {allowed} }}",
                     s.states,
                     s.initial,
                     self.span(s.alphabet),
@@ -652,7 +722,7 @@ pub mod places {{"
         self.pool(
             "SUPERVISORS",
             "SupervisorSpec",
-            "Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order) and the events outside them (`EVENT_MASKS`), by supervisor",
+            "Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor",
             &doc,
             &sups,
         );
@@ -734,8 +804,18 @@ pub mod places {{"
         }
         let commands = "the commands without a request input".to_owned();
         spans.push((pools.commands, commands));
-        let doc = self.owners(spans);
         let ew = ex::words(pools.events.len()).max(1);
+        for j in 0..pools.supervisors.len() {
+            let name = self.supervisor_name(j as ex::Index);
+            let mut sets = stored_sets(pools, j);
+            sets.sort_unstable();
+            sets.dedup();
+            for k in sets {
+                let at = ex::Span::new((k * ew) as ex::Index, ew as ex::Index);
+                spans.push((at, format!("allowed by {name}")));
+            }
+        }
+        let doc = self.owners(spans);
         let masks: Vec<String> = pools
             .event_masks
             .iter()
@@ -745,7 +825,7 @@ pub mod places {{"
         self.pool(
             "EVENT_MASKS",
             "u32",
-            "Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, by position",
+            "Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position",
             &doc,
             &masks,
         );
@@ -851,9 +931,14 @@ pub mod places {{"
         } else {
             "Guards { events: &GUARDS, bits: &STATE_BITS, nodes: &GUARD_NODES }"
         };
+        let allowed_index = if pools.allowed_index.is_empty() {
+            "&[]"
+        } else {
+            "&ALLOWED_INDEX"
+        };
         let _ = writeln!(
             self.out,
-            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, rom_test_bytes_per_scan: {}, inputs: &INPUTS, debounced: &DEBOUNCED, debounce_mask: {}, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_masks: &INPUT_MASKS, event_lists: &EVENT_LISTS, event_masks: &EVENT_MASKS, commands: {}, requested: {}, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP, guards: {guards} }};",
+            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, rom_test_bytes_per_scan: {}, inputs: &INPUTS, debounced: &DEBOUNCED, debounce_mask: {}, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_masks: &INPUT_MASKS, event_lists: &EVENT_LISTS, event_masks: &EVENT_MASKS, commands: {}, requested: {}, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP, guards: {guards}, allowed_index: {allowed_index} }};",
             pools.name,
             pools.scan_period_ms,
             pools.max_commands_per_scan,
@@ -883,6 +968,23 @@ fn abbreviated(text: &str, limit: usize) -> String {
         Some((at, _)) => format!("{}…", &text[..at]),
         None => text.to_owned(),
     }
+}
+
+/// States whose set numbers the doc of `ALLOWED_INDEX` lists, per
+/// supervisor.
+const STATES_LISTED: usize = 8;
+
+/// Supervisor `j`'s stored set number in each state (empty when its sets
+/// are computed).
+fn stored_sets(pools: &ConfigPools, j: usize) -> Vec<usize> {
+    let sup = &pools.supervisors[j];
+    if !sup.allowed.is_stored() {
+        return Vec::new();
+    }
+    let index = sup.allowed.index.of(&pools.allowed_index);
+    (0..sup.states as usize)
+        .map(|x| executor::table::read_bits(index, x, sup.allowed.bits) as usize)
+        .collect()
 }
 
 #[cfg(test)]

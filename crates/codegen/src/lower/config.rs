@@ -3,10 +3,13 @@
 //! fixed order (the spans and the image CRC depend on it).
 
 use super::nets::{NetGroups, NetLayout};
+use crate::backend::table::{bits_for, write_bits};
 use crate::error::Error;
 use des::automaton::StateId;
 use executor::program::{self as ex, Config, Index, Span};
 use plc_project::{Action, Drive, Project, Trigger, Unexpected};
+use std::collections::HashMap;
+use std::collections::HashSet;
 
 /// The executor's description of a project, in owned vectors.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -51,7 +54,8 @@ pub struct ConfigPools {
     /// commands with a request input.
     pub event_lists: Vec<Index>,
     /// Pool of event sets, each [`ex::words`]`(events)` words: what each
-    /// supervisor never blocks, the commands without a request input.
+    /// supervisor never blocks, its stored allowed sets, the commands
+    /// without a request input.
     pub event_masks: Vec<u32>,
     /// The commands without a request input (span of `event_masks`).
     pub commands: Span,
@@ -69,6 +73,8 @@ pub struct ConfigPools {
     pub state_bits: Vec<ex::StateBit>,
     /// Pool of guard nodes (node `bit`s index `state_bits`).
     pub guard_nodes: Vec<ex::GuardNode>,
+    /// Pool of the packed set numbers of stored allowed sets.
+    pub allowed_index: Vec<u32>,
     /// The layout of each net, in declaration order: its groups are the
     /// supervisors after the automata.
     pub nets: Vec<NetLayout>,
@@ -111,6 +117,8 @@ struct MaskPool {
     /// Words per set.
     words: usize,
     pool: Vec<u32>,
+    /// The number of each set in the pool.
+    numbers: HashMap<Vec<u32>, usize>,
     /// What the sets and their words are, for errors (`"input masks"`,
     /// `"input words"`).
     names: (&'static str, &'static str),
@@ -121,6 +129,7 @@ impl MaskPool {
         MaskPool {
             words: ex::words(count),
             pool: Vec::new(),
+            numbers: HashMap::new(),
             names,
         }
     }
@@ -131,20 +140,28 @@ impl MaskPool {
         if members.is_empty() {
             return Ok(Span::EMPTY);
         }
+        let at = self.words * self.insert(self.mask(members));
+        let (masks, words) = self.names;
+        index(at + self.words, masks)?;
+        Ok(Span::new(index(at, masks)?, index(self.words, words)?))
+    }
+
+    /// The set of `members` as words.
+    fn mask<'m>(&self, members: impl IntoIterator<Item = &'m usize>) -> Vec<u32> {
         let mut mask = vec![0u32; self.words];
         for &i in members {
             mask[i / 32] |= 1 << (i % 32);
         }
-        let at = match self.pool.chunks(self.words).position(|m| m == mask) {
-            Some(found) => found * self.words,
-            None => {
-                self.pool.extend_from_slice(&mask);
-                self.pool.len() - self.words
-            }
-        };
-        let (masks, words) = self.names;
-        index(at + self.words, masks)?;
-        Ok(Span::new(index(at, masks)?, index(self.words, words)?))
+        mask
+    }
+
+    /// The number of `mask` in the pool, appended if new.
+    fn insert(&mut self, mask: Vec<u32>) -> usize {
+        let next = self.numbers.len();
+        *self.numbers.entry(mask.clone()).or_insert_with(|| {
+            self.pool.extend_from_slice(&mask);
+            next
+        })
     }
 }
 
@@ -225,6 +242,7 @@ impl ConfigPools {
             guards: guards.guards,
             state_bits: guards.state_bits,
             guard_nodes: guards.nodes,
+            allowed_index: layout.allowed_index,
             nets,
         })
     }
@@ -261,6 +279,7 @@ impl ConfigPools {
                 bits: &self.state_bits,
                 nodes: &self.guard_nodes,
             },
+            allowed_index: &self.allowed_index,
         }
     }
 }
@@ -339,6 +358,10 @@ struct SupervisorShape {
     initial: u32,
     /// Its events (project indices) in local order.
     alphabet: Vec<usize>,
+    /// The events it enables in each state (project indices), when its
+    /// allowed sets are stored ([`ex::AllowedSets`]); `None` for a net
+    /// group, whose sets are computed.
+    enabled: Option<Vec<Vec<usize>>>,
 }
 
 /// Every executor supervisor of `project`: the automata, then the net
@@ -348,10 +371,20 @@ fn supervisor_shapes(project: &Project, nets: &[NetLayout]) -> Result<Vec<Superv
     for s in &project.supervisors {
         let initial = s.automaton.initial();
         let initial = initial.ok_or_else(|| Refusal::NoInitialState(s.name.clone()))?;
+        let enabled = (0..s.automaton.num_states())
+            .map(|x| {
+                let x = StateId(x as u32);
+                (s.local_events.iter())
+                    .filter(|&&(_, id)| s.automaton.successor(x, id).is_some())
+                    .map(|&(e, _)| e)
+                    .collect()
+            })
+            .collect();
         shapes.push(SupervisorShape {
             states: s.automaton.num_states() as u32,
             initial: initial.0,
             alphabet: s.local_events.iter().map(|&(e, _)| e).collect(),
+            enabled: Some(enabled),
         });
     }
     for (net, layout) in project.nets.iter().zip(nets) {
@@ -362,6 +395,7 @@ fn supervisor_shapes(project: &Project, nets: &[NetLayout]) -> Result<Vec<Superv
                 states: 1 << layout.group_bits[g],
                 initial: layout.pack(g, net.net.initial()),
                 alphabet: transitions.iter().map(|&t| net.events[t]).collect(),
+                enabled: None,
             });
         }
     }
@@ -423,6 +457,7 @@ struct Layout<'p> {
     actions: Vec<ex::Action>,
     memberships: Vec<ex::Membership>,
     state_map: Vec<ex::StateMapEntry>,
+    allowed_index: Vec<u32>,
 }
 
 impl<'p> Layout<'p> {
@@ -437,6 +472,7 @@ impl<'p> Layout<'p> {
             actions: Vec::new(),
             memberships: Vec::new(),
             state_map: Vec::new(),
+            allowed_index: Vec::new(),
         }
     }
 
@@ -564,12 +600,17 @@ impl<'p> Layout<'p> {
     }
 
     /// The supervisors: alphabets in `event_lists`, what each never
-    /// blocks in `event_masks`.
+    /// blocks and its stored allowed sets in `event_masks`, their index in
+    /// `allowed_index`.
     fn supervisors(&mut self, shapes: Vec<SupervisorShape>) -> Result<Vec<ex::SupervisorSpec>> {
         let count = self.project.events.len();
         let mut supervisors = Vec::with_capacity(shapes.len());
         for shape in shapes {
             let outside: Vec<usize> = (0..count).filter(|e| !shape.alphabet.contains(e)).collect();
+            let allowed = match &shape.enabled {
+                Some(enabled) if count != 0 => self.allowed_sets(&outside, enabled)?,
+                _ => ex::AllowedSets::COMPUTED,
+            };
             let outside = self.event_masks.span(&outside)?;
             let alphabet = to_indices(&shape.alphabet, "events")?;
             supervisors.push(ex::SupervisorSpec {
@@ -577,9 +618,45 @@ impl<'p> Layout<'p> {
                 initial: shape.initial,
                 alphabet: push_span(&mut self.event_lists, &alphabet, "event lists")?,
                 outside,
+                allowed,
             });
         }
         Ok(supervisors)
+    }
+
+    /// A supervisor's allowed set in each state (`outside` and what it
+    /// enables there), each distinct set once in `event_masks`, and the
+    /// index of their numbers; [`ex::AllowedSets::COMPUTED`] when the index
+    /// and the sets it adds would take more than `stored_sets_bytes`.
+    fn allowed_sets(
+        &mut self,
+        outside: &[usize],
+        enabled: &[Vec<usize>],
+    ) -> Result<ex::AllowedSets> {
+        let masks: Vec<Vec<u32>> = (enabled.iter())
+            .map(|events| self.event_masks.mask(outside.iter().chain(events)))
+            .collect();
+        let new: HashSet<&Vec<u32>> = (masks.iter())
+            .filter(|m| !self.event_masks.numbers.contains_key(*m))
+            .collect();
+        let sets = self.event_masks.numbers.len() + new.len();
+        let bits = bits_for(sets.saturating_sub(1) as u64);
+        let index_words = (masks.len() * usize::from(bits)).div_ceil(32);
+        let bytes = 4 * (index_words + new.len() * self.event_masks.words);
+        if bytes as u64 > u64::from(self.project.stored_sets_bytes) {
+            return Ok(ex::AllowedSets::COMPUTED);
+        }
+        let mut packed = vec![0; index_words];
+        for (x, mask) in masks.into_iter().enumerate() {
+            let k = self.event_masks.insert(mask);
+            write_bits(&mut packed, x, bits, k as u32);
+        }
+        // Set numbers stay within 16 bits, as every span of the pool.
+        index(self.event_masks.pool.len(), self.event_masks.names.0)?;
+        Ok(ex::AllowedSets {
+            index: push_span(&mut self.allowed_index, &packed, "allowed index words")?,
+            bits,
+        })
     }
 
     /// The commands the controller may choose without a request (a span of

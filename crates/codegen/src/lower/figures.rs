@@ -48,8 +48,10 @@ impl ImageCheck {
 /// What the executor keeps to decide feasibility by word operations
 /// (docs/architecture.md, "What a scan costs"): the supervisors'
 /// alphabets and event sets in flash, one event set per supervisor and the
-/// feasible set in RAM. The enabled events themselves are the tables' rows
-/// of defined-bits (or the logic backend's φ functions), counted there.
+/// feasible set in RAM. A supervisor that stores its allowed sets has them
+/// among the event sets, one per distinct set, with an index by state;
+/// the others' enabled events are the tables' rows of defined-bits (or the
+/// logic backend's φ functions), counted there.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 pub struct ScanSets {
     /// Words of an event set (32 events per word).
@@ -58,10 +60,16 @@ pub struct ScanSets {
     /// local event).
     pub alphabet_bytes: usize,
     /// Flash bytes of the event masks (what each supervisor never blocks,
-    /// the commands).
+    /// the commands, the stored allowed sets).
     pub mask_bytes: usize,
     /// RAM bytes of the sets: one per supervisor, and the feasible set.
     pub ram_bytes: usize,
+    /// Supervisors whose allowed sets are stored (`[plc] stored_sets_bytes`).
+    pub stored: usize,
+    /// All supervisors.
+    pub supervisors: usize,
+    /// Flash bytes of the stored sets' index (`ALLOWED_INDEX`).
+    pub index_bytes: usize,
     /// What the symbolic supervisors' guards cost.
     pub guards: GuardFigures,
 }
@@ -126,6 +134,13 @@ impl ScanSets {
             alphabet_bytes: 2 * alphabet,
             mask_bytes: 4 * pools.event_masks.len(),
             ram_bytes: 4 * event_words * (pools.supervisors.len() + 1),
+            stored: pools
+                .supervisors
+                .iter()
+                .filter(|s| s.allowed.is_stored())
+                .count(),
+            supervisors: pools.supervisors.len(),
+            index_bytes: 4 * pools.allowed_index.len(),
             guards: GuardFigures::of(pools),
         }
     }

@@ -78,12 +78,22 @@ pub enum Lowered {
 impl Lowered {
     /// Lowers `project` for `backend`, telling `progress` what the logic
     /// backend is minimising.
+    /// Its stored allowed sets are checked against its supervisors
+    /// ([`executor::validate::validate_allowed_sets`]), which the
+    /// controller leaves to generation.
     pub fn new(project: &Project, backend: Backend, progress: &dyn Progress) -> Result<Lowered> {
-        Ok(match backend {
+        let lowered = match backend {
             Backend::Table => Lowered::Table(TableImage::new(project)?),
             Backend::Logic => Lowered::Logic(LogicImage::with_progress(project, progress)?),
             Backend::Match => Lowered::Match(MatchImage::new(project)?),
-        })
+        };
+        executor::validate::validate_allowed_sets(&lowered).map_err(|invalid| {
+            Error::AllowedSets {
+                project: project.path.clone(),
+                invalid,
+            }
+        })?;
+        Ok(lowered)
     }
 
     /// The backend it was lowered for.

@@ -100,6 +100,7 @@ pub(crate) fn hand_project(
         overrun_fault: false,
         lost_edge_fault: false,
         rom_test_bytes_per_scan: 64,
+        stored_sets_bytes: 1024,
         inputs,
         outputs,
         timers,

@@ -132,6 +132,9 @@ pub(crate) struct ProjectSpec {
     /// The background image test's share per scan: a few words, so that
     /// passes complete (and compare) many times in a run.
     pub(crate) rom_test_bytes_per_scan: u16,
+    /// `[plc] stored_sets_bytes`: 0 (every supervisor computes its allowed
+    /// sets), a little (some store them) or plenty (all do).
+    pub(crate) stored_sets_bytes: u32,
     pub(crate) debounce: Vec<u8>,
     pub(crate) timers: Vec<PresetSpec>,
     pub(crate) outputs: Vec<OutputSpec>,
@@ -183,6 +186,7 @@ impl ProjectSpec {
             overrun_fault: false,
             lost_edge_fault: false,
             rom_test_bytes_per_scan: self.rom_test_bytes_per_scan,
+            stored_sets_bytes: self.stored_sets_bytes,
             inputs,
             outputs,
             timers,
@@ -523,6 +527,7 @@ pub(crate) fn project(
         prop_oneof![Just(Unexpected::Fault), Just(Unexpected::Ignore)],
         proptest::option::weighted(0.85, any::<Pick>()),
         (1u16..=16).prop_map(|words| 4 * words),
+        prop_oneof![Just(0u32), Just(24), Just(4096)],
         vec(0u8..=3, shape.inputs.clone()),
         vec(preset(), 0..=3),
         vec(output(), 1..=5),
@@ -536,6 +541,7 @@ pub(crate) fn project(
                 unexpected,
                 reset,
                 rom_test_bytes_per_scan,
+                stored_sets_bytes,
                 debounce,
                 timers,
                 outputs,
@@ -548,6 +554,7 @@ pub(crate) fn project(
                     unexpected,
                     reset,
                     rom_test_bytes_per_scan,
+                    stored_sets_bytes,
                     debounce,
                     timers,
                     outputs,

@@ -54,7 +54,7 @@ pub fn seed_images(models: &Path) -> Vec<TableImage> {
 }
 
 /// How many kinds of [`Mutation`] there are (its `field`).
-pub const FIELDS: u8 = 28;
+pub const FIELDS: u8 = 31;
 
 /// One field of an image rewritten to `value` (`item` picks the item of a
 /// list or pool, modulo its length; an empty one is left alone).
@@ -184,9 +184,14 @@ pub fn apply(image: &mut TableImage, m: Mutation) {
             }
             Some(())
         }
+        // A supervisor's stored allowed sets: their index span, the width
+        // of an entry, a word of the index.
+        27 => at(&mut p.supervisors, k).map(|x| x.allowed.index = span(v)),
+        28 => at(&mut p.supervisors, k).map(|x| x.allowed.bits = v as u8),
+        29 => at(&mut p.allowed_index, k).map(|x| *x ^= 1 << (v % 32)),
         // A list or pool cut short or grown by a copy of one of its items.
         _ => {
-            match k % 13 {
+            match k % 14 {
                 0 => resize(&mut p.inputs, v),
                 1 => resize(&mut p.debounced, v),
                 2 => resize(&mut p.outputs, v),
@@ -199,6 +204,7 @@ pub fn apply(image: &mut TableImage, m: Mutation) {
                 9 => resize(&mut p.actions, v),
                 10 => resize(&mut p.memberships, v),
                 11 => resize(&mut p.state_map, v),
+                12 => resize(&mut p.allowed_index, v),
                 _ => resize(&mut image.tables, v),
             }
             Some(())

@@ -98,6 +98,7 @@ const SUPERVISORS: [SupervisorSpec; 1] = [SupervisorSpec {
     initial: 0,
     alphabet: Span::new(1, 1),
     outside: Span::EMPTY,
+    allowed: AllowedSets::COMPUTED,
 }];
 /// The event's binding: `step` alone.
 const INPUT_MASKS: [u32; 1] = [mask_word(0, &[STEP as Index])];
@@ -136,6 +137,7 @@ fn ring_config(rom_test_bytes_per_scan: u16) -> Config<'static> {
             mask: u32::MAX,
         }],
         guards: Guards::NONE,
+        allowed_index: &[],
     }
 }
 
@@ -321,6 +323,10 @@ fn every_pool() -> TableProgram<'static> {
             initial: 2,
             alphabet: Span::new(3, 1),
             outside: Span::new(0, 1),
+            allowed: AllowedSets {
+                index: Span::new(0, 1),
+                bits: 19,
+            },
         }]),
         input_masks: &[0x11, 0x22],
         event_lists: &[5, 6, 7, 8],
@@ -351,6 +357,7 @@ fn every_pool() -> TableProgram<'static> {
                 high: 18,
             }],
         },
+        allowed_index: &[20],
         ..ring_config(8)
     };
     let table = SupervisorTable {
@@ -385,8 +392,8 @@ fn the_crc_is_crc32_mpeg2_over_the_documented_words() {
         // pool lengths: inputs, debounced, outputs, timers, events,
         // supervisors, input masks, event lists, event masks, actions,
         // memberships, state map, guards, state bits, guard nodes;
-        // tables
-        1, 1, 1, 1, 1, 1, 2, 4, 3, 1, 1, 1, 1, 1, 1, 1,
+        // allowed index; tables
+        1, 1, 1, 1, 1, 1, 2, 4, 3, 1, 1, 1, 1, 1, 1, 1, 1,
         // name, four bytes a word, least significant first
         u32::from_le_bytes(*b"abcd"), u32::from_le_bytes([b'e', 0, 0, 0]),
         // the input: debounce, raises
@@ -400,8 +407,9 @@ fn the_crc_is_crc32_mpeg2_over_the_documented_words() {
         // the event: rising, its mask, when, unless, no request,
         // actions, members
         1, span(0, 1), span(1, 1), 0, u32::MAX, span(0, 1), span(0, 1),
-        // the supervisor: states, initial, alphabet, outside
-        3, 2, span(3, 1), span(0, 1),
+        // the supervisor: states, initial, alphabet, outside, allowed
+        // index and bits
+        3, 2, span(3, 1), span(0, 1), span(0, 1), 19,
         // input masks, event lists, event masks
         0x11, 0x22, 5, 6, 7, 8, 0x33, 0x44, 0x55,
         // start timer 0; supervisor 9's local event 10; state map
@@ -410,6 +418,8 @@ fn the_crc_is_crc32_mpeg2_over_the_documented_words() {
         // the guard (event, root, nodes); its state bit (component |
         // shift << 16); its node (bit | low << 16, high)
         13, 2, span(0, 1), 14 | 15 << 16, 16 | 17 << 16, 18,
+        // the allowed index
+        20,
         // table header: events, state bits, sparse, start bits, lengths
         2, 2, 1, 2, 1, 1, 1,
         // defined, targets, row starts
@@ -469,6 +479,9 @@ fn every_field_of_the_configuration_and_tables_is_in_the_image() {
         ("initial state", with(Config { supervisors: one(SupervisorSpec { initial: 1, ..supervisor }), ..c })),
         ("alphabet", with(Config { supervisors: one(SupervisorSpec { alphabet: other, ..supervisor }), ..c })),
         ("outside", with(Config { supervisors: one(SupervisorSpec { outside: other, ..supervisor }), ..c })),
+        ("allowed index", with(Config { supervisors: one(SupervisorSpec { allowed: AllowedSets { index: other, ..supervisor.allowed }, ..supervisor }), ..c })),
+        ("allowed bits", with(Config { supervisors: one(SupervisorSpec { allowed: AllowedSets { bits: 3, ..supervisor.allowed }, ..supervisor }), ..c })),
+        ("allowed index pool", with(Config { allowed_index: leak(vec![21]), ..c })),
         ("input masks", with(Config { input_masks: leak(vec![0x11, 0x23]), ..c })),
         ("event lists", with(Config { event_lists: leak(vec![5, 6, 7, 9]), ..c })),
         ("event masks", with(Config { event_masks: leak(vec![0x33, 0x44, 0x56]), ..c })),

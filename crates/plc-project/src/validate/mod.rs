@@ -188,6 +188,7 @@ impl Validator<'_> {
             overrun_fault: plc.overrun_fault,
             lost_edge_fault: plc.lost_edge_fault,
             rom_test_bytes_per_scan: plc.rom_test_bytes_per_scan,
+            stored_sets_bytes: plc.stored_sets_bytes,
             inputs: inputs.items,
             outputs,
             timers: timers.items,

@@ -5,7 +5,8 @@
 //! ranges are the executor's, [`executor::pacing::SCAN_PERIOD_MS`] and
 //! [`executor::timers::PRESET_MS`]);
 //! `max_commands_per_scan` and `overrun_limit` in `0..=65535`;
-//! `rom_test_bytes_per_scan` in `4..=65532`; `debounce_scans` in `0..=255`.
+//! `rom_test_bytes_per_scan` in `4..=65532`; `stored_sets_bytes` in
+//! `0..2^31`; `debounce_scans` in `0..=255`.
 
 use super::Validator;
 use des::error::Result;
@@ -42,6 +43,12 @@ pub(super) const OVERRUN_LIMIT: Field = Field {
 pub(super) const ROM_TEST_BYTES_PER_SCAN: Field = Field {
     name: "rom_test_bytes_per_scan",
     range: 4..=u16::MAX as i64 - 3,
+};
+
+/// `[plc] stored_sets_bytes`.
+pub(super) const STORED_SETS_BYTES: Field = Field {
+    name: "stored_sets_bytes",
+    range: 0..=i32::MAX as i64,
 };
 
 /// `debounce_scans` of an input.
@@ -101,6 +108,7 @@ mod tests {
         assert_eq!(p.overrun_limit, 1);
         assert!(!p.overrun_fault && !p.lost_edge_fault);
         assert_eq!(p.rom_test_bytes_per_scan, 64);
+        assert_eq!(p.stored_sets_bytes, 1024);
         assert_eq!(p.inputs[0].debounce_scans, 0);
         assert!(!p.outputs[0].safe);
         assert_eq!(p.outputs[0].drive, Drive::Actions { initial: false });
@@ -134,5 +142,16 @@ mod tests {
         assert_eq!(p.rom_test_bytes_per_scan, 65532);
         let p = load(&format!("{HEAD}rom_test_bytes_per_scan = 4\n")).unwrap();
         assert_eq!(p.rom_test_bytes_per_scan, 4);
+        let sets = |v: &str| load(&format!("{HEAD}stored_sets_bytes = {v}\n"));
+        assert_eq!(sets("0").unwrap().stored_sets_bytes, 0);
+        assert_eq!(
+            sets("2147483647").unwrap().stored_sets_bytes,
+            i32::MAX as u32
+        );
+        let err = sets("-1").unwrap_err().to_string();
+        assert!(
+            err.ends_with("stored_sets_bytes must be between 0 and 2147483647, found -1"),
+            "{err}"
+        );
     }
 }

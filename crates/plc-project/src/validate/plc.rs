@@ -9,9 +9,14 @@ use super::super::model::{Input, Unexpected};
 use super::super::parse::RawPlc;
 use super::numbers::{
     MAX_COMMANDS_PER_SCAN, OVERRUN_LIMIT, ROM_TEST_BYTES_PER_SCAN, SCAN_PERIOD_MS,
+    STORED_SETS_BYTES,
 };
 use super::{Declared, Validator};
 use des::error::Result;
+
+/// `stored_sets_bytes` when the file leaves it out: a supervisor's
+/// allowed sets are stored while they take at most 1 KiB of flash.
+pub const DEFAULT_STORED_SETS_BYTES: i64 = 1024;
 
 /// The validated settings of `[plc]` (its name needs no checks).
 pub(super) struct Settings {
@@ -23,6 +28,7 @@ pub(super) struct Settings {
     pub overrun_fault: bool,
     pub lost_edge_fault: bool,
     pub rom_test_bytes_per_scan: u16,
+    pub stored_sets_bytes: u32,
 }
 
 impl Validator<'_> {
@@ -52,6 +58,11 @@ impl Validator<'_> {
                 ));
             }
         }
+        let stored_sets_bytes = self.number_or(
+            plc.stored_sets_bytes.as_ref(),
+            &STORED_SETS_BYTES,
+            DEFAULT_STORED_SETS_BYTES,
+        )? as u32;
         let unexpected = match &plc.unexpected {
             None => Unexpected::Fault,
             Some(u) => match u.get_ref().as_str() {
@@ -78,6 +89,7 @@ impl Validator<'_> {
             overrun_fault: plc.overrun_fault,
             lost_edge_fault: plc.lost_edge_fault,
             rom_test_bytes_per_scan,
+            stored_sets_bytes,
         })
     }
 }
