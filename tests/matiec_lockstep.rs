@@ -427,6 +427,7 @@ matiec_tests! {
     iec_names_compile_and_run_in_lockstep: 10, 31;
     module_compiles_and_runs_in_lockstep: 11, 32;
     testbed_compiles_and_runs_in_lockstep: 12, 34;
+    testbed_whole_compiles_and_runs_in_lockstep: 13, 35;
 }
 
 /// Guards written as chains of BOOL temporaries (`GN[k]`, the `CHOSEN`

@@ -23,9 +23,9 @@ pub fn load(rel: &str) -> Project {
 
 /// Every project with `[board]` or without: the seeds, the benchmark AGV,
 /// the boiler both ways, the nets, names IEC compilers reserve, the
-/// conveyor module's symbolic supervisor (guards) and the manufacturing
-/// testbed (45 automata).
-pub const PROJECTS: [&str; 13] = [
+/// conveyor module's symbolic supervisor (guards), the manufacturing
+/// testbed (45 automata) and its guard supervisor of the whole (51).
+pub const PROJECTS: [&str; 14] = [
     "models/motivating.plc.toml",
     "models/press.plc.toml",
     "models/press7.plc.toml",
@@ -39,6 +39,7 @@ pub const PROJECTS: [&str; 13] = [
     "tests/fixtures/iec_names/iec_names.plc.toml",
     "models/module.plc.toml",
     "models/testbed/testbed.plc.toml",
+    "models/testbed/whole.plc.toml",
 ];
 
 /// What one scan left, on either side, in the executor's terms.
