@@ -41,6 +41,7 @@ impl Row {
     }
 }
 
+/// Runs the benchmark (no arguments); fails on a disagreement.
 pub fn run_task(args: &[String]) -> Result {
     if let Some(arg) = args.first() {
         return Err(format!(

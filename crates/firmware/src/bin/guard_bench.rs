@@ -27,7 +27,7 @@
 #![no_main]
 
 use core::hint::black_box;
-use core::mem::size_of;
+use core::mem::{size_of, size_of_val};
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::SYST;
 use cortex_m_rt::{entry, exception, ExceptionFrame};
@@ -206,9 +206,7 @@ fn main() -> ! {
         let (bdd_median, bdd_max) = median_max(&mut bdd[..timed]);
         let (sop_median, sop_max) = median_max(&mut sop[..timed]);
         let g = &c.guards;
-        let bdd_bytes = g.events.len() * size_of::<GuardSpec>()
-            + g.bits.len() * size_of::<StateBit>()
-            + g.nodes.len() * size_of::<GuardNode>();
+        let bdd_bytes = size_of_val(g.events) + size_of_val(g.bits) + size_of_val(g.nodes);
         let s = &c.sop;
         // Guards kept as node tables keep their nodes and state bits.
         let as_nodes = s.guards.iter().filter(|g| g.nodes).count();
@@ -218,14 +216,10 @@ fn main() -> ! {
                 size_of::<GuardSpec>() + usize::from(spec.nodes.len) * size_of::<GuardNode>()
             })
             .sum();
-        let kept_bits = if as_nodes > 0 {
-            g.bits.len() * size_of::<StateBit>()
-        } else {
-            0
-        };
-        let sop_bytes = s.guards.len() * size_of::<SopGuard>()
-            + s.gathers.len() * size_of::<Gather>()
-            + s.cubes.len() * size_of::<Cube>()
+        let kept_bits = if as_nodes > 0 { size_of_val(g.bits) } else { 0 };
+        let sop_bytes = size_of_val(s.guards)
+            + size_of_val(s.gathers)
+            + size_of_val(s.cubes)
             + kept_nodes
             + kept_bits;
         hprintln!(
