@@ -73,13 +73,17 @@ pub fn run_task(args: &[String]) -> Result {
     let (status, stdout) = run_elf(&qemu, &copy)?;
     let rows: Vec<Row> = stdout.lines().filter_map(Row::parse).collect();
     let (bdd_code, sop_code) = code_sizes(&copy)?;
-    print_table(&rows, bdd_code, sop_code);
     let summary = stdout
         .lines()
         .rev()
         .find(|l| l.starts_with("collections="))
         .ok_or_else(|| format!("{}: no summary line (exit {status})", copy.display()))?;
-    if !status.success() || summary.split_whitespace().last() != Some("disagreements=0") {
+    let call = summary
+        .split_whitespace()
+        .find_map(|w| w.strip_prefix("call="))
+        .unwrap_or("?");
+    print_table(&rows, call, (bdd_code, sop_code));
+    if !status.success() || !summary.split_whitespace().any(|w| w == "disagreements=0") {
         return Err(format!(
             "guard-bench: the node tables and the sums of products disagree ({summary}, exit {status})"
         ));
@@ -119,7 +123,10 @@ fn code_sizes(elf: &Path) -> Result<(u64, u64)> {
     ))
 }
 
-fn print_table(rows: &[Row], bdd_code: u64, sop_code: u64) {
+/// The figures of `rows`; `call`: the instructions of a timed call that
+/// reads no guard; `code`: the evaluators' bytes (node walk, sum of
+/// products).
+fn print_table(rows: &[Row], call: &str, (bdd_code, sop_code): (u64, u64)) {
     println!(
         "\n{:<18} {:>6} {:>7} {:>7} {:>6} {:>6} {:>7} {:>7} {:>6} {:>7} {:>7} {:>7} {:>7} {:>7}",
         "collection",
@@ -157,7 +164,7 @@ fn print_table(rows: &[Row], bdd_code: u64, sop_code: u64) {
         );
     }
     println!(
-        "(instructions per guard evaluation, call included; bytes: the data of each form; \
+        "(instructions per guard evaluation, call included (a call that reads no guard: {call}); bytes: the data of each form; \
          as_node: guards with no sum of products, kept as node tables in the second form; \
          vectors: reachable/all; code: node walk {bdd_code} B, sum of products {sop_code} B)"
     );
