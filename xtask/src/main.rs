@@ -278,7 +278,7 @@ fn ci() -> Result {
     // clippy on both firmware builds for the target.
     qemu::run_task(&[])?;
     // The guard forms on the target: node tables and sums of products
-    // must agree on every evaluation (25 s once built).
+    // must agree on every evaluation (15 s once built).
     guard_bench::run_task(&[])?;
     size::run_task(&[])?;
     run(cargo().args([
