@@ -6,6 +6,8 @@
 //!   or `match` (the baseline).
 //! - `PLC_SCENARIO` (feature `qemu`): the recorded scenario to replay
 //!   (`host-sim record`); `cargo xtask qemu` sets it.
+//! - `PLC_GUARD_BENCH` (feature `guard-bench`): the data of the guard-form
+//!   benchmark (Rust source); `cargo xtask guard-bench` writes and sets it.
 //!
 //! The program goes to `OUT_DIR/program.rs`. The memory layout (the
 //! board's or QEMU's, from `layout/`) is copied to `OUT_DIR/plc-layout.x`,
@@ -45,6 +47,7 @@ fn main() {
     let root = manifest.join("../..");
     let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("set by cargo"));
     let qemu = std::env::var_os("CARGO_FEATURE_QEMU").is_some();
+    let guard_bench = std::env::var_os("CARGO_FEATURE_GUARD_BENCH").is_some();
     let board = std::env::var_os("CARGO_FEATURE_BOARD").is_some();
     // Linker scripts only mean something on the bare-metal target; on a
     // host the binaries are stubs (`cargo clippy --workspace`).
@@ -85,7 +88,7 @@ fn main() {
     }
 
     // The root memory.x (found first by the linker) includes plc-layout.x.
-    let layout = manifest.join(if qemu {
+    let layout = manifest.join(if qemu || guard_bench {
         "layout/mps2-an386.x"
     } else {
         "layout/stm32f411re.x"
@@ -109,5 +112,12 @@ fn main() {
             std::process::exit(1);
         };
         copy(&root.join(scenario), &out.join("scenario.bin"));
+    }
+    if guard_bench {
+        let Some(data) = env("PLC_GUARD_BENCH") else {
+            eprintln!("error: the guard-bench binary needs PLC_GUARD_BENCH (its data); `cargo xtask guard-bench` sets it");
+            std::process::exit(1);
+        };
+        copy(&root.join(data), &out.join("guard_bench.rs"));
     }
 }

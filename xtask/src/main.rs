@@ -16,6 +16,8 @@
 //!   seed project parsed by blark and validated against the TC6 schema.
 //! - `matiec`: the same exports compiled by matiec (OpenPLC's and
 //!   Beremiz's IEC compiler) and gcc, run in lockstep with host-sim.
+//! - `guard-bench`: the guards of symbolic supervisors evaluated in QEMU
+//!   as node tables and as sums of products (instructions, bytes).
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -23,6 +25,7 @@ use std::process::{Command, ExitCode};
 mod bench;
 mod budgets;
 mod deps;
+mod guard_bench;
 mod iec;
 mod layers;
 mod matiec;
@@ -41,6 +44,7 @@ fn main() -> ExitCode {
         Some("layers") => layers::run_task(&args[1..]),
         Some("iec") => iec::run_task(&args[1..]),
         Some("matiec") => matiec::run_task(&args[1..]),
+        Some("guard-bench") => guard_bench::run_task(&args[1..]),
         _ => {
             eprintln!(
                 "usage: cargo xtask <task>\n\
@@ -52,7 +56,8 @@ fn main() -> ExitCode {
                  deps                       the README's commands and the firmware build without libclang (cargo tree)\n  \
                  layers [--edges]           crates depend on lower stages only; no import circle inside a crate\n  \
                  iec [--all]                ST and PLCopen XML of every seed: blark parse, TC6 schema (--all: the largest ST too)\n  \
-                 matiec                     ST and PLCopen XML of every seed compiled by matiec and gcc, run in lockstep with host-sim"
+                 matiec                     ST and PLCopen XML of every seed compiled by matiec and gcc, run in lockstep with host-sim\n  \
+                 guard-bench                guards in QEMU as node tables and as sums of products: instructions, bytes"
             );
             Err("no task given".into())
         }
@@ -273,6 +278,9 @@ fn ci() -> Result {
     // mismatches, instruction budgets), then the board build's sizes, then
     // clippy on both firmware builds for the target.
     qemu::run_task(&[])?;
+    // The guard forms on the target: node tables and sums of products
+    // must agree on every evaluation (15 s once built).
+    guard_bench::run_task(&[])?;
     size::run_task(&[])?;
     run(cargo().args([
         "clippy",

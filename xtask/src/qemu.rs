@@ -15,7 +15,7 @@ use crate::budgets::{self, Budgets, ModelBudget};
 use crate::size::llvm_size;
 use crate::{cargo, root, run, sysdeps, Result};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::{Command, ExitStatus, Stdio};
 use std::time::{Duration, Instant};
 
 /// Longest a QEMU run may take.
@@ -259,27 +259,15 @@ fn build(
     budget: &ModelBudget,
     target: &str,
 ) -> Result<PathBuf> {
-    let mut cmd = cargo();
-    cmd.args([
-        "build",
-        "--release",
-        "-p",
-        "firmware",
-        "--no-default-features",
-        "--features",
-        if backend == "logic" {
-            "qemu,logic"
-        } else {
-            "qemu"
-        },
-        "--bin",
-        "qemu-replay",
-        "--target",
-        target,
-    ])
-    .env("PLC_PROJECT", project)
-    .env("PLC_BACKEND", backend)
-    .env("PLC_SCENARIO", scenario);
+    let features = if backend == "logic" {
+        "qemu,logic"
+    } else {
+        "qemu"
+    };
+    let mut cmd = firmware_build(features, "qemu-replay", target);
+    cmd.env("PLC_PROJECT", project)
+        .env("PLC_BACKEND", backend)
+        .env("PLC_SCENARIO", scenario);
     // Budgets are checked by the harness itself for our table backend.
     if backend == "table" && target.starts_with("thumbv7em") {
         for (var, value) in budget.harness_env() {
@@ -294,8 +282,39 @@ fn build(
     Ok(crate::target_dir().join(format!("{target}/release/qemu-replay")))
 }
 
+/// `cargo build --release` of the firmware's QEMU binary `bin` with
+/// `features` (the board's left out) for `target`.
+pub fn firmware_build(features: &str, bin: &str, target: &str) -> Command {
+    let mut cmd = cargo();
+    cmd.args([
+        "build",
+        "--release",
+        "-p",
+        "firmware",
+        "--no-default-features",
+    ])
+    .args(["--features", features, "--bin", bin, "--target", target]);
+    cmd
+}
+
 /// Runs `elf` in QEMU with a timeout; the harness's figures.
 fn run_qemu(qemu: &str, elf: &Path) -> Result<Figures> {
+    let (status, stdout) = run_elf(qemu, elf)?;
+    let figures = stdout
+        .lines()
+        .rev()
+        .find_map(Figures::parse)
+        .ok_or_else(|| format!("{}: no result line (exit {status})", elf.display()))?;
+    if !status.success() && figures.mismatches == 0 {
+        eprintln!("  (harness exit {status}: a budget does not hold)");
+    }
+    Ok(figures)
+}
+
+/// Runs `elf` on QEMU's mps2-an386 (Cortex-M4, `-icount shift=9`,
+/// semihosting) with a timeout, echoing what it prints: its exit status
+/// and standard output.
+pub fn run_elf(qemu: &str, elf: &Path) -> Result<(ExitStatus, String)> {
     let mut cmd = Command::new(qemu);
     cmd.args([
         "-M",
@@ -337,26 +356,15 @@ fn run_qemu(qemu: &str, elf: &Path) -> Result<Figures> {
         std::thread::sleep(Duration::from_millis(20));
     };
     let out = child.wait_with_output().map_err(|e| e.to_string())?;
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     for line in stdout.lines() {
         eprintln!("  {line}");
     }
-    let figures = stdout
-        .lines()
-        .rev()
-        .find_map(Figures::parse)
-        .ok_or_else(|| {
-            format!(
-                "{}: no result line (exit {status}); stderr: {}",
-                elf.display(),
-                stderr.trim()
-            )
-        })?;
-    if !status.success() && figures.mismatches == 0 {
-        eprintln!("  (harness exit {status}: a budget does not hold)");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    if !stderr.trim().is_empty() {
+        eprintln!("  stderr: {}", stderr.trim());
     }
-    Ok(figures)
+    Ok((status, stdout))
 }
 
 /// Builds the harness of the first model for Cortex-M0+ (size only: QEMU

@@ -6,8 +6,9 @@ use crate::{cargo, root, run, Result};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// `llvm-size` of the pinned toolchain (component `llvm-tools`).
-fn llvm_size_tool() -> Result<PathBuf> {
+/// The LLVM tool `name` (`llvm-size`, `llvm-nm`) of the pinned toolchain
+/// (component `llvm-tools`).
+pub fn llvm_tool(name: &str) -> Result<PathBuf> {
     let out = |args: &[&str]| -> Result<String> {
         let o = Command::new("rustc")
             .args(args)
@@ -21,7 +22,7 @@ fn llvm_size_tool() -> Result<PathBuf> {
         .lines()
         .find_map(|l| l.strip_prefix("host: ").map(str::to_owned))
         .ok_or("rustc -vV names no host")?;
-    let tool = Path::new(sysroot.trim()).join(format!("lib/rustlib/{host}/bin/llvm-size"));
+    let tool = Path::new(sysroot.trim()).join(format!("lib/rustlib/{host}/bin/{name}"));
     if tool.exists() {
         Ok(tool)
     } else {
@@ -35,7 +36,7 @@ fn llvm_size_tool() -> Result<PathBuf> {
 /// Flash (`.text` + `.rodata` + `.data` image, i.e. text + data in
 /// Berkeley terms) and static RAM (data + bss) of `elf`.
 pub fn llvm_size(elf: &Path) -> Result<(u64, u64)> {
-    let out = Command::new(llvm_size_tool()?)
+    let out = Command::new(llvm_tool("llvm-size")?)
         .arg(elf)
         .output()
         .map_err(|e| format!("llvm-size: {e}"))?;

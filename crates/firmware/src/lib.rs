@@ -9,7 +9,8 @@
 //!   watchdog timeout for a scan period);
 //! - [`edges`]: change counts of edge-latched inputs, lost edges, the EXTI
 //!   line map;
-//! - [`levels`]: active-low pins.
+//! - [`levels`]: active-low pins;
+//! - [`icount`]: instruction counts in QEMU (SysTick under `-icount`).
 //!
 //! No control logic lives here or in the binaries: every decision is the
 //! executor's, including when scans start (`executor::pacing`: the fixed
@@ -21,6 +22,7 @@
 #![forbid(unsafe_code)]
 
 pub mod edges;
+pub mod icount;
 pub mod levels;
 
 /// The chip the board firmware is written for (its HAL is the

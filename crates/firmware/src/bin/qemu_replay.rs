@@ -33,6 +33,7 @@ use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
 use executor::replay::{unpack_words, RecordedScan, ScenarioHeader};
 use executor::{Controller, Program};
+use firmware::icount::{elapsed, exit, finish, instructions};
 use firmware::program;
 use panic_semihosting as _;
 
@@ -42,13 +43,6 @@ static SCENARIO: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/scenario.bin"
 /// Most scans whose instruction counts are kept to sort them (the median
 /// and p99 are of the first this many; the maximum is of every scan).
 const MAX_SCANS: usize = 8192;
-
-/// Instructions for `ticks` SysTick ticks under `-icount shift=9`: one
-/// instruction every 512 ns, SysTick at 25 MHz, so 12.8 ticks each
-/// (× 5 / 64), rounded to nearest, without overflow for any `ticks`.
-fn instructions(ticks: u32) -> u32 {
-    ticks / 64 * 5 + (ticks % 64 * 5 + 32) / 64
-}
 
 /// A budget given at build time, `u32::MAX` when absent.
 fn budget(value: Option<&str>) -> u32 {
@@ -100,20 +94,6 @@ fn instructions_long(syst: &mut SYST, f: impl FnOnce()) -> u32 {
         .wrapping_add(before)
         .wrapping_sub(after);
     instructions(ticks)
-}
-
-/// Ticks elapsed between two readings of the 24-bit down-counter.
-fn elapsed(before: u32, after: u32) -> u32 {
-    before.wrapping_sub(after) & 0x00ff_ffff
-}
-
-/// Ends the QEMU run with `code` (semihosting exit).
-fn exit(code: debug::ExitStatus) -> ! {
-    debug::exit(code);
-    // Not reached under QEMU; on a debugger without semihosting exit, park.
-    loop {
-        cortex_m::asm::wfi();
-    }
 }
 
 fn fail(message: &str) -> ! {
@@ -264,11 +244,7 @@ fn main() -> ! {
         && ram <= budget(option_env!("PLC_BUDGET_RAM"))
         && median <= budget(option_env!("PLC_BUDGET_INSTR_MEDIAN"))
         && max <= budget(option_env!("PLC_BUDGET_INSTR_MAX"));
-    exit(if mismatches == 0 && within {
-        debug::EXIT_SUCCESS
-    } else {
-        debug::EXIT_FAILURE
-    })
+    finish(mismatches == 0 && within)
 }
 
 #[exception]

@@ -1,0 +1,50 @@
+//! Instruction counts in QEMU (the replay harness, the guard benchmark):
+//! under `-icount shift=9` one instruction takes 512 ns and SysTick, on
+//! the 25 MHz core clock of mps2-an386, advances 12.8 ticks per
+//! instruction.
+
+/// Instructions for `ticks` SysTick ticks (× 5 / 64), rounded to nearest,
+/// without overflow for any `ticks`.
+pub fn instructions(ticks: u32) -> u32 {
+    ticks / 64 * 5 + (ticks % 64 * 5 + 32) / 64
+}
+
+/// Ticks elapsed between two readings of the 24-bit down-counter.
+pub fn elapsed(before: u32, after: u32) -> u32 {
+    before.wrapping_sub(after) & 0x00ff_ffff
+}
+
+/// Ends a QEMU run with `code` (semihosting exit); on a debugger without
+/// semihosting exit, parks.
+#[cfg(any(feature = "qemu", feature = "guard-bench"))]
+pub fn exit(code: cortex_m_semihosting::debug::ExitStatus) -> ! {
+    cortex_m_semihosting::debug::exit(code);
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+/// Ends a QEMU run: exit code 0 when `success`, 1 otherwise.
+#[cfg(any(feature = "qemu", feature = "guard-bench"))]
+pub fn finish(success: bool) -> ! {
+    use cortex_m_semihosting::debug;
+    exit(if success {
+        debug::EXIT_SUCCESS
+    } else {
+        debug::EXIT_FAILURE
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_become_instructions_and_wrap() {
+        assert_eq!(instructions(64), 5);
+        assert_eq!(instructions(13), 1);
+        assert_eq!(instructions(u32::MAX), 335_544_320);
+        assert_eq!(elapsed(10, 4), 6);
+        assert_eq!(elapsed(4, 0x00ff_fffe), 6);
+    }
+}
