@@ -6,6 +6,8 @@
 //!   [`lockstep`]: both backends side by side, compared every scan.
 //! - [`inputs`] reads and writes `inputs.csv`; [`trace`]: trace rows and
 //!   `trace.csv`; [`vcd`]: waveforms (GTKWave, Surfer).
+//! - [`plot`]: an SVG picture of any run (lanes of inputs, outputs,
+//!   events, supervisor states, fault mode, analog quantities).
 //! - [`replay`]: an input file through a project (`host-sim replay`);
 //!   [`partial`]: output files that appear only once complete.
 //! - [`scenario`]: postcard scenarios for the QEMU harness (`host-sim
@@ -31,6 +33,7 @@ pub mod closed_loop;
 pub mod inputs;
 pub mod lockstep;
 pub mod partial;
+pub mod plot;
 pub mod random_inputs;
 pub mod replay;
 pub mod rng;

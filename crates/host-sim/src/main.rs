@@ -93,6 +93,10 @@ enum Command {
         /// Also write a waveform.
         #[arg(long)]
         vcd: Option<PathBuf>,
+        /// Also draw the run as an SVG picture: inputs, outputs, events,
+        /// supervisor states and fault mode over time.
+        #[arg(long)]
+        svg: Option<PathBuf>,
         /// How supervisors are represented.
         #[arg(long, value_enum, default_value_t = BackendArg::Table)]
         backend: BackendArg,
@@ -179,6 +183,7 @@ fn run(cli: Cli) -> Result<(), String> {
             inputs: inputs_path,
             out,
             vcd: vcd_path,
+            svg,
             backend,
         } => {
             let mut sim = Sim::load(&project, backend.into()).map_err(|e| e.to_string())?;
@@ -187,7 +192,11 @@ fn run(cli: Cli) -> Result<(), String> {
             }
             // Rows are read, and the trace and waveform written, scan by
             // scan: constant memory however long the inputs file.
-            let totals = replay::stream(&mut sim, &inputs_path, &out, vcd_path.as_deref())?;
+            let extras = replay::Extras {
+                vcd: vcd_path.as_deref(),
+                svg: svg.as_deref(),
+            };
+            let totals = replay::stream(&mut sim, &inputs_path, &out, extras)?;
             note!(
                 "replayed {} scans: {} events executed, {} scans in fault mode",
                 totals.scans,

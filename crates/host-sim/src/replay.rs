@@ -2,10 +2,12 @@
 
 use crate::inputs::{InputRow, InputRows};
 use crate::partial::Partial;
+use crate::plot::Plot;
 use crate::sim::{Sim, SimError};
 use crate::trace::{self, TraceRow};
 use crate::vcd::Waveform;
 use codegen::lower::Supervisors;
+use std::io::Write as _;
 use std::path::Path;
 
 /// Runs `rows` through `sim` (one scan per row at the row's time) and
@@ -45,18 +47,29 @@ impl Totals {
     }
 }
 
+/// The files a streamed replay writes besides its trace.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Extras<'a> {
+    /// The waveform (VCD).
+    pub vcd: Option<&'a Path>,
+    /// The picture (SVG, [`crate::plot`]).
+    pub svg: Option<&'a Path>,
+}
+
 /// Replays the inputs file at `inputs` through `sim` one row at a time and
-/// writes the trace to `out` (and the waveform to `vcd`, if given) as each
-/// scan produces it: memory stays constant however long the file. The
-/// files appear only once the whole file has replayed ([`Partial`]), so
-/// that bad input leaves nothing behind. `sim` keeps only its last trace
-/// row.
+/// writes the trace to `out` (and the waveform and picture of `extras`, if
+/// given) as each scan produces it: memory stays constant however long the
+/// file, but for the picture, which holds every change of every signal
+/// (not every scan). The files appear only once the whole file has
+/// replayed ([`Partial`]), so that bad input leaves nothing behind. `sim`
+/// keeps only its last trace row.
 pub fn stream(
     sim: &mut Sim,
     inputs: &Path,
     out: &Path,
-    vcd: Option<&Path>,
+    extras: Extras<'_>,
 ) -> Result<Totals, String> {
+    let vcd = extras.vcd;
     let file = crate::inputs::open(inputs)?;
     let project = sim.project().clone();
     let nets = sim.nets().to_vec();
@@ -71,6 +84,10 @@ pub fn stream(
         }
         None => None,
     };
+    let mut plot = extras.svg.map(|_| {
+        let title = format!("{}: {}", project.name, inputs.display());
+        Plot::for_project(&title, Supervisors::new(&project, &nets))
+    });
     sim.retain_trace(false);
     let mut totals = Totals::default();
     for row in rows {
@@ -83,12 +100,27 @@ pub fn stream(
         if let Some(w) = &mut waveform {
             w.scan(Some(&row), scanned).map_err(vcd_error)?;
         }
+        if let Some((plot, lanes)) = &mut plot {
+            plot.trace_row(lanes, Some(&row.values), scanned);
+        }
     }
     if let Some(w) = waveform {
         w.finish().map_err(vcd_error)?;
     }
+    let svg_file = match (extras.svg, &plot) {
+        (Some(path), Some((plot, _))) => {
+            let mut file = Partial::create(path)?;
+            file.write_all(plot.to_svg().as_bytes())
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            Some(file)
+        }
+        _ => None,
+    };
     trace_file.commit()?;
     if let Some(file) = vcd_file {
+        file.commit()?;
+    }
+    if let Some(file) = svg_file {
         file.commit()?;
     }
     Ok(totals)
@@ -121,7 +153,11 @@ mod tests {
         let mut waveform = Vec::new();
         crate::vcd::write(&mut waveform, sim.supervisors(), &rows, &traced).unwrap();
         let vcd = dir.path().join("t.vcd");
-        let totals = stream(&mut sim, &inputs, &out, Some(&vcd)).unwrap();
+        let extras = Extras {
+            vcd: Some(&vcd),
+            svg: None,
+        };
+        let totals = stream(&mut sim, &inputs, &out, extras).unwrap();
         assert_eq!(std::fs::read_to_string(&out).unwrap(), expected);
         assert_eq!(std::fs::read(&vcd).unwrap(), waveform);
         assert_eq!(totals.scans, rows.len() as u64);

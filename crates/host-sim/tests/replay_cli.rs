@@ -67,6 +67,81 @@ fn press_cycle_replays_to_the_reviewed_trace_on_both_backends() {
     }
 }
 
+/// The `d` of every `<path>` whose `data-signal` is `signal`.
+fn signal_paths<'a>(svg: &'a str, signal: &str) -> Vec<&'a str> {
+    let key = format!("<path data-signal=\"{signal}\" d=\"");
+    svg.match_indices(&key)
+        .map(|(at, _)| {
+            let rest = &svg[at + key.len()..];
+            &rest[..rest.find('"').unwrap()]
+        })
+        .collect()
+}
+
+#[test]
+fn a_replay_draws_every_signal_as_one_path_with_events_states_and_the_fault() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("press.svg");
+    let result = replay(
+        &repo("models/press/cycle.inputs.csv"),
+        &dir.path().join("t.csv"),
+        &["--svg", svg.to_str().unwrap()],
+    );
+    assert!(result.status.success(), "{result:?}");
+    let picture = std::fs::read_to_string(&svg).unwrap();
+    assert!(picture.starts_with("<svg") && picture.ends_with("</svg>\n"));
+    let project = plc_project::load(&repo("models/press.plc.toml")).unwrap();
+    let signals = project
+        .inputs
+        .iter()
+        .map(|i| format!("inputs/{}", i.name))
+        .chain(
+            project
+                .outputs
+                .iter()
+                .map(|o| format!("outputs/{}", o.name)),
+        )
+        .chain(["states/press".to_owned(), "events".into(), "fault".into()]);
+    for signal in signals {
+        assert_eq!(
+            signal_paths(&picture, &signal).len(),
+            1,
+            "one path for {signal}"
+        );
+    }
+    // A lane is its transitions: `top_ls` falls at 60 ms and rises at
+    // 90 ms, two edges in 25 scans.
+    let top_ls = signal_paths(&picture, "inputs/top_ls")[0];
+    assert_eq!(top_ls.matches('V').count(), 2, "{top_ls}");
+    // Five scans executed events: five marks, each named on hover.
+    assert_eq!(signal_paths(&picture, "events")[0].matches('M').count(), 5);
+    for event in ["auto", "part_in", "at_bottom", "at_top", "part_out"] {
+        assert!(
+            picture.contains(&format!(" ms: {event}</title>")),
+            "{event}"
+        );
+    }
+    // The states the press went through, named, and the fault's cause.
+    for state in ["1", "2", "3", "4", "6"] {
+        assert!(
+            picture.contains(&format!("press = {state} from")),
+            "{state}"
+        );
+    }
+    assert!(picture.contains("fault from 160 ms: Unexpected:at_bottom"));
+    assert_eq!(
+        signal_paths(&picture, "fault-shading")[0]
+            .matches('Z')
+            .count(),
+        1
+    );
+    // The time axis: 0 to 240 ms in steps of 50 ms.
+    for tick in ["0 ms", "50 ms", "200 ms"] {
+        assert!(picture.contains(&format!(">{tick}</text>")), "{tick}");
+    }
+    assert!(!picture.contains(">250 ms<"));
+}
+
 #[test]
 fn a_bom_and_quoted_fields_read_as_the_plain_file() {
     let dir = tempfile::tempdir().unwrap();
