@@ -78,6 +78,18 @@ fn signal_paths<'a>(svg: &'a str, signal: &str) -> Vec<&'a str> {
         .collect()
 }
 
+/// `inputs/<name>` and `outputs/<name>` for every input and output of the
+/// project at `path` (in the repository).
+fn io_signals(path: &str) -> Vec<String> {
+    let project = plc_project::load(&repo(path)).unwrap();
+    let inputs = project.inputs.iter().map(|i| format!("inputs/{}", i.name));
+    let outputs = project
+        .outputs
+        .iter()
+        .map(|o| format!("outputs/{}", o.name));
+    inputs.chain(outputs).collect()
+}
+
 #[test]
 fn a_replay_draws_every_signal_as_one_path_with_events_states_and_the_fault() {
     let dir = tempfile::tempdir().unwrap();
@@ -90,18 +102,11 @@ fn a_replay_draws_every_signal_as_one_path_with_events_states_and_the_fault() {
     assert!(result.status.success(), "{result:?}");
     let picture = std::fs::read_to_string(&svg).unwrap();
     assert!(picture.starts_with("<svg") && picture.ends_with("</svg>\n"));
-    let project = plc_project::load(&repo("models/press.plc.toml")).unwrap();
-    let signals = project
-        .inputs
-        .iter()
-        .map(|i| format!("inputs/{}", i.name))
-        .chain(
-            project
-                .outputs
-                .iter()
-                .map(|o| format!("outputs/{}", o.name)),
-        )
-        .chain(["states/press".to_owned(), "events".into(), "fault".into()]);
+    let signals = io_signals("models/press.plc.toml").into_iter().chain([
+        "states/press".to_owned(),
+        "events".into(),
+        "fault".into(),
+    ]);
     for signal in signals {
         assert_eq!(
             signal_paths(&picture, &signal).len(),
@@ -240,6 +245,38 @@ fn boiler_main_job_prints_a_timeline_and_writes_waveforms() {
     assert!(w.at("boiler.plant.flue_c", 44_000).real() > 100.0);
     let picture = std::fs::read_to_string(&svg).unwrap();
     assert!(picture.starts_with("<svg") && picture.contains("main flame"));
+    let sup_bms = signal_paths(&picture, "states/sup_bms");
+    let signals = io_signals("models/boiler/boiler.plc.toml")
+        .into_iter()
+        .chain(["plant/pilot flame", "plant/main flame", "events", "fault"].map(String::from))
+        .chain(
+            [
+                "bath/bath",
+                "flue gas/flue gas",
+                "power/firing",
+                "power/load",
+            ]
+            .map(|a| format!("analog/{a}")),
+        );
+    for signal in signals {
+        assert_eq!(
+            signal_paths(&picture, &signal).len(),
+            1,
+            "one path for {signal}"
+        );
+    }
+    assert_eq!(sup_bms.len(), 1);
+    assert_eq!(picture.matches(r#"<path data-signal="states/"#).count(), 7);
+    // The main flame's failure, named on hover at its mark.
+    assert!(picture.contains(" ms: mf_off sd2 mv_off pv_close"));
+    // Fixed scales with labelled ticks: the bath 0-100 °C, the flue gas
+    // 0-300 °C, whatever the run.
+    for tick in [">0 °C<", ">100 °C<", ">300 °C<", ">200 kW<", ">60 s<"] {
+        assert!(picture.contains(tick), "{tick}");
+    }
+    // A size regression check, not a timing: the old picture, a point per
+    // scan, was 822 KB for cold-start-high; this one keeps transitions.
+    assert!(picture.len() < 64 * 1024, "{} bytes", picture.len());
 
     let unknown = Command::new(env!("CARGO_BIN_EXE_host-sim"))
         .args(["boiler", "--scenario", "nope"])

@@ -1,141 +1,65 @@
-//! A picture of a closed-loop run: the boiler's outputs and flames as
-//! digital traces over the bath and flue-gas temperatures, as plain SVG.
+//! A picture of a closed-loop run ([`crate::plot`]): the inputs the
+//! controller read, its outputs, the true flames, the executed events,
+//! each supervisor's state and fault mode as lanes, over the bath and
+//! flue-gas temperatures and the burner's and load's power on fixed
+//! scales.
+//!
+//! The scales are the plant's, not the run's: the bath 0–100 °C (water),
+//! the flue gas 0–300 °C (its high limit), power 0–200 kW (high fire is
+//! 150 kW); a scenario that leaves a scale widens it to the next tick. The
+//! bath's line is nearly flat on its scale because the bath is: 2,000 l of
+//! water warm by about 1 K a minute at high fire, so its label gives its
+//! first and last values.
 
-use super::record::{Run, RunRow};
-use super::signals::Output;
-use std::fmt::Write as _;
-
-const WIDTH: f64 = 960.0;
-const LEFT: f64 = 120.0;
-const ROW: f64 = 22.0;
-const PLOT: f64 = 160.0;
+use super::record::Run;
+use super::signals::{Input, Output};
+use crate::plot::Plot;
 
 /// The SVG text of `run`, titled `title`.
 pub fn render(run: &Run, title: &str) -> String {
-    let rows = &run.rows;
-    let end = rows.last().map_or(1, |r| r.time_ms.max(1)) as f64;
-    let x = |t: u64| LEFT + (WIDTH - LEFT - 20.0) * t as f64 / end;
-    let mut traces: Vec<(String, Vec<bool>)> = Output::ALL
-        .iter()
-        .map(|o| {
-            (
-                o.name().to_owned(),
-                rows.iter().map(|r| r.outputs.get(*o)).collect(),
-            )
-        })
-        .collect();
-    traces.push((
-        "pilot flame".into(),
-        rows.iter().map(|r| r.plant.pilot_flame).collect(),
-    ));
-    traces.push((
-        "main flame".into(),
-        rows.iter().map(|r| r.plant.main_flame).collect(),
-    ));
-    let digital_top = 40.0;
-    let plot_top = digital_top + ROW * traces.len() as f64 + 20.0;
-    let height = plot_top + PLOT + 40.0;
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{height}" font-family="sans-serif" font-size="12">"#
-    );
-    let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
-    let _ = writeln!(
-        s,
-        r#"<text x="10" y="20" font-size="14" font-weight="bold">{}</text>"#,
-        escape(title)
-    );
-    for (k, (name, values)) in traces.iter().enumerate() {
-        let base = digital_top + ROW * (k as f64 + 1.0) - 4.0;
-        let _ = writeln!(s, r#"<text x="10" y="{base}">{}</text>"#, escape(name));
-        let mut path = String::new();
-        for (r, &v) in rows.iter().zip(values) {
-            let y = if v { base - ROW * 0.6 } else { base };
-            let _ = write!(
-                path,
-                "{}{:.1},{:.1} ",
-                if path.is_empty() { "M" } else { "L" },
-                x(r.time_ms),
-                y
-            );
-        }
-        let _ = writeln!(
-            s,
-            r#"<path d="{path}" fill="none" stroke="steelblue" stroke-width="1.5"/>"#
-        );
-    }
-    // Temperatures, 0..max °C.
-    let max = rows
-        .iter()
-        .map(|r| r.plant.flue_c.max(r.plant.bath_c))
-        .fold(100.0f64, f64::max);
-    let y = |c: f64| plot_top + PLOT * (1.0 - c / max);
-    let _ = writeln!(
-        s,
-        r#"<text x="10" y="{}">temperature</text>"#,
-        plot_top + 12.0
-    );
-    let _ = writeln!(
-        s,
-        r#"<text x="10" y="{}">0 – {max:.0} °C</text>"#,
-        plot_top + 28.0
-    );
-    for (label, colour, pick) in [
-        (
-            "flue gas",
-            "firebrick",
-            (|r: &RunRow| r.plant.flue_c) as fn(&RunRow) -> f64,
-        ),
-        ("bath", "darkgreen", |r: &RunRow| r.plant.bath_c),
-    ] {
-        let mut path = String::new();
-        for r in rows.iter().step_by((rows.len() / 2000).max(1)) {
-            let _ = write!(
-                path,
-                "{}{:.1},{:.1} ",
-                if path.is_empty() { "M" } else { "L" },
-                x(r.time_ms),
-                y(pick(r))
-            );
-        }
-        let _ = writeln!(
-            s,
-            r#"<path d="{path}" fill="none" stroke="{colour}" stroke-width="1.5"/>"#
-        );
-        let last = rows.last().map_or(0.0, pick);
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{:.1}" fill="{colour}">{label}</text>"#,
-            WIDTH - 80.0,
-            y(last) - 4.0
-        );
-    }
-    // Time axis.
-    let axis = plot_top + PLOT + 20.0;
-    let step = if end > 120_000.0 { 60_000 } else { 10_000 };
-    let mut t = 0;
-    while t as f64 <= end {
-        let _ = writeln!(
-            s,
-            r#"<text x="{:.1}" y="{axis}" text-anchor="middle">{} s</text>"#,
-            x(t),
-            t / 1000
-        );
-        let _ = writeln!(
-            s,
-            r##"<line x1="{0:.1}" x2="{0:.1}" y1="{digital_top}" y2="{1}" stroke="#ddd"/>"##,
-            x(t),
-            plot_top + PLOT
-        );
-        t += step;
-    }
-    s.push_str("</svg>\n");
-    s
+    plot(run, title).to_svg()
 }
 
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
+/// The picture of `run`, titled `title`.
+pub fn plot(run: &Run, title: &str) -> Plot {
+    let mut plot = Plot::new(title);
+    let inputs = Input::ALL.map(|i| plot.digital("inputs", i.name()));
+    let outputs = Output::ALL.map(|o| plot.digital("outputs", o.name()));
+    let pilot = plot.digital("plant", "pilot flame");
+    let main = plot.digital("plant", "main flame");
+    let supervisors: Vec<_> = run.rows.first().map_or(Vec::new(), |row| {
+        row.states
+            .iter()
+            .map(|(name, _)| plot.supervisor(name))
+            .collect()
+    });
+    let bath = plot.analog("bath", "°C", (0.0, 100.0), &[("bath", "darkgreen")]);
+    let flue = plot.analog("flue gas", "°C", (0.0, 300.0), &[("flue gas", "firebrick")]);
+    let power = plot.analog(
+        "power",
+        "kW",
+        (0.0, 200.0),
+        &[("firing", "darkorange"), ("load", "purple")],
+    );
+    for row in &run.rows {
+        plot.scan(row.time_ms);
+        for (lane, input) in inputs.iter().zip(Input::ALL) {
+            plot.set_digital(*lane, row.inputs.get(input));
+        }
+        for (lane, output) in outputs.iter().zip(Output::ALL) {
+            plot.set_digital(*lane, row.outputs.get(output));
+        }
+        plot.set_digital(pilot, row.plant.pilot_flame);
+        plot.set_digital(main, row.plant.main_flame);
+        for (lane, (_, state)) in supervisors.iter().zip(&row.states) {
+            plot.set_state(*lane, state);
+        }
+        plot.events(&row.events);
+        plot.fault(row.fault.as_deref());
+        plot.set_analog(bath[0], row.plant.bath_c);
+        plot.set_analog(flue[0], row.plant.flue_c);
+        plot.set_analog(power[0], row.plant.firing_kw);
+        plot.set_analog(power[1], row.plant.load_kw);
+    }
+    plot
 }

@@ -406,20 +406,28 @@ impl Svg {
         );
         for series in &lane.series {
             let mut d = PathData::default();
+            // A point is kept where the line has moved half a pixel since
+            // the last one kept, with the sample before it (so that a step
+            // stays a step), and the last point always.
             let mut last: Option<(f64, f64)> = None;
+            let mut skipped: Option<(f64, f64)> = None;
             let samples = &series.samples;
             for (k, &(t, v)) in samples.iter().enumerate() {
                 let point = (self.scale.x(t), y(v));
-                // A point is kept where the line has moved half a pixel
-                // since the last one kept, and the last point always.
-                let keep = match last {
-                    None => true,
-                    Some((_, ly)) => (point.1 - ly).abs() >= 0.5 || k + 1 == samples.len(),
-                };
-                if keep {
-                    d.op(if last.is_none() { 'M' } else { 'L' }, &[point.0, point.1]);
-                    last = Some(point);
+                match last {
+                    None => d.op('M', &[point.0, point.1]),
+                    Some((_, ly)) if (point.1 - ly).abs() >= 0.5 || k + 1 == samples.len() => {
+                        if let Some(held) = skipped.take() {
+                            d.op('L', &[held.0, held.1]);
+                        }
+                        d.op('L', &[point.0, point.1]);
+                    }
+                    Some(_) => {
+                        skipped = Some(point);
+                        continue;
+                    }
                 }
+                last = Some(point);
             }
             self.path(
                 &format!("analog/{}/{}", lane.name, series.name),
