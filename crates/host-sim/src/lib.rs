@@ -5,7 +5,8 @@
 //! - [`sim`]: a project on the executor and a virtual clock ([`Sim`]);
 //!   [`lockstep`]: both backends side by side, compared every scan.
 //! - [`inputs`] reads and writes `inputs.csv`; [`trace`]: trace rows and
-//!   `trace.csv`; [`vcd`]: waveforms (GTKWave, Surfer).
+//!   `trace.csv`; [`vcd`]: waveforms (GTKWave, Surfer), with [`gtkw`]
+//!   save files that show them grouped.
 //! - [`plot`]: an SVG picture of any run (lanes of inputs, outputs,
 //!   events, supervisor states, fault mode, analog quantities).
 //! - [`replay`]: an input file through a project (`host-sim replay`);
@@ -30,6 +31,7 @@
 pub mod boiler;
 pub mod cell;
 pub mod closed_loop;
+pub mod gtkw;
 pub mod inputs;
 pub mod lockstep;
 pub mod partial;

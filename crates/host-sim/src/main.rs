@@ -394,6 +394,10 @@ fn boiler(
     boiler::waveform::write(&mut buf, sim.supervisors(), &run).map_err(|e| e.to_string())?;
     write(vcd_path, &buf)?;
     note!("wrote {}", vcd_path.display());
+    let save_file = boiler::waveform::save_file(vcd_path, sim.supervisors(), &run);
+    if let Some(path) = host_sim::gtkw::write_next_to(vcd_path, &save_file)? {
+        note!("wrote {}", path.display());
+    }
     if let Some(path) = svg {
         write(
             path,

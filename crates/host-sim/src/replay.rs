@@ -47,7 +47,8 @@ impl Totals {
     }
 }
 
-/// The files a streamed replay writes besides its trace.
+/// The files a streamed replay writes besides its trace (and the VCD's
+/// GTKWave save file next to it, [`crate::gtkw`]).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Extras<'a> {
     /// The waveform (VCD).
@@ -117,8 +118,10 @@ pub fn stream(
         _ => None,
     };
     trace_file.commit()?;
-    if let Some(file) = vcd_file {
+    if let (Some(file), Some(path)) = (vcd_file, vcd) {
         file.commit()?;
+        let save_file = crate::gtkw::replay(path, Supervisors::new(&project, &nets));
+        crate::gtkw::write_next_to(path, &save_file)?;
     }
     if let Some(file) = svg_file {
         file.commit()?;
@@ -168,8 +171,8 @@ mod tests {
             .collect();
         assert_eq!(
             names.len(),
-            2,
-            "t.csv and t.vcd, no partial file: {names:?}"
+            3,
+            "t.csv, t.vcd and its t.gtkw, no partial file: {names:?}"
         );
     }
 }

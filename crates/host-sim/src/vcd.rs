@@ -9,6 +9,11 @@
 //!   the automaton does not have);
 //! - `events`: one wire per event, 0 from the first scan, 1 during each
 //!   scan it executes in;
+//! - `last_events`: a string naming the events of the last scan that
+//!   executed any, numbered (`3:part_in`), held until the next such scan
+//!   (`-` before the first): an event wire is 1 for one scan only, a
+//!   hairline in a long run, while this label changes at the same times
+//!   and stays readable;
 //! - `fault`: 1 on scans spent in fault mode;
 //! - `plant`, for a closed-loop run ([`crate::boiler::waveform`]): the
 //!   plant's quantities as `real` variables, wires or strings.
@@ -265,6 +270,9 @@ struct ScanWriter<'p, W: Write> {
     numbers: Vec<Var>,
     events: Vec<Var>,
     quantities: Vec<Var>,
+    last_events: Var,
+    /// Scans that executed events so far.
+    scans_with_events: u64,
     fault: Var,
     /// Events executed in the previous scan, to fall back to 0.
     pulsing: Vec<Var>,
@@ -313,6 +321,7 @@ impl<'p, W: Write> ScanWriter<'p, W> {
                 Samples::Text(_) => d.var(VarType::String, 1, q.name),
             })?
         };
+        let last_events = d.var(VarType::String, 1, "last_events")?;
         let fault = d.var(VarType::Wire, 1, "fault")?;
         d.w.upscope()?;
         d.w.enddefinitions()?;
@@ -331,6 +340,8 @@ impl<'p, W: Write> ScanWriter<'p, W> {
             numbers,
             events,
             quantities,
+            last_events,
+            scans_with_events: 0,
             fault,
             pulsing: Vec::new(),
             last: None,
@@ -369,6 +380,13 @@ impl<'p, W: Write> ScanWriter<'p, W> {
                 self.pulsing.push(self.events[e]);
             }
         }
+        if !scan.events.is_empty() {
+            self.scans_with_events += 1;
+            let label = format!("{}:{}", self.scans_with_events, scan.events.join(" "));
+            c.set(self.last_events, Written::Text(escape(&label)))?;
+        } else if self.last.is_none() {
+            c.set(self.last_events, Written::Text("-".to_owned()))?;
+        }
         for (&var, value) in self.quantities.iter().zip(plant) {
             c.set(var, value)?;
         }
@@ -387,7 +405,8 @@ impl<'p, W: Write> ScanWriter<'p, W> {
     }
 }
 
-fn identifier(name: &str) -> String {
+/// `name` as a VCD identifier: characters VCD cannot carry as `_`.
+pub(crate) fn identifier(name: &str) -> String {
     let clean: String = name
         .chars()
         .map(|c| if c.is_ascii_graphic() { c } else { '_' })

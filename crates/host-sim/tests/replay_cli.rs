@@ -4,9 +4,10 @@
 
 mod common;
 
-use common::waveform::Waveform;
+use common::waveform::{SaveFile, Waveform};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use vcd::VarType;
 
 fn repo(path: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -56,6 +57,12 @@ fn press_cycle_replays_to_the_reviewed_trace_on_both_backends() {
         );
         let text = std::fs::read_to_string(&vcd).unwrap();
         assert!(text.contains("$timescale 1 ms $end"));
+        let save_file = std::fs::read_to_string(vcd.with_extension("gtkw")).unwrap();
+        assert!(save_file.contains(&format!("[dumpfile] \"{backend}.vcd\"")));
+        assert_save_file_shows(
+            &SaveFile::parse(&save_file),
+            &Waveform::parse(text.as_bytes()),
+        );
         // The reviewed trace's fault at 160 ms, the state it faulted in.
         let w = Waveform::parse(text.as_bytes());
         assert!(!w.at("stamping-press.fault", 150).bit());
@@ -76,6 +83,35 @@ fn signal_paths<'a>(svg: &'a str, signal: &str) -> Vec<&'a str> {
             &rest[..rest.find('"').unwrap()]
         })
         .collect()
+}
+
+/// The save file names only signals of the VCD, in the groups meant, and
+/// every input, output, event, supervisor state and the fault among them.
+fn assert_save_file_shows(save_file: &SaveFile, w: &Waveform) {
+    let named: Vec<&str> = save_file.signals().collect();
+    let declared: Vec<&str> = w.paths().collect();
+    for signal in &named {
+        assert!(declared.contains(signal), "{signal} is not in the VCD");
+    }
+    for path in declared {
+        let shown = !path.contains(".state_numbers.");
+        assert_eq!(named.contains(&path), shown, "{path}");
+    }
+    for group in ["inputs", "outputs", "events", "supervisor states", "fault"] {
+        assert!(save_file.groups.iter().any(|g| g == group), "{group}");
+    }
+    for (group, _, signal) in &save_file.traces {
+        let scope = match group.as_str() {
+            "supervisor states" => ".states.",
+            "fault" => ".fault",
+            "analog" => ".plant.",
+            other => &format!(".{other}"),
+        };
+        assert!(
+            signal.contains(scope) || signal.ends_with(".last_events"),
+            "{signal} in {group}"
+        );
+    }
 }
 
 /// `inputs/<name>` and `outputs/<name>` for every input and output of the
@@ -238,6 +274,42 @@ fn boiler_main_job_prints_a_timeline_and_writes_waveforms() {
         "{stdout}"
     );
     let w = Waveform::parse(&std::fs::read(&vcd).unwrap());
+    let save_file =
+        SaveFile::parse(&std::fs::read_to_string(dir.path().join("boiler.gtkw")).unwrap());
+    assert_save_file_shows(&save_file, &w);
+    assert_eq!(save_file.groups.last().map(String::as_str), Some("analog"));
+    for (group, flags, signal) in &save_file.traces {
+        let analog = group == "analog";
+        assert_eq!(
+            analog,
+            signal.starts_with("boiler.plant.") && w.var_type(signal) == VarType::Real,
+            "{signal}"
+        );
+        // Analog, interpolated (TR_ANALOG_INTERPOLATED), as a real (TR_REAL).
+        assert_eq!(
+            analog,
+            flags & 0x5_0000 == 0x5_0000,
+            "{signal} drawn with @{flags:x}"
+        );
+    }
+    // The event label changes where an event wire pulses, and holds
+    // until the next scan that executes events.
+    let pulses: Vec<u64> = w
+        .changes("boiler.events.mf_off")
+        .iter()
+        .filter(|(_, v)| *v == common::waveform::Sample::Bit(vcd::Value::V1))
+        .map(|(t, _)| *t)
+        .collect();
+    assert_eq!(pulses.len(), 1);
+    let label = w.at("boiler.last_events", pulses[0]).text().to_owned();
+    assert!(label.contains("mf_off"), "{label}");
+    let labels = w.changes("boiler.last_events");
+    let next = labels
+        .iter()
+        .find(|(t, _)| *t > pulses[0])
+        .map(|(t, _)| *t)
+        .unwrap();
+    assert_eq!(w.at("boiler.last_events", next - 1).text(), label);
     assert!(w.at("boiler.inputs.main_flame", 30_000).bit());
     assert!(!w.at("boiler.inputs.main_flame", 50_000).bit());
     assert_eq!(w.at("boiler.states.sup_bms", 0).text(), "normal");

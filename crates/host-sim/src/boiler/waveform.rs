@@ -9,6 +9,9 @@
 //!   detectors in `inputs` show through their wiring and its faults;
 //! - `selector`: the position the operator set (`off`, `low`, `high`).
 //!
+//! [`save_file`] gives its GTKWave save file, the `real` quantities drawn
+//! as analog traces.
+//!
 //! Temperatures and powers are rounded to 0.01 (°C, kW): finer than a
 //! viewer draws, and a slow temperature then changes, and is written,
 //! only now and then instead of every scan.
@@ -19,6 +22,7 @@ use super::signals::{Input, IoMap, Output};
 use crate::vcd::{write_scans, Quantity, Samples, Scan};
 use codegen::lower::Supervisors;
 use std::io::Write;
+use std::path::Path;
 use vcd::Value;
 
 /// Writes the VCD of `run`, a run of the project whose lowered program
@@ -50,10 +54,22 @@ pub fn write(out: impl Write, supervisors: Supervisors<'_>, run: &Run) -> Result
             }
         })
         .collect();
+    write_scans(out, supervisors, &scans, &quantities(run))?;
+    Ok(())
+}
+
+/// The GTKWave save file of the VCD of `run` written to `dump` by
+/// [`write()`] ([`crate::gtkw`]).
+pub fn save_file(dump: &Path, supervisors: Supervisors<'_>, run: &Run) -> String {
+    crate::gtkw::save_file(dump, supervisors, &quantities(run))
+}
+
+/// The plant quantities of `run`, one sample per scan each.
+fn quantities(run: &Run) -> [Quantity; 7] {
     let real = |f: fn(&super::BoilerState) -> f64| {
         Samples::Real(run.rows.iter().map(|r| hundredths(f(&r.plant))).collect())
     };
-    let plant = [
+    [
         Quantity {
             name: "bath_c",
             samples: real(|p| p.bath_c),
@@ -82,9 +98,7 @@ pub fn write(out: impl Write, supervisors: Supervisors<'_>, run: &Run) -> Result
             name: "selector",
             samples: Samples::Text(run.rows.iter().map(|r| r.plant.selector.name()).collect()),
         },
-    ];
-    write_scans(out, supervisors, &scans, &plant)?;
-    Ok(())
+    ]
 }
 
 /// `x` rounded to 0.01.

@@ -155,3 +155,48 @@ impl Waveform {
         })
     }
 }
+
+/// A GTKWave save file read back: its groups, and each trace it shows
+/// with its group and the flags (`@<hex>`) it is drawn with.
+pub struct SaveFile {
+    /// `(group, flags, signal)` in file order.
+    pub traces: Vec<(String, u32, String)>,
+    /// Group titles in order.
+    pub groups: Vec<String>,
+}
+
+impl SaveFile {
+    /// Parses `text`; panics on a line it does not know or a group left
+    /// open.
+    pub fn parse(text: &str) -> SaveFile {
+        const GROUP_BEGIN: u32 = 0x80_0000;
+        const GROUP_END: u32 = 0x100_0000;
+        let (mut traces, mut groups) = (Vec::new(), Vec::new());
+        let (mut flags, mut open): (u32, Option<String>) = (0, None);
+        for line in text.lines() {
+            if line.starts_with("[*]") || line.starts_with('[') {
+                continue;
+            } else if let Some(hex) = line.strip_prefix('@') {
+                flags = u32::from_str_radix(hex, 16).expect("hex flags");
+            } else if let Some(title) = line.strip_prefix('-') {
+                if flags & GROUP_BEGIN != 0 {
+                    assert!(open.is_none(), "group {title} inside another");
+                    open = Some(title.to_owned());
+                    groups.push(title.to_owned());
+                } else if flags & GROUP_END != 0 {
+                    assert_eq!(open.take().as_deref(), Some(title), "group closed");
+                }
+            } else {
+                let group = open.clone().expect("a trace inside a group");
+                traces.push((group, flags, line.to_owned()));
+            }
+        }
+        assert!(open.is_none(), "group {open:?} left open");
+        SaveFile { traces, groups }
+    }
+
+    /// The signals it names.
+    pub fn signals(&self) -> impl Iterator<Item = &str> {
+        self.traces.iter().map(|(_, _, s)| s.as_str())
+    }
+}
