@@ -7,6 +7,7 @@
 //! - [`inputs`] reads and writes `inputs.csv`; [`trace`]: trace rows and
 //!   `trace.csv`; [`vcd`]: waveforms (GTKWave, Surfer), with [`gtkw`]
 //!   save files that show them grouped.
+//! - [`columns`]: terminal text within 120 columns (the timelines).
 //! - [`plot`]: an SVG picture of any run (lanes of inputs, outputs,
 //!   events, supervisor states, fault mode, analog quantities).
 //! - [`replay`]: an input file through a project (`host-sim replay`);
@@ -31,6 +32,7 @@
 pub mod boiler;
 pub mod cell;
 pub mod closed_loop;
+pub mod columns;
 pub mod gtkw;
 pub mod inputs;
 pub mod lockstep;

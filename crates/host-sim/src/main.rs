@@ -38,6 +38,19 @@ impl Report {
             result => result.map_err(|e| format!("standard output: {e}")),
         }
     }
+
+    /// `text` on one line if `wide`, else wrapped by words within
+    /// [`host_sim::columns::TERMINAL`] columns.
+    fn paragraph(&mut self, text: &str, wide: bool) -> Result<(), String> {
+        if wide {
+            return self.line(format_args!("{text}"));
+        }
+        let words: Vec<&str> = text.split(' ').collect();
+        for line in host_sim::columns::wrap(&words, host_sim::columns::TERMINAL) {
+            self.line(format_args!("{line}"))?;
+        }
+        Ok(())
+    }
 }
 
 /// One line of the report (see [`Report`]).
@@ -121,6 +134,10 @@ enum Command {
         /// Seed of the plant's random ignition failures.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Print the timeline one line per row, however long, instead of
+        /// within 120 columns.
+        #[arg(long)]
+        wide: bool,
         /// List the scenarios and exit.
         #[arg(long)]
         list: bool,
@@ -140,6 +157,10 @@ enum Command {
         /// scan: for `host-sim replay`, `record` and the QEMU harness).
         #[arg(long)]
         inputs_csv: Option<PathBuf>,
+        /// Print the totals on one line, however long, instead of within
+        /// 120 columns.
+        #[arg(long)]
+        wide: bool,
         /// List the scenarios and exit.
         #[arg(long)]
         list: bool,
@@ -211,23 +232,22 @@ fn run(cli: Cli) -> Result<(), String> {
             vcd: vcd_path,
             svg,
             seed,
+            wide,
             list,
         } => {
             let project = project.unwrap_or_else(default_boiler);
-            boiler(
-                &scenario,
-                &project,
-                &vcd_path,
-                svg.as_deref(),
-                seed,
-                list,
-                &mut Report::new(),
-            )
+            let outputs = BoilerOutputs {
+                vcd: &vcd_path,
+                svg: svg.as_deref(),
+                wide,
+            };
+            boiler(&scenario, &project, outputs, seed, list, &mut Report::new())
         }
         Command::Testbed {
             scenario,
             project,
             inputs_csv,
+            wide,
             list,
         } => {
             let project =
@@ -236,6 +256,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 &scenario,
                 &project,
                 inputs_csv.as_deref(),
+                wide,
                 list,
                 &mut Report::new(),
             )
@@ -308,16 +329,29 @@ fn in_repository(relative: &str) -> PathBuf {
     }
 }
 
+/// What `host-sim boiler` writes besides its safety verdict.
+struct BoilerOutputs<'a> {
+    /// The waveform (and its GTKWave save file next to it).
+    vcd: &'a Path,
+    /// The picture, if asked for.
+    svg: Option<&'a Path>,
+    /// The timeline's old layout, one line per row however long.
+    wide: bool,
+}
+
 fn boiler(
     name: &str,
     project_path: &Path,
-    vcd_path: &Path,
-    svg: Option<&Path>,
+    BoilerOutputs {
+        vcd: vcd_path,
+        svg,
+        wide,
+    }: BoilerOutputs<'_>,
     seed: u64,
     list: bool,
     out: &mut Report,
 ) -> Result<(), String> {
-    use host_sim::boiler::{self, scenarios, BoilerParams, BoilerPlant, Invariants, Output};
+    use host_sim::boiler::{self, scenarios, BoilerParams, BoilerPlant, Invariants};
     if list {
         for n in scenarios::NAMES.into_iter().chain(["random-<seed>"]) {
             say!(out, "{n:<24} {}", scenarios::about(n).unwrap_or_default());
@@ -334,60 +368,14 @@ fn boiler(
     let mut plant = BoilerPlant::new(BoilerParams::default(), seed);
     let run = boiler::run(&mut sim, &mut plant, &script, duration).map_err(|e| e.to_string())?;
 
-    say!(
-        out,
+    let heading = format!(
         "boiler, scenario {name} ({} s), project {}",
         duration / 1000,
         project_path.display()
     );
-    say!(
-        out,
-        "{:>9}  {:<48} {:<40} {:>7} {:>7}",
-        "time",
-        "events",
-        "outputs on",
-        "bath",
-        "flue"
-    );
-    let mut last_states: Vec<(String, String)> = Vec::new();
-    let mut last_fault = None;
-    for row in &run.rows {
-        if row.events.is_empty() && row.fault == last_fault {
-            continue;
-        }
-        let on: Vec<&str> = Output::ALL
-            .iter()
-            .filter(|o| row.outputs.get(**o))
-            .map(|o| o.name())
-            .collect();
-        say!(
-            out,
-            "{:>8.2}s  {:<48} {:<40} {:>5.1}°C {:>5.0}°C",
-            row.time_ms as f64 / 1000.0,
-            row.events.join(" "),
-            on.join(" "),
-            row.plant.bath_c,
-            row.plant.flue_c
-        );
-        let changed: Vec<String> = row
-            .states
-            .iter()
-            .filter(|s| !last_states.contains(s))
-            .map(|(sup, state)| format!("{sup}={state}"))
-            .collect();
-        if !changed.is_empty() {
-            say!(out, "{:>11}{}", "", changed.join("  "));
-        }
-        if row.fault != last_fault {
-            say!(
-                out,
-                "{:>11}fault: {}",
-                "",
-                row.fault.as_deref().unwrap_or("cleared")
-            );
-        }
-        last_states = row.states.clone();
-        last_fault = row.fault.clone();
+    out.paragraph(&heading, wide)?;
+    for line in boiler::timeline::lines(&run, wide) {
+        say!(out, "{line}");
     }
 
     let mut buf = Vec::new();
@@ -427,6 +415,7 @@ fn testbed(
     name: &str,
     project_path: &Path,
     inputs_csv: Option<&Path>,
+    wide: bool,
     list: bool,
     out: &mut Report,
 ) -> Result<(), String> {
@@ -446,16 +435,15 @@ fn testbed(
             )
         })?
         .map_err(|e| e.to_string())?;
-    say!(
-        out,
+    let heading = format!(
         "testbed, scenario {name}, project {}",
         project_path.display()
     );
+    out.paragraph(&heading, wide)?;
     for line in run.timeline().lines() {
         say!(out, "{line}");
     }
-    say!(
-        out,
+    let totals = format!(
         "{} scans, {} events; laps: train 1 {}, train 2 {}; loads (train 1, train 2): crane 1 {}/{}, crane 2 {}/{}, crane 3 {}/{}; fault: {}",
         run.scans,
         run.events.len(),
@@ -469,6 +457,7 @@ fn testbed(
         run.loads(3, 1),
         run.fault.as_ref().map_or("none".to_owned(), |(t, f)| format!("{f} at {:.2} s", *t as f64 / 1000.0))
     );
+    out.paragraph(&totals, wide)?;
     if let Some(path) = inputs_csv {
         let csv = run
             .inputs_csv(sim.project())

@@ -85,6 +85,64 @@ fn signal_paths<'a>(svg: &'a str, signal: &str) -> Vec<&'a str> {
         .collect()
 }
 
+/// No line of `text` passes 120 characters.
+fn assert_fits_a_terminal(text: &str) {
+    for line in text.lines() {
+        assert!(
+            line.chars().count() <= 120,
+            "{} chars: {line}",
+            line.chars().count()
+        );
+    }
+}
+
+#[test]
+fn timelines_fit_120_columns_unless_asked_wide_and_lose_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| {
+        let result = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+            .args(args)
+            .arg("--project")
+            .arg(repo(if args[0] == "boiler" {
+                "models/boiler/boiler.plc.toml"
+            } else {
+                "models/testbed/testbed.plc.toml"
+            }))
+            .output()
+            .expect("host-sim runs");
+        assert!(result.status.success(), "{result:?}");
+        String::from_utf8(result.stdout).unwrap()
+    };
+    let vcd = dir.path().join("b.vcd");
+    let vcd = vcd.to_str().unwrap();
+    let narrow = run(&["boiler", "--scenario", "controller-stall", "--vcd", vcd]);
+    let wide = run(&[
+        "boiler",
+        "--scenario",
+        "controller-stall",
+        "--vcd",
+        vcd,
+        "--wide",
+    ]);
+    assert_fits_a_terminal(&narrow);
+    assert!(
+        wide.lines().any(|l| l.chars().count() > 120),
+        "the old layout"
+    );
+    // The same words, only laid out differently.
+    let words = |text: &str| {
+        let mut w: Vec<String> = text.split_whitespace().map(str::to_owned).collect();
+        w.sort();
+        w
+    };
+    assert_eq!(words(&narrow), words(&wide));
+    let testbed = run(&["testbed", "laps"]);
+    assert_fits_a_terminal(&testbed);
+    assert!(testbed.contains("fault: none"), "{testbed}");
+    let testbed_wide = run(&["testbed", "laps", "--wide"]);
+    assert!(testbed_wide.lines().any(|l| l.chars().count() > 120));
+}
+
 /// The save file names only signals of the VCD, in the groups meant, and
 /// every input, output, event, supervisor state and the fault among them.
 fn assert_save_file_shows(save_file: &SaveFile, w: &Waveform) {
@@ -273,6 +331,7 @@ fn boiler_main_job_prints_a_timeline_and_writes_waveforms() {
         stdout.contains("safety invariants: held on all 7500 scans"),
         "{stdout}"
     );
+    assert_fits_a_terminal(&stdout);
     let w = Waveform::parse(&std::fs::read(&vcd).unwrap());
     let save_file =
         SaveFile::parse(&std::fs::read_to_string(dir.path().join("boiler.gtkw")).unwrap());

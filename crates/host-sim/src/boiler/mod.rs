@@ -15,7 +15,8 @@
 //! - [`record`]: the per-scan record of a run ([`Run`]).
 //! - [`invariants`]: the safety checker ([`Checker`]).
 //! - [`scenarios`]: the named scenarios of `host-sim boiler`.
-//! - [`svg`]: a picture of a run; [`waveform`]: its VCD.
+//! - [`svg`]: a picture of a run; [`waveform`]: its VCD; [`timeline`]:
+//!   the timeline `host-sim boiler` prints.
 //! - [`error`]: what can go wrong ([`BoilerError`]).
 //!
 //! [`run`] and [`run_with`] are the [`closed_loop`] with the boiler's
@@ -45,6 +46,7 @@ pub mod scenarios;
 pub mod script;
 pub mod signals;
 pub mod svg;
+pub mod timeline;
 pub mod waveform;
 pub mod wiring;
 
