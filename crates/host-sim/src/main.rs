@@ -190,6 +190,9 @@ enum Command {
         /// Also write the inputs and the expected trace as CSV next to it.
         #[arg(long)]
         csv: bool,
+        /// Also draw the run as an SVG picture, as `replay --svg` does.
+        #[arg(long)]
+        svg: Option<PathBuf>,
     },
 }
 
@@ -269,6 +272,7 @@ fn run(cli: Cli) -> Result<(), String> {
             noise_one_in,
             out,
             csv,
+            svg,
         } => {
             // Rows are generated or read as they are recorded, and every
             // file is written as it goes: constant memory however many scans.
@@ -287,13 +291,20 @@ fn run(cli: Cli) -> Result<(), String> {
                         scans += 1;
                     }
                     let rows = open()?;
-                    scenario::record_files(&mut sim, scans, rows, &out, csv)?
+                    scenario::record_files(&mut sim, scans, rows, &out, csv, svg.as_deref())?
                 }
                 None => {
                     let rows = random_inputs::GuidedInputs::new(sim.project(), seed, noise_one_in)
                         .map_err(|e| e.to_string())?
                         .take(random);
-                    scenario::record_files(&mut sim, random as u64, rows, &out, csv)?
+                    scenario::record_files(
+                        &mut sim,
+                        random as u64,
+                        rows,
+                        &out,
+                        csv,
+                        svg.as_deref(),
+                    )?
                 }
             };
             note!(

@@ -36,6 +36,16 @@ impl Partial {
         })
     }
 
+    /// Creates `<path>.partial` ([`Partial::create`]) holding `bytes`,
+    /// to commit with the files it goes with.
+    pub fn holding(path: &Path, bytes: &[u8]) -> Result<Partial, String> {
+        let mut file = Partial::create(path)?;
+        file.writer()
+            .write_all(bytes)
+            .map_err(|e| io(&file.partial, e))?;
+        Ok(file)
+    }
+
     /// The writer.
     pub fn writer(&mut self) -> &mut BufWriter<File> {
         self.writer

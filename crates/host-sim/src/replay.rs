@@ -7,7 +7,6 @@ use crate::sim::{Sim, SimError};
 use crate::trace::{self, TraceRow};
 use crate::vcd::Waveform;
 use codegen::lower::Supervisors;
-use std::io::Write as _;
 use std::path::Path;
 
 /// Runs `rows` through `sim` (one scan per row at the row's time) and
@@ -109,12 +108,7 @@ pub fn stream(
         w.finish().map_err(vcd_error)?;
     }
     let svg_file = match (extras.svg, &plot) {
-        (Some(path), Some((plot, _))) => {
-            let mut file = Partial::create(path)?;
-            file.write_all(plot.to_svg().as_bytes())
-                .map_err(|e| format!("{}: {e}", path.display()))?;
-            Some(file)
-        }
+        (Some(path), Some((plot, _))) => Some(Partial::holding(path, plot.to_svg().as_bytes())?),
         _ => None,
     };
     trace_file.commit()?;

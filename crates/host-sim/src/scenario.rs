@@ -4,6 +4,7 @@
 
 use crate::inputs::InputRow;
 use crate::partial::Partial;
+use crate::plot::Plot;
 use crate::replay::Totals;
 use crate::sim::{Sim, SimError};
 use crate::trace::TraceRow;
@@ -112,18 +113,24 @@ where
 /// `host-sim record`: runs the `scans` rows `rows` through `sim` and
 /// writes the scenario to `out`, with `csv` also the inputs and the trace
 /// as CSV next to it (`.inputs.csv`, `.trace.csv`), each row as it is
-/// produced: memory stays constant however many rows. The files appear
-/// only once complete ([`Partial`]).
+/// produced: memory stays constant however many rows (but for the picture
+/// at `svg`, if given, which holds every change of every signal,
+/// [`crate::plot`]). The files appear only once complete ([`Partial`]).
 pub fn record_files<E>(
     sim: &mut Sim,
     scans: u64,
     rows: impl IntoIterator<Item = Result<InputRow, E>>,
     out: &Path,
     csv: bool,
+    svg: Option<&Path>,
 ) -> Result<Totals, String>
 where
     RecordError: From<E>,
 {
+    let mut plot = svg.map(|_| {
+        let title = format!("{}: {}", sim.project().name, out.display());
+        Plot::for_project(&title, sim.supervisors())
+    });
     sim.retain_trace(false);
     let mut scenario = Partial::create(out)?;
     let mut tables = if csv {
@@ -143,11 +150,21 @@ where
                 .and_then(|()| trace.line(&crate::trace::csv_line(traced)))
                 .map_err(|e| RecordError::Io(std::io::Error::other(e)))?;
         }
+        if let Some((plot, lanes)) = &mut plot {
+            plot.trace_row(lanes, Some(&row.values), traced);
+        }
         scan += 1;
         Ok(())
     })
     .map_err(|e| e.to_string())?;
+    let picture = match (svg, plot) {
+        (Some(path), Some((plot, _))) => Some(Partial::holding(path, plot.to_svg().as_bytes())?),
+        _ => None,
+    };
     scenario.commit()?;
+    if let Some(file) = picture {
+        file.commit()?;
+    }
     if let Some((inputs, trace)) = tables {
         inputs.commit()?;
         trace.commit()?;
@@ -201,7 +218,7 @@ mod tests {
         let generated = crate::random_inputs::GuidedInputs::new(sim.project(), 3, 40)
             .unwrap()
             .take(400);
-        let totals = record_files(&mut sim, 400, generated, &out, true).unwrap();
+        let totals = record_files(&mut sim, 400, generated, &out, true, None).unwrap();
         assert_eq!(std::fs::read(&out).unwrap(), bytes);
         let read = |ext: &str| std::fs::read_to_string(out.with_extension(ext)).unwrap();
         assert_eq!(read("inputs.csv"), inputs_csv);
@@ -215,7 +232,7 @@ mod tests {
             .iter()
             .take(10)
             .map(|r| Ok::<_, RecordError>(r.clone()));
-        let err = record_files(&mut sim, 11, rows, &short, true).unwrap_err();
+        let err = record_files(&mut sim, 11, rows, &short, true, None).unwrap_err();
         assert!(err.contains("10 rows for the 11 scans"), "{err}");
         assert_eq!(
             std::fs::read_dir(dir.path()).unwrap().count(),

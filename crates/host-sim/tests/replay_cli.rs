@@ -239,6 +239,30 @@ fn a_replay_draws_every_signal_as_one_path_with_events_states_and_the_fault() {
         assert!(picture.contains(&format!(">{tick}</text>")), "{tick}");
     }
     assert!(!picture.contains(">250 ms<"));
+
+    // `record --svg` draws the same run the same way.
+    let recorded = dir.path().join("recorded.svg");
+    let result = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .arg("record")
+        .arg(repo("models/press.plc.toml"))
+        .arg("--inputs")
+        .arg(repo("models/press/cycle.inputs.csv"))
+        .arg("--out")
+        .arg(dir.path().join("s.bin"))
+        .arg("--svg")
+        .arg(&recorded)
+        .output()
+        .unwrap();
+    assert!(result.status.success(), "{result:?}");
+    let paths = |svg: &str| -> Vec<String> {
+        svg.lines()
+            .filter(|l| l.starts_with("<path data-signal="))
+            .map(str::to_owned)
+            .collect()
+    };
+    let recorded = std::fs::read_to_string(&recorded).unwrap();
+    assert_eq!(paths(&recorded), paths(&picture));
+    assert!(!paths(&picture).is_empty());
 }
 
 #[test]
