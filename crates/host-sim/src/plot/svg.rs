@@ -339,7 +339,8 @@ impl Svg {
                     low - high,
                     escape(cause)
                 );
-                if x >= free {
+                let width = cause.chars().count() as f64 * CHAR;
+                if x >= free && x + 3.0 + width <= WIDTH {
                     let _ = writeln!(
                         self.body,
                         r#"<text x="{:.1}" y="{}" fill="firebrick">{}</text>"#,
@@ -347,7 +348,7 @@ impl Svg {
                         low - 1.0,
                         escape(cause)
                     );
-                    free = x + cause.chars().count() as f64 * CHAR + 8.0;
+                    free = x + width + 8.0;
                 }
             }
         }
@@ -417,7 +418,8 @@ impl Svg {
                 match last {
                     None => d.op('M', &[point.0, point.1]),
                     Some((_, ly)) if (point.1 - ly).abs() >= 0.5 || k + 1 == samples.len() => {
-                        if let Some(held) = skipped.take() {
+                        let moved = (point.1 - ly).abs() >= 0.5;
+                        if let Some(held) = skipped.take().filter(|_| moved) {
                             d.op('L', &[held.0, held.1]);
                         }
                         d.op('L', &[point.0, point.1]);
@@ -480,4 +482,42 @@ fn escape(text: &str) -> String {
         .replace('<', "&lt;")
         .replace('>', "&gt;")
         .replace('"', "&quot;")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn path_of<'a>(svg: &'a str, signal: &str) -> &'a str {
+        let key = format!("data-signal=\"{signal}\" d=\"");
+        let rest = &svg[svg.find(&key).expect(signal) + key.len()..];
+        &rest[..rest.find('"').unwrap()]
+    }
+
+    #[test]
+    fn an_analog_step_stays_a_step() {
+        let mut plot = Plot::new("t");
+        let power = plot.analog("power", "kW", (0.0, 200.0), &[("firing", "red")]);
+        for t in 0..1000 {
+            plot.scan(t * 10);
+            plot.set_analog(power[0], if t < 500 { 0.0 } else { 150.0 });
+        }
+        let svg = render(&plot);
+        let d = path_of(&svg, "analog/power/firing");
+        // From 0 ms, held to 4,990 ms, up at 5,000 ms, held to the end.
+        assert_eq!(d.matches(['M', 'L']).count(), 4, "{d}");
+    }
+
+    #[test]
+    fn a_fault_cause_is_written_only_where_it_fits_in_the_picture() {
+        let mut plot = Plot::new("t");
+        for t in 0..100 {
+            plot.scan(t * 10);
+            plot.fault((t == 20 || t == 99).then_some("Unexpected:t2_at13"));
+        }
+        let svg = render(&plot);
+        assert_eq!(svg.matches(">Unexpected:t2_at13</text>").count(), 1);
+        assert_eq!(svg.matches("<title>fault from").count(), 2, "both on hover");
+        assert_eq!(path_of(&svg, "fault-shading").matches('Z').count(), 2);
+    }
 }
