@@ -7,7 +7,7 @@
 //! closed-loop run from its plant), so two runs of one project share one
 //! layout. A [`Plot`] keeps only the changes of each signal, not its
 //! scans, and [`Plot::to_svg`] draws each signal as one `<path>` of its
-//! transitions ([`svg`]): the file grows with what happened, not with how
+//! transitions: the file grows with what happened, not with how
 //! long it took.
 
 mod svg;
