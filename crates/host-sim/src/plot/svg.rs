@@ -266,7 +266,6 @@ impl Svg {
             }
             k = end;
         }
-        self.label("", EVENTS);
         self.path(
             "events",
             &marks,
