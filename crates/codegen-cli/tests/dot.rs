@@ -341,6 +341,12 @@ fn the_summary_has_one_node_per_strongly_connected_component() {
     );
     assert_eq!(listing(&[&chain, "--max-edges", "3"])["view"], "summary");
     assert_eq!(listing(&[&chain])["view"], "full");
+    // Flags about states are not dropped unsaid.
+    let graph = listing(&[&chain, "--summary", "--disabled"]);
+    assert!(graph["dot"]
+        .as_str()
+        .unwrap()
+        .contains("--disabled and --self-loops apply with --full"));
 }
 
 #[test]

@@ -354,7 +354,14 @@ pub fn run(args: &DotArgs, json: bool, out: &mut Out) -> Result<Outcome, CliErro
         for c in load_components(&args.file, args.component.as_deref())? {
             let a = &c.automaton;
             let graph = match args.summary_reason(a) {
-                Some(why) => (summary::draw(a, &drawing, &why), "summary"),
+                Some(mut why) => {
+                    if args.disabled || args.self_loops {
+                        // Both are about states, which a summary does not
+                        // draw: say so rather than drop them unsaid.
+                        why.push_str("; --disabled and --self-loops apply with --full");
+                    }
+                    (summary::draw(a, &drawing, &why), "summary")
+                }
                 None => (
                     automaton::draw(a, &drawing, args.disabled(a)?.as_ref()),
                     "full",
