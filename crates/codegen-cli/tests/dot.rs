@@ -296,7 +296,10 @@ fn the_control_places_of_a_supervised_net_are_red() {
     // D_c = [-1 1 0 0 -1 1 0 0]: four arcs, all red.
     let arcs = text.lines().filter(|l| l.contains("p9")).count();
     assert_eq!(arcs, 1 + 4, "{text}");
-    assert!(text.contains("1 control places (red)"), "{text}");
+    assert!(
+        text.contains("1 control place (red) added by the constraints"),
+        "{text}"
+    );
     let plain = dot(&["models/petri/mixers.toml"]);
     assert!(!plain.contains("red"), "{plain}");
 }
@@ -322,10 +325,10 @@ fn the_summary_has_one_node_per_strongly_connected_component() {
     let text = graph["dot"].as_str().unwrap();
     assert_eq!(nodes(text, "c").len(), 3, "{text}");
     assert!(
-        text.contains("c1 [label=\"2 and 1 more\\n2 states, 3 internal transitions\"]"),
+        text.contains("c1 [label=\"2 and 1 more\\n2 states, 3 transitions inside\"]"),
         "{text}"
     );
-    assert!(text.contains("c0 -> c1 [label=\"1 transitions\\nb\"];"));
+    assert!(text.contains("c0 -> c1 [label=\"1 transition\\nb\"];"));
     assert!(text.contains("5 states and 7 transitions as 3 strongly connected components"));
 
     // Chosen by size beyond --max-states, unless --full.

@@ -16,10 +16,11 @@ pub fn draw(net: &PetriNet, drawing: &Drawing, control: &[usize]) -> Graph {
     let title: Vec<String> = if control.is_empty() {
         Vec::new()
     } else {
-        vec![format!(
-            "{} control places (red) added by the constraints",
-            control.len()
-        )]
+        let places = match control.len() {
+            1 => "1 control place".to_owned(),
+            n => format!("{n} control places"),
+        };
+        vec![format!("{places} (red) added by the constraints")]
     };
     let mut out = graph_header(net.name(), drawing, "LR", &title);
     for (p, (place, &tokens)) in net.places().iter().zip(net.initial()).enumerate() {

@@ -146,19 +146,19 @@ pub fn draw(a: &Automaton, drawing: &Drawing, why: &str) -> Graph {
         let Some(part) = part else { continue };
         let name = a.state_name(part.representative);
         let label = if part.states == 1 {
-            format!("{name}\n{} internal transitions", part.internal)
+            format!("{name}\n{} inside", transitions(part.internal))
         } else {
             format!(
-                "{name} and {} more\n{} states, {} internal transitions",
+                "{name} and {} more\n{} states, {} inside",
                 part.states - 1,
                 part.states,
-                part.internal
+                transitions(part.internal)
             )
         };
         let marked = if part.marked { ", peripheries=2" } else { "" };
         writeln!(out, "  c{k} [label={}{marked}];", quote(&label)).unwrap();
     }
-    for ((from, to), (transitions, events)) in &mut between {
+    for ((from, to), (n, events)) in &mut between {
         events.sort_unstable();
         events.dedup();
         let names: Vec<String> = events
@@ -167,7 +167,7 @@ pub fn draw(a: &Automaton, drawing: &Drawing, why: &str) -> Graph {
             .collect();
         write!(out, "  c{from} -> c{to}").unwrap();
         if drawing.edge_labels {
-            let label = format!("{transitions} transitions\n{}", compact(&names));
+            let label = format!("{}\n{}", transitions(*n), compact(&names));
             write!(out, " [label={}]", quote(&label)).unwrap();
         }
         out.push_str(";\n");
@@ -178,6 +178,15 @@ pub fn draw(a: &Automaton, drawing: &Drawing, why: &str) -> Graph {
         nodes: count,
         edges: between.len(),
         notes: Vec::new(),
+    }
+}
+
+/// `1 transition`, `n transitions`.
+fn transitions(n: usize) -> String {
+    if n == 1 {
+        "1 transition".to_owned()
+    } else {
+        format!("{n} transitions")
     }
 }
 
