@@ -133,7 +133,7 @@ edges, the graph is the automaton's strongly connected components, one
 node each (its size, a state of it, its internal transitions), titled as
 a summary; --full draws every state anyway, --summary always summarises.
 With --full, --quick keeps the layered drawing with floating edge labels
-and a bounded optimisation (25 s for a 406-state supervisor), --layout
+and a bounded optimisation (12 s for a 406-state supervisor), --layout
 sfdp draws it in well under a second (force-directed, no ranks) and
 --no-labels leaves only the shape of a dense graph.
 
