@@ -175,6 +175,11 @@ fn disabled_events_without_a_plant_are_the_controllable_ones_not_possible() {
     );
     // Without the flag nothing is said about disabled events.
     assert!(!dot(&[&door]).contains('✗'));
+    // A net's flags are refused on an automaton.
+    let run = codegen(&["dot", &door, "--uncontrollable", "open"]);
+    assert_eq!(run.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("door.toml: --uncontrollable"), "{stderr}");
 }
 
 #[test]

@@ -302,7 +302,13 @@ impl DotArgs {
             ];
             (flags.into_iter().find(|(set, _)| *set), "a Petri net")
         } else {
-            let flags = [(self.constraints.is_some(), "--constraints")];
+            let flags = [
+                (self.constraints.is_some(), "--constraints"),
+                (
+                    self.net_control.given(),
+                    "--uncontrollable, --unobservable or --control",
+                ),
+            ];
             (flags.into_iter().find(|(set, _)| *set), "an automaton")
         };
         match misplaced {
