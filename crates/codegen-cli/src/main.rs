@@ -91,7 +91,8 @@ enum Command {
         /// The project file (`*.plc.toml`).
         project: PathBuf,
     },
-    /// Graphviz drawing of an automaton: DOT text on stdout or in files.
+    /// Graphviz drawing of an automaton or a Petri net: DOT text on
+    /// stdout or in files.
     Dot(dot::DotArgs),
     /// Place/transition Petri nets (`.pnml`, `.toml`): properties,
     /// reachability graph, conversion.

@@ -54,6 +54,11 @@ impl ControlArgs {
         }
     }
 
+    /// Whether any of these options was given.
+    pub fn given(&self) -> bool {
+        self.uncontrollable.is_some() || self.unobservable.is_some() || self.control.is_some()
+    }
+
     /// Reads the net at `path` with what these options state.
     pub fn read_net(&self, path: &Path) -> Result<PetriNet, Error> {
         petri::read_file_with(path, &self.control()?)

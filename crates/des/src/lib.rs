@@ -9,7 +9,7 @@
 //!   language equivalence, and the synthesis pipeline that chains them.
 //! - [`petri`]: place/transition Petri nets (native TOML and PNML), their
 //!   incidence matrix and reachability graph as an automaton.
-//! - [`dot`]: Graphviz output.
+//! - [`dot`]: DOT strings and the Graphviz layout engines.
 //! - [`error`]: errors located by file, line and column.
 //! - [`files`]: reading the files a user names: regular files only, each
 //!   kind within its size limit.
