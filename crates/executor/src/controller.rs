@@ -4,12 +4,9 @@ use crate::bits;
 use crate::inputs;
 use crate::memory::{Memory, Ram};
 use crate::pacing::{Pacer, ScanStart};
-use crate::program::{
-    Action, Config, EventSpec, Index, Program, SupervisorSpec, Trigger, UnexpectedPolicy,
-};
+use crate::program::{Action, Config, EventSpec, Index, Program, Trigger, UnexpectedPolicy};
 use crate::record::{Counters, Fault, ScanRecord};
 use crate::rom_test::{ImageTest, RomTest};
-use crate::table::read_bits;
 use crate::timers::{due, earliest};
 
 /// The memory does not match the program's sizes.
@@ -476,7 +473,7 @@ fn refresh_allowed<P: Program>(
     allowed: &mut [u32],
 ) {
     let spec = &config.supervisors[j];
-    if let Some(k) = stored_set(config, spec, state) {
+    if let Some(k) = config.stored_set(spec, state) {
         return copy_set(config, k, allowed);
     }
     let outside = spec.outside.of(config.event_masks);
@@ -496,22 +493,10 @@ fn refresh_allowed<P: Program>(
     }
 }
 
-/// The number of `spec`'s stored allowed set in `state`, `None` when its
-/// sets are computed.
-#[inline]
-fn stored_set(config: &Config<'_>, spec: &SupervisorSpec, state: u32) -> Option<usize> {
-    let sets = spec.allowed;
-    sets.is_stored().then(|| {
-        read_bits(
-            sets.index.of(config.allowed_index),
-            state as usize,
-            sets.bits,
-        ) as usize
-    })
-}
-
 /// `allowed` := stored event set `k` (all zeros, which blocks every event,
-/// past the pool: the structure check rules that out).
+/// past the pool: the structure check rules that out). The set's words
+/// are found from `allowed`'s length rather than [`Config::event_set`]'s
+/// checked arithmetic: the same words, in fewer instructions a move.
 #[inline]
 fn copy_set(config: &Config<'_>, k: usize, allowed: &mut [u32]) {
     let w = allowed.len();
@@ -716,8 +701,8 @@ fn execute<P: Program, M: Memory>(
             let ew = ram.feasible.len();
             let allowed = allowed_of(ram.allowed, ew, j);
             match (
-                stored_set(config, spec, ram.states[j]),
-                stored_set(config, spec, next),
+                config.stored_set(spec, ram.states[j]),
+                config.stored_set(spec, next),
             ) {
                 // Most moves keep the set: nothing to copy or AND.
                 (Some(old), Some(new)) if old == new => {}

@@ -280,12 +280,12 @@ fn allowed_sets_of<P: Program + ?Sized>(
     let spec = &c.supervisors[j];
     let part = Part::Supervisor(j);
     let w = words(c.events.len());
-    let index = spec.allowed.index.of(c.allowed_index);
     let outside = spec.outside.of(c.event_masks);
     let alphabet = spec.alphabet.of(c.event_lists);
     for state in 0..spec.states {
-        let k = read_bits(index, state as usize, spec.allowed.bits) as usize;
-        let set = c.event_masks.get(k * w..k * w + w).unwrap_or_default();
+        let set = (c.stored_set(spec, state))
+            .and_then(|k| c.event_set(k))
+            .unwrap_or_default();
         let wrong = fail(part, Flaw::AllowedSet { state });
         let keeps_outside = (0..w).all(|i| {
             let o = outside.get(i).copied().unwrap_or(0);
@@ -620,6 +620,9 @@ fn allowed_index(part: Part, spec: &SupervisorSpec, c: &Config<'_>) -> Result<()
     let entries = u64::from(spec.states) * u64::from(sets.bits);
     let w = words(c.events.len());
     let spare = w * 32 - c.events.len();
+    // Read from the checked `index` and `w` directly: through
+    // `Config::stored_set` and `Config::event_set` this check took 270
+    // bytes more of the target's flash.
     let named = |x: u32| {
         let k = read_bits(index, x as usize, sets.bits) as usize;
         let set = c.event_masks.get(k * w..k * w + w).unwrap_or_default();

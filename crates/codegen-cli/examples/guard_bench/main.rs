@@ -19,6 +19,7 @@
 
 mod sop;
 
+use codegen::lower::{GuardPools, GuardTable};
 use des::{Automaton, StateId};
 use sop::Sop;
 use std::collections::HashSet;
@@ -52,44 +53,35 @@ struct Pools {
 
 impl Pools {
     /// The pools of the guards `(event, root, nodes)` over the state bits
-    /// `bits` as codegen lays them out (`lower::config::GuardPools`):
-    /// guards that always hold left out, only the bits read kept (in
-    /// `bits` order) and renumbered, guards in event order.
-    fn lower(bits: &[(usize, u32)], guards: &[(usize, u32, &[[u32; 3]])]) -> Result<Pools, String> {
-        let small = |v: u32| u16::try_from(v).map_err(|_| format!("{v} past u16"));
-        let kept: Vec<_> = guards.iter().filter(|g| g.1 != 1).collect();
-        let mut read = vec![false; bits.len()];
-        for g in &kept {
-            for n in g.2 {
-                read[n[0] as usize] = true;
-            }
+    /// `bits` as codegen lays them out ([`codegen::lower::GuardPools`]).
+    fn lower(bits: &[(usize, u32)], guards: &[GuardTable<'_>]) -> Result<Pools, String> {
+        let mut pools = GuardPools::default();
+        pools
+            .add(bits, guards)
+            .map_err(|what| format!("too many {what} for 16-bit indices"))?;
+        Ok(Pools::of(&pools))
+    }
+
+    /// Codegen's pools, in the executor's types.
+    fn of(pools: &GuardPools) -> Pools {
+        Pools {
+            guards: pools
+                .guards
+                .iter()
+                .map(|g| Spec {
+                    event: usize::from(g.event),
+                    root: g.root,
+                    start: g.nodes.start,
+                    len: g.nodes.len,
+                })
+                .collect(),
+            bits: pools
+                .state_bits
+                .iter()
+                .map(|b| (usize::from(b.component), u32::from(b.shift)))
+                .collect(),
+            nodes: pools.nodes.iter().map(|n| [n.bit, n.low, n.high]).collect(),
         }
-        let mut pools = Pools::default();
-        let mut renumbered = vec![0u16; bits.len()];
-        for (b, &place) in bits.iter().enumerate() {
-            if read[b] {
-                renumbered[b] = small(pools.bits.len() as u32)?;
-                pools.bits.push(place);
-            }
-        }
-        for &&(event, root, nodes) in &kept {
-            let start = small(pools.nodes.len() as u32)?;
-            for &[bit, low, high] in nodes {
-                pools
-                    .nodes
-                    .push([renumbered[bit as usize], small(low)?, small(high)?]);
-            }
-            let len = small(nodes.len() as u32)?;
-            let start = if len == 0 { 0 } else { start };
-            pools.guards.push(Spec {
-                event,
-                root: small(root)?,
-                start,
-                len,
-            });
-        }
-        pools.guards.sort_by_key(|g| g.event);
-        Ok(pools)
     }
 
     /// Guard `k`'s nodes as `[bit, low, high]` over [`Pools::bits`].
@@ -272,49 +264,24 @@ fn family(family: &str, n: usize) -> Result<Collection, String> {
     Collection::new(instance.name, automata.len(), pools, vectors, reachable)
 }
 
-/// The module project: its guard pools as codegen lowers them, checked
-/// against [`Pools::lower`], and the vectors of a walk of
+/// The module project: its guard pools as codegen lowers them, and the
+/// vectors of a walk of
 /// `families::module(10)`, whose files the project reads.
 fn module_project(root: &Path) -> Result<Collection, String> {
     let path = root.join("models/module.plc.toml");
     let project = plc_project::load(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let config = codegen::lower::ConfigPools::from_project(&project).map_err(|e| e.to_string())?;
-    let lowered = Pools {
-        guards: config
-            .guards
-            .iter()
-            .map(|g| Spec {
-                event: usize::from(g.event),
-                root: g.root,
-                start: g.nodes.start,
-                len: g.nodes.len,
-            })
-            .collect(),
-        bits: config
-            .state_bits
-            .iter()
-            .map(|b| (usize::from(b.component), u32::from(b.shift)))
-            .collect(),
-        nodes: config
-            .guard_nodes
-            .iter()
-            .map(|n| [n.bit, n.low, n.high])
-            .collect(),
-    };
+    let lowered = Pools::of(&GuardPools {
+        guards: config.guards,
+        state_bits: config.state_bits,
+        nodes: config.guard_nodes,
+    });
     let [guarded] = project.guarded.as_slice() else {
         return Err(format!(
             "{}: one symbolic supervisor expected",
             path.display()
         ));
     };
-    let guards: Vec<_> = guarded
-        .guards
-        .iter()
-        .map(|g| (g.event, g.root, g.nodes.as_slice()))
-        .collect();
-    if Pools::lower(&guarded.bits, &guards)? != lowered {
-        return Err("the module's guard pools differ from codegen's lowering".into());
-    }
     let instance = des_symbolic::families::module(10).map_err(|e| e.to_string())?;
     let automata: Vec<&Automaton> = instance.plants.iter().chain(&instance.specs).collect();
     if automata.len() != guarded.components.len() {

@@ -977,13 +977,9 @@ const STATES_LISTED: usize = 8;
 /// Supervisor `j`'s stored set number in each state (empty when its sets
 /// are computed).
 fn stored_sets(pools: &ConfigPools, j: usize) -> Vec<usize> {
-    let sup = &pools.supervisors[j];
-    if !sup.allowed.is_stored() {
-        return Vec::new();
-    }
-    let index = sup.allowed.index.of(&pools.allowed_index);
-    (0..sup.states as usize)
-        .map(|x| executor::table::read_bits(index, x, sup.allowed.bits) as usize)
+    let (config, sup) = (pools.config(), &pools.supervisors[j]);
+    (0..sup.states)
+        .map_while(|x| config.stored_set(sup, x))
         .collect()
 }
 

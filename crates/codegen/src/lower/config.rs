@@ -285,65 +285,92 @@ impl ConfigPools {
 }
 
 /// The guards of every symbolic supervisor, with the state bits and nodes
-/// they read. A guard that always holds (root 1) is left out: the event
-/// is then never held back, as without a guard. Only the state bits some
-/// kept guard reads are stored, each supervisor's in its guard file's
-/// order, and its nodes' bit numbers are renumbered to them.
-struct GuardPools {
-    guards: Vec<ex::GuardSpec>,
-    state_bits: Vec<ex::StateBit>,
-    nodes: Vec<ex::GuardNode>,
+/// they read, as the executor's pools. A guard that always holds (root 1)
+/// is left out: the event is then never held back, as without a guard.
+/// Only the state bits some kept guard reads are stored, each
+/// supervisor's in its guard file's order, and its nodes' bit numbers are
+/// renumbered to them.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct GuardPools {
+    /// The kept guards, in event order.
+    pub guards: Vec<ex::GuardSpec>,
+    /// The state bits they read.
+    pub state_bits: Vec<ex::StateBit>,
+    /// Their decision nodes.
+    pub nodes: Vec<ex::GuardNode>,
 }
+
+/// One guard as a symbolic supervisor states it: its event, its root and
+/// its nodes `[bit, low, high]` over the supervisor's state bits.
+pub type GuardTable<'g> = (usize, u32, &'g [[u32; 3]]);
 
 impl GuardPools {
     fn of(project: &Project) -> Result<GuardPools> {
-        let mut pools = GuardPools {
-            guards: Vec::new(),
-            state_bits: Vec::new(),
-            nodes: Vec::new(),
-        };
+        let mut pools = GuardPools::default();
         for g in &project.guarded {
-            let kept: Vec<_> = g.guards.iter().filter(|guard| guard.root != 1).collect();
-            let mut read = vec![false; g.bits.len()];
-            for guard in &kept {
-                for &[bit, _, _] in &guard.nodes {
-                    read[bit as usize] = true;
-                }
-            }
-            let mut renumbered = vec![0; g.bits.len()];
-            for (bit, &(component, shift)) in g.bits.iter().enumerate() {
-                if !read[bit] {
-                    continue;
-                }
-                renumbered[bit] = index(pools.state_bits.len(), "state bits")?;
-                pools.state_bits.push(ex::StateBit {
-                    component: index(component, "supervisors")?,
-                    shift: u8::try_from(shift).map_err(|_| Refusal::TooMany("state bits"))?,
-                });
-            }
-            for guard in kept {
-                let nodes = guard
-                    .nodes
-                    .iter()
-                    .map(|&[bit, low, high]| {
-                        Ok(ex::GuardNode {
-                            bit: renumbered[bit as usize],
-                            low: index(low as usize, "guard nodes")?,
-                            high: index(high as usize, "guard nodes")?,
-                        })
-                    })
-                    .collect::<Result<Vec<_>>>()?;
-                index(nodes.len() + 2, "guard nodes")?;
-                let span = push_span(&mut pools.nodes, &nodes, "guard nodes")?;
-                pools.guards.push(ex::GuardSpec {
-                    event: index(guard.event, "events")?,
-                    root: index(guard.root as usize, "guard nodes")?,
-                    nodes: span,
-                });
+            let guards: Vec<GuardTable<'_>> = (g.guards.iter())
+                .map(|guard| (guard.event, guard.root, guard.nodes.as_slice()))
+                .collect();
+            pools.push(&g.bits, &guards)?;
+        }
+        Ok(pools)
+    }
+
+    /// Adds the guards of one symbolic supervisor whose state bits are
+    /// `bits` (supervisor, shift); guards stay in event order. `Err`
+    /// names what would overflow a 16-bit index.
+    pub fn add(
+        &mut self,
+        bits: &[(usize, u32)],
+        guards: &[GuardTable<'_>],
+    ) -> std::result::Result<(), &'static str> {
+        self.push(bits, guards).map_err(|refusal| match refusal {
+            Refusal::TooMany(what) => what,
+            Refusal::NoInitialState(_) => "guards",
+        })
+    }
+
+    /// [`GuardPools::add`], refusing as the rest of the lay-out does.
+    fn push(&mut self, bits: &[(usize, u32)], guards: &[GuardTable<'_>]) -> Result<()> {
+        let kept: Vec<_> = guards.iter().filter(|guard| guard.1 != 1).collect();
+        let mut read = vec![false; bits.len()];
+        for guard in &kept {
+            for &[bit, _, _] in guard.2 {
+                read[bit as usize] = true;
             }
         }
-        pools.guards.sort_by_key(|g| g.event);
-        Ok(pools)
+        let mut renumbered = vec![0; bits.len()];
+        for (bit, &(component, shift)) in bits.iter().enumerate() {
+            if !read[bit] {
+                continue;
+            }
+            renumbered[bit] = index(self.state_bits.len(), "state bits")?;
+            self.state_bits.push(ex::StateBit {
+                component: index(component, "supervisors")?,
+                shift: u8::try_from(shift).map_err(|_| Refusal::TooMany("state bits"))?,
+            });
+        }
+        for &&(event, root, nodes) in &kept {
+            let nodes = nodes
+                .iter()
+                .map(|&[bit, low, high]| {
+                    Ok(ex::GuardNode {
+                        bit: renumbered[bit as usize],
+                        low: index(low as usize, "guard nodes")?,
+                        high: index(high as usize, "guard nodes")?,
+                    })
+                })
+                .collect::<Result<Vec<_>>>()?;
+            index(nodes.len() + 2, "guard nodes")?;
+            let span = push_span(&mut self.nodes, &nodes, "guard nodes")?;
+            self.guards.push(ex::GuardSpec {
+                event: index(event, "events")?,
+                root: index(root as usize, "guard nodes")?,
+                nodes: span,
+            });
+        }
+        self.guards.sort_by_key(|g| g.event);
+        Ok(())
     }
 }
 

@@ -29,7 +29,7 @@ pub mod nets;
 pub mod supervisors;
 mod table;
 
-pub use config::ConfigPools;
+pub use config::{ConfigPools, GuardPools, GuardTable};
 pub use figures::{GuardFigures, ImageCheck, ScanSets};
 pub use logic::LogicImage;
 pub use matches::MatchImage;
