@@ -362,28 +362,6 @@ pub struct Config<'a> {
     pub allowed_index: &'a [u32],
 }
 
-impl<'a> Config<'a> {
-    /// The number of `spec`'s stored allowed set in `state`
-    /// ([`AllowedSets`]), `None` when its sets are computed.
-    #[inline]
-    pub fn stored_set(&self, spec: &SupervisorSpec, state: u32) -> Option<usize> {
-        let sets = spec.allowed;
-        sets.is_stored().then(|| {
-            crate::table::read_bits(sets.index.of(self.allowed_index), state as usize, sets.bits)
-                as usize
-        })
-    }
-
-    /// Event set `k` of [`Config::event_masks`], words `k·w .. (k + 1)·w`
-    /// (`w` = [`words`]`(events)`); `None` past the pool.
-    #[inline]
-    pub fn event_set(&self, k: usize) -> Option<&'a [u32]> {
-        let w = words(self.events.len());
-        let start = k.checked_mul(w)?;
-        self.event_masks.get(start..start.checked_add(w)?)
-    }
-}
-
 /// Where one state bit comes from: a supervisor (a component of a
 /// symbolic supervisor) and the bit's place in its state number.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -70,7 +70,7 @@
 /// nets" above): a group of `b` bits has `2^b` states, `1 ≤ b ≤` this.
 pub const NET_GROUP_BITS: u32 = 31;
 
-use crate::program::{Config, Index, Program};
+use crate::program::{Config, Index, Program, SupervisorSpec};
 
 /// The tables' data, defined beside the [`Program`] trait that hands them
 /// out; this module decodes them.
@@ -100,6 +100,28 @@ fn read_bits_at(words: &[u32], bit: usize, width: u8) -> u32 {
         value
     } else {
         value & ((1u32 << width) - 1)
+    }
+}
+
+// The stored allowed sets' index is a packed array too: decoded here.
+impl<'a> Config<'a> {
+    /// The number of `spec`'s stored allowed set in `state`
+    /// ([`crate::program::AllowedSets`]), `None` when its sets are computed.
+    #[inline]
+    pub fn stored_set(&self, spec: &SupervisorSpec, state: u32) -> Option<usize> {
+        let sets = spec.allowed;
+        sets.is_stored().then(|| {
+            read_bits(sets.index.of(self.allowed_index), state as usize, sets.bits) as usize
+        })
+    }
+
+    /// Event set `k` of [`Config::event_masks`], words `k·w .. (k + 1)·w`
+    /// (`w` = [`crate::program::words`]`(events)`); `None` past the pool.
+    #[inline]
+    pub fn event_set(&self, k: usize) -> Option<&'a [u32]> {
+        let w = crate::program::words(self.events.len());
+        let start = k.checked_mul(w)?;
+        self.event_masks.get(start..start.checked_add(w)?)
     }
 }
 
