@@ -42,6 +42,7 @@ pub mod random_inputs;
 pub mod replay;
 pub mod rng;
 pub mod scenario;
+pub mod serve;
 pub mod sim;
 pub mod testbed;
 pub mod trace;
