@@ -24,6 +24,11 @@ pub struct SynthArgs {
     /// Minimise the supervisor's states (language preserved).
     #[arg(long, conflicts_with = "symbolic")]
     minstate: bool,
+    /// Reduce the supervisor (supervisor reduction, control-consistent
+    /// classes): a smaller one with the same closed loop, checked; before
+    /// `--minstate` when both are given.
+    #[arg(long, conflicts_with = "symbolic")]
+    reduce: bool,
     /// Synthesise on BDDs without building the product of plants and
     /// specifications, and write one guard per controllable event to a
     /// guard file (`-o NAME.guards.toml`, docs/formats.md).
@@ -55,6 +60,8 @@ struct Report {
     supervisor: Size,
     empty: bool,
     minimised: Option<Size>,
+    /// After supervisor reduction (before minstate).
+    reduced: Option<Size>,
     /// The components the supervisor's state names are made of, in order
     /// (plants, then specifications): `0.1.2` is the state of the first
     /// component, then of the second, … `None` with `--no-state-names`.
@@ -79,6 +86,7 @@ struct Timings {
     compose_spec: f64,
     supcon: f64,
     minstate: f64,
+    reduce: f64,
     write: f64,
     total: f64,
 }
@@ -114,6 +122,7 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
             progress: &spinner,
         },
         minstate: args.minstate,
+        reduce: args.reduce,
     };
 
     let mark = Instant::now();
@@ -127,18 +136,25 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
         spec,
         supervisor: mut sup,
         supcon_size,
+        reduced_size,
         timings,
     } = ops::synthesize(&plants, &specs, options).map_err(CliError::max_states)?;
     t.compose_plant = timings.compose_plant.as_secs_f64() * 1e3;
     t.compose_spec = timings.compose_spec.as_secs_f64() * 1e3;
     t.supcon = timings.supcon.as_secs_f64() * 1e3;
     t.minstate = timings.minstate.as_secs_f64() * 1e3;
+    t.reduce = timings.reduce.as_secs_f64() * 1e3;
     let supervisor = Size {
         states: supcon_size.states,
         transitions: supcon_size.transitions,
         ..Size::of(&sup)
     };
     let minimised = args.minstate.then(|| Size::of(&sup));
+    let reduced = reduced_size.map(|r| Size {
+        states: r.states,
+        transitions: r.transitions,
+        ..Size::of(&sup)
+    });
 
     let name = args.name.clone().unwrap_or_else(|| {
         args.output.file_stem().map_or_else(
@@ -166,6 +182,7 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
         supervisor,
         empty: sup.is_empty(),
         minimised,
+        reduced,
         state_names,
         output: args.output.display().to_string(),
         milliseconds: t,
@@ -195,6 +212,14 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
         report.supervisor,
         report.milliseconds.supcon
     );
+    if let Some(r) = &report.reduced {
+        outln!(
+            out,
+            "reduced:    {} ({:.1} ms, closed loop checked equal)",
+            r,
+            report.milliseconds.reduce
+        );
+    }
     if let Some(m) = &report.minimised {
         outln!(
             out,

@@ -142,7 +142,8 @@ fn the_small_factory_is_synthesised_into_the_12_state_supervisor() {
         SupervisorSource::Synthesized {
             plants: plants.clone(),
             specs: specs.clone(),
-            minimized: false
+            minimized: false,
+            reduced: false
         }
     );
     let mut files = vec![path];
@@ -292,6 +293,7 @@ fn minimize_runs_minstate_on_the_synthesised_supervisor() {
         s.source,
         SupervisorSource::Synthesized {
             minimized: true,
+            reduced: false,
             ..
         }
     ));

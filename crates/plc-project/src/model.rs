@@ -159,6 +159,8 @@ pub enum SupervisorSource {
         specs: Vec<PathBuf>,
         /// Minimised with `minstate`.
         minimized: bool,
+        /// Reduced (supervisor reduction, closed loop checked).
+        reduced: bool,
     },
     /// A component of the symbolic supervisor `guarded`, read from `file`.
     Component {

@@ -263,7 +263,7 @@ pub(crate) struct RawNet {
     pub max_markings: Option<Spanned<u64>>,
 }
 
-/// `synthesize = { plants, specs, minimize, max_states }`.
+/// `synthesize = { plants, specs, minimize, reduce, max_states }`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawSynthesize {
@@ -272,6 +272,9 @@ pub(crate) struct RawSynthesize {
     pub specs: Option<Spanned<Names>>,
     #[serde(default)]
     pub minimize: bool,
+    /// Reduce the supervisor (its closed loop checked equal).
+    #[serde(default)]
+    pub reduce: Option<Spanned<bool>>,
     /// Synthesise symbolically: components and guards, not one automaton.
     #[serde(default)]
     pub symbolic: Option<Spanned<bool>>,

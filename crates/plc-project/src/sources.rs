@@ -418,8 +418,10 @@ impl Loader<'_> {
                 }
             },
         };
+        let reduce = s.reduce.as_ref().is_some_and(|r| *r.get_ref());
         let options = ops::SynthesisOptions {
             minstate: s.minimize,
+            reduce,
             compose: ops::ComposeOptions {
                 max_states,
                 ..ops::ComposeOptions::default()
@@ -452,6 +454,7 @@ impl Loader<'_> {
                 plants,
                 specs,
                 minimized: s.minimize,
+                reduced: reduce,
             },
             origins,
         })

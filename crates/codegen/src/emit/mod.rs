@@ -189,10 +189,12 @@ impl<'a> Emitter<'a> {
                 plants,
                 specs,
                 minimized,
+                reduced,
             } => format!(
-                "synthesised from {} plant and {} specification files{}",
+                "synthesised from {} plant and {} specification files{}{}",
                 plants.len(),
                 specs.len(),
+                if *reduced { ", reduced" } else { "" },
                 if *minimized { ", minimised" } else { "" }
             ),
             SupervisorSource::Component { guarded, file } => format!(

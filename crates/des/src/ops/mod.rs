@@ -11,6 +11,7 @@
 //! | [`verify`] | controllability, nonblocking, nonconflict, with witnesses |
 //! | [`modular`] | controllability of one modular supervisor on its reduced plant |
 //! | [`equivalence`] | language equality, isomorphism |
+//! | [`reduce`](mod@reduce) | supervisor reduction (control-consistent classes) |
 //! | [`synthesis`](mod@synthesis) | the pipeline supcon(sync(plants), sync(specs)), minstate |
 
 pub mod condat;
@@ -18,6 +19,7 @@ pub mod equivalence;
 pub mod minstate;
 pub mod modular;
 pub mod reach;
+pub mod reduce;
 pub mod selfloop;
 pub mod supcon;
 pub mod sync;
@@ -31,6 +33,7 @@ pub use modular::{
     check_controllable_modular, reduced_plant, ModularCounterexample, ModularVerdict,
 };
 pub use reach::{accessible, coaccessible, coreachable, is_trim, reachable, restrict, trim};
+pub use reduce::{check_closed_loop, reduce, Reduction};
 pub use selfloop::{inverse_projection, selfloop};
 pub use supcon::{supcon, supcon_with};
 pub use sync::{compose, meet, sync, ComposeOptions, Composition, Product};

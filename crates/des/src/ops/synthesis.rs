@@ -1,12 +1,13 @@
 //! The synthesis pipeline: `supcon(sync(plants), sync(specs))`, then
-//! optionally `minstate`.
+//! optionally supervisor reduction (its closed loop checked equal to
+//! supcon's), then optionally `minstate`.
 //!
 //! One function for every caller: `codegen synth` on the command line and
 //! the `synthesize = { … }` supervisors of a PLC project both go through
 //! [`synthesize`], so a project and the CLI give the same supervisor for
 //! the same files.
 
-use super::{compose, minstate, supcon_with, ComposeOptions, Composition};
+use super::{compose, minstate, reduce, supcon_with, ComposeOptions, Composition};
 use crate::automaton::Automaton;
 use crate::error::Result;
 use std::time::{Duration, Instant};
@@ -19,6 +20,9 @@ pub struct SynthesisOptions<'a> {
     pub compose: ComposeOptions<'a>,
     /// Minimise the supervisor's states (language preserved).
     pub minstate: bool,
+    /// Reduce the supervisor ([`reduce::reduce`]): a smaller one with the
+    /// same closed loop, which is checked.
+    pub reduce: bool,
 }
 
 /// How long each phase of [`synthesize`] took.
@@ -32,6 +36,8 @@ pub struct Timings {
     pub supcon: Duration,
     /// minstate (zero when not asked for).
     pub minstate: Duration,
+    /// Supervisor reduction and its check (zero when not asked for).
+    pub reduce: Duration,
 }
 
 /// Number of states and transitions of an automaton.
@@ -60,12 +66,15 @@ pub struct Synthesis {
     pub plant: Automaton,
     /// The specification's composition; `None` without specifications.
     pub spec: Option<Automaton>,
-    /// The supervisor (minimised when asked for). Empty when no
+    /// The supervisor (reduced and minimised when asked for). Empty when no
     /// controllable, nonblocking behaviour of the plant meets the
     /// specification.
     pub supervisor: Automaton,
-    /// The supervisor's size as supcon gave it, before minstate.
+    /// The supervisor's size as supcon gave it, before reduction and
+    /// minstate.
     pub supcon_size: Size,
+    /// Its size after reduction (before minstate), when asked for.
+    pub reduced_size: Option<Size>,
     /// Time per phase.
     pub timings: Timings,
 }
@@ -121,6 +130,15 @@ pub fn synthesize(
     timings.supcon = mark.elapsed();
     let supcon_size = Size::of(&supervisor);
 
+    if options.reduce && !supervisor.is_empty() {
+        progress.report("supervisor reduction", 0);
+        let mark = Instant::now();
+        let reduced = reduce::reduce(&plant, &supervisor, options.compose.max_states)?.automaton;
+        reduce::check_closed_loop(&plant, &supervisor, &reduced, options.compose)?;
+        supervisor = reduced;
+        timings.reduce = mark.elapsed();
+    }
+    let reduced_size = options.reduce.then(|| Size::of(&supervisor));
     if options.minstate && !supervisor.is_empty() {
         progress.report("minstate", 0);
         let mark = Instant::now();
@@ -132,6 +150,7 @@ pub fn synthesize(
         spec: (!specs.is_empty()).then_some(spec),
         supervisor,
         supcon_size,
+        reduced_size,
         timings,
     })
 }

@@ -138,6 +138,12 @@ impl Loader<'_> {
                 "`max_states` limits explicit compositions; symbolic synthesis builds none",
             ));
         }
+        if let Some(r) = s.reduce.as_ref().filter(|r| *r.get_ref()) {
+            return Err(self.error(
+                &r.span(),
+                "`reduce` reduces one supervisor automaton; a symbolic supervisor has components and guards instead",
+            ));
+        }
         let super::SynthesisModels {
             plants,
             plant_automata,
