@@ -116,6 +116,18 @@ impl<P: Program, M: Memory> Controller<P, M> {
         self.memory.outputs()
     }
 
+    /// Timer `t`'s deadline (ms on the scan clock, wrapping) while it
+    /// runs; `None` when it is stopped or there is no timer `t`. A timer
+    /// whose deadline has passed expires at the next scan.
+    pub fn timer_deadline(&self, t: usize) -> Option<u32> {
+        let (running, deadline) = self.memory.timers();
+        running
+            .get(t)
+            .copied()
+            .filter(|&r| r)
+            .and_then(|_| deadline.get(t).copied())
+    }
+
     /// The record of the last scan (before the first scan: scan 0 with
     /// the initial state and an all-zero output image).
     pub fn record(&self) -> ScanRecord<'_> {

@@ -74,6 +74,8 @@ pub(crate) mod sealed {
         fn executed(&self) -> &[u16];
         /// The last scan's unexpected events.
         fn unexpected(&self) -> &[u16];
+        /// Per timer: running, and its deadline (ms, wrapping).
+        fn timers(&self) -> (&[bool], &[u32]);
     }
 }
 
@@ -247,6 +249,10 @@ impl<
     fn unexpected(&self) -> &[u16] {
         &self.unexpected
     }
+
+    fn timers(&self) -> (&[bool], &[u32]) {
+        (&self.timer_running, &self.timer_deadline)
+    }
 }
 
 impl<
@@ -364,6 +370,10 @@ mod heap {
 
         fn unexpected(&self) -> &[u16] {
             &self.unexpected
+        }
+
+        fn timers(&self) -> (&[bool], &[u32]) {
+            (&self.timer_running, &self.timer_deadline)
         }
     }
 

@@ -265,8 +265,12 @@ fn falling_edge_starts_a_timer_that_expires_no_earlier_than_its_preset() {
     let r = c.scan(20, &io(false, false));
     assert_eq!(r.executed, [LS_OFF, STOP]);
     assert!(!r.outputs[BELT]);
+    assert_eq!(c.timer_deadline(0), Some(1020));
     assert!(c.scan(1019, &io(false, false)).executed.is_empty());
+    assert_eq!(c.timer_deadline(0), Some(1020));
     assert_eq!(c.scan(1020, &io(false, false)).executed, [CLEARED]);
+    assert_eq!(c.timer_deadline(0), None, "stopped once expired");
+    assert_eq!(c.timer_deadline(1), None, "no such timer");
     assert!(
         c.scan(3000, &io(false, false)).executed.is_empty(),
         "expires once"

@@ -15,6 +15,8 @@
 //! - [`scenario`]: postcard scenarios for the QEMU harness (`host-sim
 //!   record`), from an input file or [`random_inputs`]; [`rng`]: the seeded
 //!   generator behind everything random.
+//! - [`serve`]: any project in the browser (`host-sim serve`): a local
+//!   HTTP server holding one simulation, its JSON API and the page.
 //! - [`closed_loop`]: a plant simulation in closed loop with a controller
 //!   ([`closed_loop::Plant`], one runner for every plant):
 //!   - [`boiler`]: the gas-fired boiler (`host-sim boiler`): its physics
@@ -42,6 +44,7 @@ pub mod random_inputs;
 pub mod replay;
 pub mod rng;
 pub mod scenario;
+pub mod serve;
 pub mod sim;
 pub mod testbed;
 pub mod trace;

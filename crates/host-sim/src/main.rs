@@ -2,6 +2,7 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use codegen::backend::Backend;
+use host_sim::serve::{http, PlantChoice, Session};
 use host_sim::{inputs, random_inputs, replay, scenario, Sim};
 use std::fmt;
 use std::io::{self, Write};
@@ -91,6 +92,34 @@ impl From<BackendArg> for Backend {
     }
 }
 
+/// What simulates the machine in `serve`.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+enum PlantArg {
+    /// The boiler's or the cell's physics when the project has their
+    /// signals, else the project's plant automata, else none.
+    Auto,
+    /// The plant automata the project's supervisors are synthesised from.
+    Automata,
+    /// No plant model: you move the inputs.
+    Supervisors,
+    /// The gas-fired boiler's physics.
+    Boiler,
+    /// The batch cell's physics.
+    Cell,
+}
+
+impl From<PlantArg> for PlantChoice {
+    fn from(p: PlantArg) -> PlantChoice {
+        match p {
+            PlantArg::Auto => PlantChoice::Auto,
+            PlantArg::Automata => PlantChoice::Automata,
+            PlantArg::Supervisors => PlantChoice::Supervisors,
+            PlantArg::Boiler => PlantChoice::Boiler,
+            PlantArg::Cell => PlantChoice::Cell,
+        }
+    }
+}
+
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Replay an inputs file through a project and write the trace.
@@ -164,6 +193,22 @@ enum Command {
         /// List the scenarios and exit.
         #[arg(long)]
         list: bool,
+    },
+    /// Simulate a project in the browser: a local web page showing and
+    /// steering it in closed loop with a simulated machine (its plant
+    /// automata, the boiler's or the batch cell's physics).
+    Serve {
+        /// The project file (`*.plc.toml`).
+        project: PathBuf,
+        /// The port on 127.0.0.1 (0: any free port; the URL is printed).
+        #[arg(long, default_value_t = 8080)]
+        port: u16,
+        /// What simulates the machine.
+        #[arg(long, value_enum, default_value_t = PlantArg::Auto)]
+        plant: PlantArg,
+        /// How supervisors are represented.
+        #[arg(long, value_enum, default_value_t = BackendArg::Table)]
+        backend: BackendArg,
     },
     /// Record a scenario for the QEMU harness: inputs per scan and the
     /// expected trace, as postcard records.
@@ -264,6 +309,12 @@ fn run(cli: Cli) -> Result<(), String> {
                 &mut Report::new(),
             )
         }
+        Command::Serve {
+            project,
+            port,
+            plant,
+            backend,
+        } => serve(&project, port, plant.into(), backend.into()),
         Command::Record {
             project,
             inputs: inputs_path,
@@ -485,6 +536,31 @@ fn testbed(
     } else {
         Err(format!("{} violations", run.violations.len()))
     }
+}
+
+/// `host-sim serve`: loads the project, binds 127.0.0.1:`port`, prints
+/// the URL and serves until killed.
+fn serve(project: &Path, port: u16, plant: PlantChoice, backend: Backend) -> Result<(), String> {
+    let session = Session::load(project, backend, plant)?;
+    let server = tiny_http::Server::http(("127.0.0.1", port))
+        .map_err(|e| format!("127.0.0.1:{port}: {e}"))?;
+    let addr = server
+        .server_addr()
+        .to_ip()
+        .ok_or("the server has no IP address")?;
+    let mut out = io::stdout();
+    let _ = writeln!(out, "http://{addr}/");
+    let _ = out.flush();
+    note!(
+        "host-sim serve: {} ({} plant); Ctrl-C stops",
+        session.project().name,
+        session.machine().kind()
+    );
+    let mut app = http::App {
+        session,
+        file: project.display().to_string(),
+    };
+    app.serve(&server).map_err(|e| format!("serving: {e}"))
 }
 
 fn main() -> ExitCode {
