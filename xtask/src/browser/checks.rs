@@ -114,7 +114,13 @@ impl<'a> Page<'a> {
         Ok(self.eval("!document.getElementById('fault').hidden")? == json!(true))
     }
 
+    /// Saves a screenshot once the plots show the scan the page shows.
     fn screenshot(&self, name: &str) -> Result {
+        self.ctx.session.wait_for(
+            "document.body.dataset.plotScan === document.body.dataset.scan",
+            WAIT,
+            "the plots to show the last scan",
+        )?;
         let path = self.ctx.out.join(name);
         self.ctx.session.screenshot(&path)?;
         eprintln!("xtask browser: screenshot {}", path.display());

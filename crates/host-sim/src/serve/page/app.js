@@ -136,20 +136,27 @@ function build() {
   if (!cb.children.length) cb.append(h('div', { class: 'dim' }, 'none'));
   collapsible(cb, cb.children.length);
 
-  const db = $('diagrams');
   (model.supervisors || []).forEach((s, i) => {
     if (!s.diagram || !(s.diagram.states || []).length) return;
     const d = automatonDiagram(s.diagram);
-    ui.diag.push({ sup: i, ...d });
-    db.append(h('div', { class: 'panel diagram', id: 'diagram-' + s.name }, h('h2', {}, `${s.name} `, h('span', { class: 'hint' }, 'state diagram: solid = controllable, dashed = uncontrollable, ↺ self-loops')), d.svg));
-    fitWidth(d.svg);
+    const box = diagramPanel('diagram-' + s.name, s.name, 'state diagram: solid = controllable, dashed = uncontrollable, ↺ self-loops', d.svg, s.diagram.states.length <= 16);
+    const entry = { sup: i, box, ...d };
+    ui.diag.push(entry);
+    box.parentNode.addEventListener('toggle', () => scrollToNode(entry, entry.cur));
   });
-  (model.nets || []).forEach((n, i) => {
+  (model.nets || []).forEach((n) => {
     const d = netDiagram(n);
     ui.nets.push(d);
-    db.append(h('div', { class: 'panel diagram', id: 'net-' + n.name }, h('h2', {}, `${n.name} `, h('span', { class: 'hint' }, 'Petri net: tokens per place, control places red, enabled transitions green')), d.svg));
-    fitWidth(d.svg);
+    diagramPanel('net-' + n.name, n.name, 'Petri net: tokens per place, control places red, enabled transitions green', d.svg, d.tokens.length + d.trans.length <= 60);
   });
+}
+
+// A diagram in a panel that folds (large ones start folded) and scrolls.
+function diagramPanel(id, name, hint, el, open) {
+  const box = h('div', { class: 'dscroll' }, el);
+  $('diagrams').append(h('details', { class: 'panel diagram', id, open }, h('summary', {}, h('h2', {}, `${name} `, h('span', { class: 'hint' }, hint))), box));
+  fitWidth(el);
+  return box;
 }
 
 function buildPlant(plant, physical) {
@@ -254,6 +261,14 @@ function fitWidth(el) {
   if (avail > 0 && w > avail && w < avail * 1.35) { el.setAttribute('width', avail); el.setAttribute('height', (Number(el.getAttribute('height')) * avail / w).toFixed(0)); }
 }
 
+// Scrolls a large diagram's panel so that state `i` is in view.
+function scrollToNode(d, i) {
+  const box = d.box, nd = d.nodes[i], vb = d.svg.viewBox.baseVal;
+  if (!box || !nd || !vb || box.scrollHeight <= box.clientHeight + 2 && box.scrollWidth <= box.clientWidth + 2) return;
+  const k = Number(d.svg.getAttribute('width')) / vb.width;
+  box.scrollTo({ left: (nd.x - vb.x) * k - box.clientWidth / 2, top: (nd.y - vb.y) * k - box.clientHeight / 2 });
+}
+
 function automatonDiagram(dg) {
   const states = dg.states, edges = dg.edges || [];
   const n = states.length;
@@ -299,7 +314,7 @@ function automatonDiagram(dg) {
     return g;
   });
   root.append(ge, gn);
-  return { svg: root, groups, cur: -1 };
+  return { svg: root, groups, nodes, cur: -1 };
 }
 
 function netDiagram(net) {
@@ -369,7 +384,7 @@ function render(s) {
     const cur = x ? x.state : -1;
     if (cur === d.cur) continue;
     if (d.groups[d.cur]) d.groups[d.cur].classList.remove('cur');
-    if (d.groups[cur]) d.groups[cur].classList.add('cur');
+    if (d.groups[cur]) { d.groups[cur].classList.add('cur'); scrollToNode(d, cur); }
     d.cur = cur;
   }
   ui.nets.forEach((d, k) => {
@@ -458,7 +473,7 @@ function renderLog(log) {
       'data-time': e.time_ms, 'data-events': (e.events || []).join(' '), 'data-unexpected': (e.unexpected || []).join(' ') },
       h('span', { class: 'sc' }, '#' + e.scan), h('span', { class: 'tm' }, fmtTime(e.time_ms)),
       h('span', { class: 'evs' }, (e.events || []).join(' '), ...(e.unexpected || []).map((u) => h('span', { class: 'unx' }, ' ' + u + '!'))),
-      e.fault ? h('span', { class: 'fc' }, e.fault.cause || 'fault') : null,
+      e.fault ? h('span', { class: 'fc' }, typeof e.fault === 'string' ? e.fault : e.fault.cause || 'fault') : null,
       e.note ? h('span', { class: 'note' }, e.note) : null));
   }
   $('log').replaceChildren(...items);
@@ -472,8 +487,13 @@ function historySoon() {
   const wait = Math.max(0, histAt + (running ? 400 : 60) - performance.now());
   histTimer = setTimeout(async () => {
     histAt = performance.now();
-    try { drawPlot(await api('history?points=' + Math.max(100, Math.floor($('plots').clientWidth - 130)))); } catch (e) { /* keep the last plot */ }
+    const scan = st.scan;
+    try {
+      drawPlot(await api('history?points=' + Math.max(100, Math.floor($('plots').clientWidth - 130))));
+      document.body.dataset.plotScan = String(scan);
+    } catch (e) { /* keep the last plot */ }
     histTimer = null;
+    if (st.scan !== scan) historySoon();
   }, wait);
 }
 
@@ -490,7 +510,7 @@ function drawPlot(hist) {
   lanes.push({ name: 'fault', v: hist.faults, cls: 'fault' });
   const analog = ((model.plant || {}).analog || []).map((a, i) => ({ a, v: (hist.analog || [])[i] || [] }));
   const LH = 13, AH = 48, GUT = 118, W = $('plots').clientWidth || 600;
-  const H = lanes.length * LH + analog.length * (AH + 8) + 26;
+  const H = lanes.length * LH + analog.length * (AH + 14) + 26;
   const dpr = window.devicePixelRatio || 1;
   cv.width = W * dpr; cv.height = H * dpr; cv.style.width = W + 'px'; cv.style.height = H + 'px';
   const g = cv.getContext('2d');
@@ -520,7 +540,7 @@ function drawPlot(hist) {
     y += LH;
   }
   for (const { a, v } of analog) {
-    y += 8;
+    y += 14;
     const lo = a.min, hi = a.max === a.min ? a.min + 1 : a.max;
     const Y = (x) => y + AH - ((Math.max(lo, Math.min(hi, x)) - lo) / (hi - lo)) * AH;
     g.fillStyle = col('--fg-dim');
@@ -549,12 +569,12 @@ function drawPlot(hist) {
 
 // ---------- controls ----------
 
-let running = false, runAcc = 0, runLast = 0;
+let running = false, runAcc = 0, runLast = 0, runFrom = [0, 0];
 function setRunning(on) {
   running = on;
   $('run').disabled = on; $('pause').disabled = !on;
   $('run').classList.toggle('active', on);
-  if (on) { runLast = performance.now(); runAcc = 0; setTimeout(runTick, 0); }
+  if (on) { runLast = performance.now(); runAcc = 0; runFrom = [runLast, st ? st.scan : 0]; setTimeout(runTick, 0); }
 }
 
 // Real-time pacing: the scans due since the last tick at the chosen speed.
@@ -568,6 +588,8 @@ async function runTick() {
   runAcc = Math.min(runAcc - n, 1);
   if (n >= 1) {
     try { await act('step', { scans: n }); } catch (e) { setRunning(false); return; }
+    const secs = (performance.now() - runFrom[0]) / 1000, speed = Number($('speed').value);
+    if (secs > 0.5) $('perf').textContent = `running ×${speed}: ${fmtRate((st.scan - runFrom[1]) / secs)}scans/s measured by the page (target ${fmtRate((speed * 1000) / period)}scans/s)`;
   }
   setTimeout(runTick, 40);
 }
