@@ -228,6 +228,56 @@ pub fn press(ctx: &Ctx) -> Result {
     eprintln!(
         "xtask browser: press fault and reset: banner, safe outputs, reset; {events} logged scans agree; replay of the saved inputs gives the server's trace byte for byte"
     );
+    controls(&page)
+}
+
+/// Restart, run and pause, the random driver on and off.
+fn controls(page: &Page) -> Result {
+    let s = page.ctx.session;
+    page.act("#restart")?;
+    let (scan, state, log) = (
+        scan_shown(page)?,
+        page.text("state-press")?,
+        page.eval("document.querySelectorAll('#log .entry').length")?,
+    );
+    if scan != 0 || state != "1" || log != json!(0) {
+        return Err(format!(
+            "press: after restart the page shows scan {scan}, state {state:?}, {log} log entries; expected 0, \"1\", 0"
+        ));
+    }
+    s.exec(
+        "const sp = document.getElementById('speed'); sp.value = '10'; return sp.value;",
+        json!([]),
+    )?;
+    s.click("#run")?;
+    s.wait_for(
+        "Number(document.body.dataset.scan) >= 100",
+        WAIT,
+        "the run at ×10 to reach scan 100",
+    )?;
+    s.click("#pause")?;
+    std::thread::sleep(Duration::from_millis(300));
+    let paused = scan_shown(page)?;
+    std::thread::sleep(Duration::from_millis(300));
+    let later = scan_shown(page)?;
+    let server = page.get_json("api/state")?["scan"].as_u64();
+    if later != paused || server != Some(paused) {
+        return Err(format!(
+            "press: after pause the page went on from scan {paused} to {later} (server: {server:?})"
+        ));
+    }
+    for (on, driver) in [(true, "random"), (false, "none")] {
+        page.act("#driver")?;
+        let pressed =
+            page.eval("document.getElementById('driver').getAttribute('aria-pressed')")?;
+        let server = page.get_json("api/state")?["driver"].clone();
+        if pressed != json!(on.to_string()) || server != json!(driver) {
+            return Err(format!(
+                "press: the driver button shows pressed = {pressed}, the server's driver is {server}; expected {on}, {driver:?}"
+            ));
+        }
+    }
+    eprintln!("xtask browser: press controls: restart to scan 0, run ×10 and pause at scan {paused}, random driver on and off");
     Ok(())
 }
 

@@ -74,7 +74,7 @@ function build() {
 
   const ib = $('inputs');
   ui.inputs = (model.inputs || []).map((inp) => {
-    const b = h('button', { class: 'io input', id: 'input-' + inp.name, 'data-testid': 'input-' + inp.name, disabled: physical,
+    const b = h('button', { class: 'io input', 'data-name': inp.name, id: 'input-' + inp.name, 'data-testid': 'input-' + inp.name, disabled: physical,
       title: `${inp.name}${inp.debounce_scans ? `, debounced ${inp.debounce_scans} scans` : ''}${inp.reset ? ' — the reset input' : ''}`,
       onclick: () => act('input', { name: inp.name, value: !(st && st.inputs[ui.inputs.indexOf(b)]) }).catch(() => {}) },
       h('span', { class: 'dot' }), h('span', { class: 'nm' }, inp.name), inp.reset ? h('span', { class: 'tag reset' }, 'reset') : null,
@@ -86,7 +86,7 @@ function build() {
 
   const ob = $('outputs');
   ui.outputs = (model.outputs || []).map((o) => {
-    const d = h('div', { class: 'io output', id: 'output-' + o.name, 'data-testid': 'output-' + o.name, 'data-level': '0', title: `${o.name}: driven by ${o.drive}; safe level ${o.safe ? 1 : 0}` },
+    const d = h('div', { class: 'io output', 'data-name': o.name, id: 'output-' + o.name, 'data-testid': 'output-' + o.name, 'data-level': '0', title: `${o.name}: driven by ${o.drive}; safe level ${o.safe ? 1 : 0}` },
       h('span', { class: 'lamp' }), h('span', { class: 'nm' }, o.name), o.safe ? h('span', { class: 'tag' }, 'safe 1') : null);
     ob.append(d);
     return d;
@@ -106,7 +106,7 @@ function build() {
   const sb = $('supervisors');
   ui.sups = (model.supervisors || []).map((s) => {
     const v = h('b', { class: 'state', id: 'state-' + s.name, 'data-testid': 'state-' + s.name });
-    sb.append(h('div', { class: 'sup' }, h('span', { class: 'nm' }, s.name), h('span', { class: 'dim' }, s.kind === 'net' ? 'net' : `${s.kind}, ${s.states} states`), v));
+    sb.append(h('div', { class: 'sup', 'data-name': s.name }, h('span', { class: 'nm' }, s.name), h('span', { class: 'dim' }, s.kind === 'net' ? 'net' : `${s.kind}, ${s.states} states`), v));
     return v;
   });
   collapsible(sb, ui.sups.length);
@@ -115,7 +115,7 @@ function build() {
   const unexpectedGoes = p.unexpected === 'fault' ? '→ fault' : `→ ${p.unexpected || 'unexpected'}`;
   for (const e of (model.events || []).filter((e) => !e.controllable)) {
     const why = h('span', { class: 'why' });
-    const b = h('button', { class: 'ev', id: 'event-' + e.name, 'data-testid': 'event-' + e.name, disabled: !e.clickable,
+    const b = h('button', { class: 'ev', 'data-name': e.name, id: 'event-' + e.name, 'data-testid': 'event-' + e.name, disabled: !e.clickable,
       title: `${e.name}: ${e.trigger} (${e.origin})${e.clickable ? '' : ' — not clickable'}`,
       onclick: () => act('event', { name: e.name }).catch(() => {}) },
       h('span', { class: 'nm' }, e.name), h('span', { class: 'trig' }, e.trigger), h('span', { class: 'fx' }, unexpectedGoes), why);
@@ -128,7 +128,7 @@ function build() {
   const cb = $('commands');
   for (const e of (model.events || []).filter((e) => e.controllable)) {
     const why = h('div', { class: 'why' }), req = h('span', { class: 'req' });
-    const row = h('div', { class: 'cmd', id: 'command-' + e.name, 'data-testid': 'command-' + e.name, 'data-enabled': '0' },
+    const row = h('div', { class: 'cmd', 'data-name': e.name, id: 'command-' + e.name, 'data-testid': 'command-' + e.name, 'data-enabled': '0' },
       h('span', { class: 'dot' }), h('span', { class: 'nm' }, e.name), req, h('span', { class: 'trig' }, e.request ? 'on ' + e.request : ''), why);
     cb.append(row);
     ui.commands[e.name] = { row, why, req };
@@ -154,7 +154,7 @@ function build() {
 // A diagram in a panel that folds (large ones start folded) and scrolls.
 function diagramPanel(id, name, hint, el, open) {
   const box = h('div', { class: 'dscroll' }, el);
-  $('diagrams').append(h('details', { class: 'panel diagram', id, open }, h('summary', {}, h('h2', {}, `${name} `, h('span', { class: 'hint' }, hint))), box));
+  $('diagrams').append(h('details', { class: 'panel diagram', 'data-name': name, id, open }, h('summary', {}, h('h2', {}, `${name} `, h('span', { class: 'hint' }, hint))), box));
   fitWidth(el);
   return box;
 }
@@ -481,7 +481,7 @@ function renderLog(log) {
 
 // ---------- plots ----------
 
-let histTimer = null, histAt = 0;
+let histTimer = null, histAt = 0, lastHist = null;
 function historySoon() {
   if (histTimer) return;
   const wait = Math.max(0, histAt + (running ? 400 : 60) - performance.now());
@@ -489,7 +489,7 @@ function historySoon() {
     histAt = performance.now();
     const scan = st.scan;
     try {
-      drawPlot(await api('history?points=' + Math.max(100, Math.floor($('plots').clientWidth - 130))));
+      drawPlot(lastHist = await api('history?points=' + Math.max(100, Math.floor($('plots').clientWidth - 130))));
       document.body.dataset.plotScan = String(scan);
     } catch (e) { /* keep the last plot */ }
     histTimer = null;
@@ -505,8 +505,8 @@ function niceStep(span, n) {
 function drawPlot(hist) {
   const cv = $('plot'), t = hist.time_ms || [];
   const lanes = [];
-  (model.inputs || []).forEach((x, i) => lanes.push({ name: x.name, v: (hist.inputs || [])[i], cls: 'in' }));
-  (model.outputs || []).forEach((x, i) => lanes.push({ name: x.name, v: (hist.outputs || [])[i], cls: 'out' }));
+  (model.inputs || []).forEach((x, i) => shown(x.name) && lanes.push({ name: x.name, v: (hist.inputs || [])[i], cls: 'in' }));
+  (model.outputs || []).forEach((x, i) => shown(x.name) && lanes.push({ name: x.name, v: (hist.outputs || [])[i], cls: 'out' }));
   lanes.push({ name: 'fault', v: hist.faults, cls: 'fault' });
   const analog = ((model.plant || {}).analog || []).map((a, i) => ({ a, v: (hist.analog || [])[i] || [] }));
   const LH = 13, AH = 48, GUT = 118, W = $('plots').clientWidth || 600;
@@ -612,7 +612,18 @@ async function fastForward() {
   $('ffwd').disabled = false;
 }
 
+// The name filter: lists, plot lanes and diagrams keep what matches.
+let filter = '';
+const shown = (name) => !filter || name.toLowerCase().includes(filter);
+function applyFilter() {
+  filter = $('filter').value.trim().toLowerCase();
+  document.body.classList.toggle('filtering', !!filter);
+  for (const el of document.querySelectorAll('[data-name]')) el.hidden = !shown(el.dataset.name);
+  lastHist && drawPlot(lastHist);
+}
+
 function wire() {
+  $('filter').addEventListener('input', applyFilter);
   $('step').onclick = () => act('step', { scans: 1 }).catch(() => {});
   $('run').onclick = () => setRunning(true);
   $('pause').onclick = () => setRunning(false);
