@@ -595,7 +595,7 @@ async function runTick() {
 }
 
 async function fastForward() {
-  const n = Math.max(1, Math.min(1000000, Math.floor(Number($('ffwd-n').value) || 100000)));
+  const n = Math.max(1, Math.min(10000000, Math.floor(Number($('ffwd-n').value) || 100000)));
   setRunning(false);
   $('ffwd').disabled = true;
   $('perf').textContent = `fast-forwarding ${n.toLocaleString('en')} scans…`;
