@@ -1,7 +1,8 @@
 //! `cargo xtask browser`: the simulator page of `host-sim serve` driven in
 //! headless Chromium over WebDriver (chromedriver), as a user would click
-//! it: the press's cycle, its fault and reset, a fast-forward of the boiler
-//! and the mixers' Petri net. Screenshots go to `target/browser/`.
+//! it: the press's cycle, its fault and reset, a fast-forward of the boiler,
+//! the mixers' Petri net and a big project (the testbed). Screenshots go
+//! to `target/browser/`.
 //!
 //! `--no-build` uses `target/release/host-sim` as an earlier step left it
 //! (CI's release tests of host-sim build it), building it only when
@@ -60,6 +61,7 @@ pub fn run_task(args: &[String]) -> Result {
     checks::press(&ctx)?;
     checks::boiler(&ctx)?;
     checks::mixers(&ctx)?;
+    checks::big(&ctx)?;
     eprintln!(
         "xtask browser: all checks passed in {:.1} s; screenshots in {}",
         started.elapsed().as_secs_f64(),

@@ -490,3 +490,36 @@ pub fn mixers(ctx: &Ctx) -> Result {
     );
     page.screenshot("mixers.png")
 }
+
+/// A big project (the testbed: 45 supervisors, 56 inputs): the page loads,
+/// its long lists start collapsed, and the name filter narrows them.
+pub fn big(ctx: &Ctx) -> Result {
+    let page = Page::open(ctx, "models/testbed/testbed.plc.toml")?;
+    let count = |sel: &str| -> Result<u64> {
+        page.eval(&format!(
+            "[...document.querySelectorAll({sel:?})].filter(e => e.offsetParent !== null).length"
+        ))?
+        .as_u64()
+        .ok_or_else(|| format!("cannot count {sel}"))
+    };
+    let (inputs, diagrams) = (count("#inputs .io")?, count("#diagrams .diagram")?);
+    let model = page.get_json("api/model")?;
+    let total = model["inputs"].as_array().map_or(0, Vec::len) as u64;
+    if total > 40 && inputs != 40 {
+        return Err(format!(
+            "testbed: {inputs} of {total} inputs shown; a list over 40 should show its first 40"
+        ));
+    }
+    page.screenshot("testbed.png")?;
+    ctx.session.type_into("#filter", "s1_")?;
+    let narrowed = count("#inputs .io")?;
+    if narrowed == 0 || narrowed >= inputs {
+        return Err(format!(
+            "testbed: the name filter `s1_` leaves {narrowed} of {inputs} inputs shown"
+        ));
+    }
+    eprintln!(
+        "xtask browser: testbed: {total} inputs ({inputs} shown, {narrowed} after filtering `s1_`), {diagrams} diagrams"
+    );
+    Ok(())
+}

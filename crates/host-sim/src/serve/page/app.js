@@ -27,6 +27,12 @@ const ui = { inputs: [], outputs: [], timers: [], sups: [], events: {}, commands
 let busy = false;     // a POST in flight (the run loop waits for it)
 let renders = 0;      // states rendered (body data-renders: tests wait on it)
 
+// What an unexpected event leads to under the project's policy.
+function unexpectedGoes() {
+  const u = (model.project || {}).unexpected;
+  return u === 'fault' ? '→ fault' : `→ ${u || 'unexpected'}`;
+}
+
 function fmtTime(ms) { return (ms / 1000).toFixed(3) + ' s'; }
 function fmtRate(n) { return n >= 1e6 ? (n / 1e6).toFixed(2) + ' M' : n >= 1e3 ? (n / 1e3).toFixed(1) + ' k' : n.toFixed(0) + ' '; }
 function say(text, err) { const s = $('status'); s.textContent = text || ''; s.className = err ? 'err' : ''; }
@@ -112,15 +118,14 @@ function build() {
   collapsible(sb, ui.sups.length);
 
   const eb = $('events');
-  const unexpectedGoes = p.unexpected === 'fault' ? '→ fault' : `→ ${p.unexpected || 'unexpected'}`;
   for (const e of (model.events || []).filter((e) => !e.controllable)) {
-    const why = h('span', { class: 'why' });
-    const b = h('button', { class: 'ev', 'data-name': e.name, id: 'event-' + e.name, 'data-testid': 'event-' + e.name, disabled: !e.clickable,
+    const why = h('span', { class: 'why' }), fx = h('span', { class: 'fx' }, unexpectedGoes());
+    const b = h('button', { class: 'ev', 'data-name': `${e.name} ${e.trigger}`, id: 'event-' + e.name, 'data-testid': 'event-' + e.name, disabled: !e.clickable,
       title: `${e.name}: ${e.trigger} (${e.origin})${e.clickable ? '' : ' — not clickable'}`,
       onclick: () => act('event', { name: e.name }).catch(() => {}) },
-      h('span', { class: 'nm' }, e.name), h('span', { class: 'trig' }, e.trigger), h('span', { class: 'fx' }, unexpectedGoes), why);
+      h('span', { class: 'nm' }, e.name), h('span', { class: 'trig' }, e.trigger), fx, why);
     eb.append(b);
-    ui.events[e.name] = { b, why };
+    ui.events[e.name] = { b, why, fx, resets: !!p.reset && e.trigger === 'rising ' + p.reset };
   }
   if (!eb.children.length) eb.append(h('div', { class: 'dim' }, 'none'));
   collapsible(eb, eb.children.length);
@@ -128,7 +133,7 @@ function build() {
   const cb = $('commands');
   for (const e of (model.events || []).filter((e) => e.controllable)) {
     const why = h('div', { class: 'why' }), req = h('span', { class: 'req' });
-    const row = h('div', { class: 'cmd', 'data-name': e.name, id: 'command-' + e.name, 'data-testid': 'command-' + e.name, 'data-enabled': '0' },
+    const row = h('div', { class: 'cmd', 'data-name': `${e.name} ${e.request || ''}`, id: 'command-' + e.name, 'data-testid': 'command-' + e.name, 'data-enabled': '0' },
       h('span', { class: 'dot' }), h('span', { class: 'nm' }, e.name), req, h('span', { class: 'trig' }, e.request ? 'on ' + e.request : ''), why);
     cb.append(row);
     ui.commands[e.name] = { row, why, req };
@@ -408,6 +413,7 @@ function render(s) {
     e.b.classList.toggle('unexpected', !u.expected);
     e.b.dataset.expected = u.expected ? '1' : '0';
     e.why.textContent = u.needs ? 'needs ' + u.needs : '';
+    e.fx.textContent = !s.fault ? unexpectedGoes() : e.resets ? '→ leaves fault mode' : 'ignored in fault mode';
   }
   for (const c of s.commands || []) {
     const e = ui.commands[c.event];
