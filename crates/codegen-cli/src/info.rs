@@ -21,6 +21,8 @@ struct Info {
     coreachable: usize,
     trim: bool,
     nonblocking: bool,
+    /// Events the controller cannot see (partial observation).
+    unobservable: Vec<String>,
 }
 
 pub fn run(files: &[PathBuf], json: bool, out: &mut Out) -> Result<Outcome, CliError> {
@@ -44,6 +46,11 @@ pub fn run(files: &[PathBuf], json: bool, out: &mut Out) -> Result<Outcome, CliE
                 coreachable: co.count_ones(..),
                 trim: reachable == a.num_states() && co.count_ones(..) == a.num_states(),
                 nonblocking: reach.is_subset(&co),
+                unobservable: a
+                    .alphabet()
+                    .unobservable()
+                    .map(|(_, e)| e.name.clone())
+                    .collect(),
             });
         }
     }
@@ -76,6 +83,9 @@ pub fn run(files: &[PathBuf], json: bool, out: &mut Out) -> Result<Outcome, CliE
         );
         outln!(out, "  trim:          {}", yes(i.trim));
         outln!(out, "  nonblocking:   {}", yes(i.nonblocking));
+        if !i.unobservable.is_empty() {
+            outln!(out, "  unobservable:  {}", i.unobservable.join(", "));
+        }
     }
     Ok(Outcome::Holds)
 }

@@ -702,6 +702,15 @@ const ERRORS: &[(&str, &str)] = &[
         "[plc]\nname = \"x\"\n[[supervisor]]\nsynthesize = { plants = [\"mini/mini.toml\"], specs = [\"factory/spec/BUFSPEC.gen\"] } # <-\n",
         "cannot synthesise the supervisor: event `e10`",
     ),
+    // Partial observation: the executor sees only what it detects.
+    (
+        "[plc]\nname = \"x\"\n[inputs]\ni = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"i\" }\n[[supervisor]] # <-\nfile = \"mini/hidden.toml\"\n",
+        "mini/hidden.toml`) is unobservable: the executor sees only the events it detects",
+    ),
+    (
+        "[plc]\nname = \"x\"\n[inputs]\ni = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"i\" }\n[[supervisor]] # <-\nname = \"s\"\nsynthesize = { plants = [\"mini/hidden_plant.toml\"] }\n",
+        "event `done` of synthesised supervisor `s` (unobservable in `hidden_machine`",
+    ),
 ];
 
 #[test]

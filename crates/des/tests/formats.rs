@@ -62,7 +62,8 @@ fn bench(set: &str, name: &str) -> Automaton {
 #[derive(Debug, PartialEq, Eq)]
 struct Described {
     name: String,
-    events: BTreeMap<String, bool>,
+    /// Controllable, observable.
+    events: BTreeMap<String, (bool, bool)>,
     states: BTreeSet<String>,
     initial: Option<String>,
     marked: BTreeSet<String>,
@@ -78,7 +79,7 @@ fn describe(a: &Automaton) -> Described {
         events: a
             .alphabet()
             .iter()
-            .map(|(_, e)| (e.name.clone(), e.controllable))
+            .map(|(_, e)| (e.name.clone(), (e.controllable, e.observable)))
             .collect(),
         states,
         initial: a.initial().map(st),
@@ -563,6 +564,28 @@ proptest! {
         }
         prop_assert!(d.alphabet().same_events(a.alphabet()));
         prop_assert_eq!(d.name(), a.name());
+    }
+
+    #[test]
+    fn unobservable_events_round_trip_where_a_format_can_say_so(spec in spec(), every in 1usize..4) {
+        let mut b = AutomatonBuilder::new("h");
+        for (k, (e, c)) in spec.events.iter().enumerate() {
+            let id = b.add_event(e, *c).unwrap();
+            if k % every == 0 {
+                b.set_unobservable(id);
+            }
+        }
+        let h = b.build().unwrap();
+        for format in [Format::Gen, Format::Toml, Format::Wmod] {
+            prop_assert_eq!(describe(&through(format, &h)), describe(&h), "{:?}", format);
+        }
+        let a = build(&spec);
+        let hidden = a.alphabet().unobservable().count();
+        prop_assert_eq!(hidden, 0);
+        if !spec.events.is_empty() {
+            let refused = formats::write_string(Format::Ads, &[Component::unspecified(h)]);
+            prop_assert!(refused.is_err());
+        }
     }
 }
 

@@ -76,7 +76,11 @@ fn the_printed_url_serves_the_page_and_the_api() {
     assert!(status.contains(" 400 "), "{status}");
     assert!(error.contains("bad request body"), "{error}");
     let (_, inputs) = request(&url, "GET", "/api/inputs.csv", "");
-    assert_eq!(inputs.lines().count(), 6, "header and five scans:\n{inputs}");
+    assert_eq!(
+        inputs.lines().count(),
+        6,
+        "header and five scans:\n{inputs}"
+    );
 }
 
 #[test]

@@ -1,4 +1,5 @@
-//! Event alphabets: interned event names with their controllability.
+//! Event alphabets: interned event names with their controllability and
+//! observability.
 
 use rustc_hash::FxHashMap;
 use std::fmt;
@@ -21,13 +22,17 @@ impl fmt::Display for EventId {
     }
 }
 
-/// One event: its name and whether the controller generates it.
+/// One event: its name, whether the controller may disable it, and
+/// whether the controller sees it.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub struct Event {
     /// The event's name, free text.
     pub name: String,
     /// `true` for Σc (the controller may disable it), `false` for Σu.
     pub controllable: bool,
+    /// `true` for Σo (the controller sees it occur, the default), `false`
+    /// for an unobservable event.
+    pub observable: bool,
 }
 
 /// The same event name was declared controllable in one place and
@@ -49,6 +54,11 @@ pub struct ControllabilityConflict {
 /// *unstated*: its events read as uncontrollable, and when it is combined
 /// with alphabets that do state controllability, theirs wins without a
 /// conflict.
+///
+/// Events are observable unless a source says otherwise; an event one
+/// source declares unobservable is unobservable wherever alphabets meet
+/// (insertion and union): a file that does not mention observability
+/// makes no claim to overrule it.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Alphabet {
     events: Vec<Event>,
@@ -96,7 +106,8 @@ impl Alphabet {
     }
 
     /// Adds `name` (or finds it) and returns its id; the controllability
-    /// must agree with an earlier declaration of the same name.
+    /// must agree with an earlier declaration of the same name. A new
+    /// event is observable.
     pub fn insert(
         &mut self,
         name: &str,
@@ -114,9 +125,36 @@ impl Alphabet {
         self.events.push(Event {
             name: name.to_owned(),
             controllable,
+            observable: true,
         });
         self.by_name.insert(name.to_owned(), id);
         Ok(id)
+    }
+
+    /// [`Alphabet::insert`] of `event` with its observability: an
+    /// unobservable event makes the name unobservable here too.
+    pub fn insert_event(&mut self, event: &Event) -> Result<EventId, ControllabilityConflict> {
+        let id = self.insert(&event.name, event.controllable)?;
+        if !event.observable {
+            self.set_unobservable(id);
+        }
+        Ok(id)
+    }
+
+    /// Makes event `id` unobservable.
+    pub fn set_unobservable(&mut self, id: EventId) {
+        self.events[id.index()].observable = false;
+    }
+
+    /// Whether event `id` is observable.
+    #[inline]
+    pub fn is_observable(&self, id: EventId) -> bool {
+        self.events[id.index()].observable
+    }
+
+    /// The unobservable events, in id order.
+    pub fn unobservable(&self) -> impl Iterator<Item = (EventId, &Event)> + '_ {
+        self.iter().filter(|(_, e)| !e.observable)
     }
 
     /// The id of `name`, if present.
@@ -172,6 +210,7 @@ impl Alphabet {
     /// Controllability comes from the alphabets that state it, which must
     /// agree; an event only unstated alphabets know is uncontrollable. The
     /// union states controllability when any part does (or there are none).
+    /// An event is unobservable when any part says so.
     pub fn union<'a>(
         alphabets: impl IntoIterator<Item = &'a Alphabet> + Clone,
     ) -> Result<Alphabet, ControllabilityConflict> {
@@ -193,8 +232,12 @@ impl Alphabet {
                 let controllable = stated
                     .id(&e.name)
                     .map_or(a.stated && e.controllable, |id| stated.is_controllable(id));
-                out.insert(&e.name, controllable)
+                let id = out
+                    .insert(&e.name, controllable)
                     .expect("controllability is fixed by the first pass");
+                if !e.observable {
+                    out.set_unobservable(id);
+                }
             }
         }
         out.stated = any_stated || !any;
@@ -207,14 +250,16 @@ impl Alphabet {
     }
 
     /// `true` when both hold the same event names with the same
-    /// controllability (where both state it), in any order.
+    /// controllability (where both state it) and observability, in any
+    /// order.
     pub fn same_events(&self, other: &Alphabet) -> bool {
         let compare = self.stated && other.stated;
         self.len() == other.len()
             && self.events.iter().all(|e| {
-                other
-                    .id(&e.name)
-                    .is_some_and(|id| !compare || other.is_controllable(id) == e.controllable)
+                other.id(&e.name).is_some_and(|id| {
+                    (!compare || other.is_controllable(id) == e.controllable)
+                        && other.is_observable(id) == e.observable
+                })
             })
     }
 }
@@ -259,6 +304,30 @@ mod tests {
         let mut c = Alphabet::new();
         c.insert("y", true).unwrap();
         assert!(Alphabet::union([&a, &c]).is_err());
+    }
+
+    #[test]
+    fn an_event_unobservable_anywhere_is_unobservable_where_alphabets_meet() {
+        let mut a = Alphabet::new();
+        let x = a.insert("x", true).unwrap();
+        a.insert("y", false).unwrap();
+        assert!(a.is_observable(x));
+        a.set_unobservable(x);
+        let mut b = Alphabet::new();
+        b.insert("x", true).unwrap();
+        b.insert("z", false).unwrap();
+        for u in [
+            Alphabet::union([&a, &b]).unwrap(),
+            Alphabet::union([&b, &a]).unwrap(),
+        ] {
+            let names: Vec<&str> = u.unobservable().map(|(_, e)| e.name.as_str()).collect();
+            assert_eq!(names, ["x"]);
+        }
+        let mut c = b.clone();
+        c.insert_event(a.event(x)).unwrap();
+        assert!(!c.is_observable(c.id("x").unwrap()));
+        assert!(!b.same_events(&c), "observability differs");
+        assert_eq!(a.unobservable().count(), 1);
     }
 
     #[test]

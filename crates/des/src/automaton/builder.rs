@@ -1,6 +1,6 @@
 //! Incremental construction of an [`Automaton`] from names, with checks.
 
-use super::{Alphabet, Automaton, ControllabilityConflict, EventId, StateId, Transition};
+use super::{Alphabet, Automaton, ControllabilityConflict, Event, EventId, StateId, Transition};
 use fixedbitset::FixedBitSet;
 use rustc_hash::FxHashMap;
 
@@ -127,6 +127,17 @@ impl AutomatonBuilder {
     /// Adds an event (or finds it; the controllability must agree).
     pub fn add_event(&mut self, name: &str, controllable: bool) -> Result<EventId, BuildError> {
         Ok(self.alphabet.insert(name, controllable)?)
+    }
+
+    /// Adds `event` with its controllability and observability
+    /// ([`Alphabet::insert_event`]).
+    pub fn add_event_like(&mut self, event: &Event) -> Result<EventId, BuildError> {
+        Ok(self.alphabet.insert_event(event)?)
+    }
+
+    /// Makes event `id` unobservable.
+    pub fn set_unobservable(&mut self, id: EventId) {
+        self.alphabet.set_unobservable(id);
     }
 
     /// Adds the state `name` or returns the existing one.

@@ -562,7 +562,26 @@ fn json(s: &str) -> String {
     serde_json::to_string(s).unwrap_or_else(|_| "\"\"".to_owned())
 }
 
-/// Renders `a` as a TCT `.ads` file (see the module docs for names).
+/// Why `a` cannot be written as a TCT `.ads` file without losing what it
+/// says: the format has no way to mark an event unobservable (TCT takes
+/// the observable events as an argument of its operations instead).
+pub fn unwritable_observability(a: &Automaton) -> Option<String> {
+    let hidden: Vec<&str> = a
+        .alphabet()
+        .unobservable()
+        .map(|(_, e)| e.name.as_str())
+        .collect();
+    (!hidden.is_empty()).then(|| {
+        format!(
+            "`{}` has unobservable events ({}), which a TCT .ads file cannot mark; write .toml, .gen or .wmod",
+            a.name(),
+            hidden.join(", ")
+        )
+    })
+}
+
+/// Renders `a` as a TCT `.ads` file (see the module docs for names; its
+/// events' observability is not written: [`unwritable_observability`]).
 pub fn write(a: &Automaton) -> String {
     write_with_kind(a, Kind::Unspecified)
 }

@@ -182,6 +182,11 @@ pub fn write_string(format: Format, components: &[Component]) -> Result<String> 
             return Err(Error::Incompatible(why));
         }
     }
+    if format == Format::Ads {
+        if let Some(why) = ads::unwritable_observability(&components[0].automaton) {
+            return Err(Error::Incompatible(why));
+        }
+    }
     Ok(match format {
         Format::Toml => toml::write(&components[0]),
         Format::Gen => gen::write_component(&components[0]),

@@ -7,6 +7,7 @@
 //! marked = ["idle"]                     # optional, default: [initial]
 //! controllable = ["start", "repair"]
 //! uncontrollable = ["finish", "break"]
+//! unobservable = ["break"]              # optional: events the controller cannot see
 //! states = ["idle", "working", "down"]  # optional; if given, lists every state
 //! transitions = [
 //!   ["idle", "start", "working"],
@@ -16,7 +17,9 @@
 //!
 //! Every event of a transition must be declared in exactly one of
 //! `controllable` and `uncontrollable`; declared events need not occur on
-//! a transition (they still belong to the alphabet). Without a `states`
+//! a transition (they still belong to the alphabet); `unobservable` names
+//! declared events the controller does not see (the writer lists it only
+//! when there are some). Without a `states`
 //! list, states are numbered in order of first mention (initial state,
 //! then transitions, then marked states). Unknown keys are errors. An
 //! automaton without states has no `initial` key and `states = []`.
@@ -63,6 +66,8 @@ struct File {
     #[serde(default)]
     uncontrollable: Vec<Name>,
     #[serde(default)]
+    unobservable: Vec<Name>,
+    #[serde(default)]
     states: Option<Vec<Name>>,
     #[serde(default)]
     /// `[source, event, target]`; read as a list so that a wrong length is
@@ -102,6 +107,18 @@ pub fn read(text: &str, origin: &Path) -> Result<Component> {
     for e in &file.uncontrollable {
         b.add_event(e.get_ref(), false)
             .map_err(|err| Error::model(at(e.span()), err.to_string()))?;
+    }
+    for e in &file.unobservable {
+        let id = b.alphabet().id(e.get_ref()).ok_or_else(|| {
+            Error::model(
+                at(e.span()),
+                format!(
+                    "unobservable event `{}` is not declared (list it in `controllable` or `uncontrollable` too)",
+                    e.get_ref()
+                ),
+            )
+        })?;
+        b.set_unobservable(id);
     }
 
     if let Some(states) = &file.states {
@@ -231,6 +248,13 @@ pub fn write(c: &Component) -> String {
     };
     put_list(&mut out, "controllable", events(true));
     put_list(&mut out, "uncontrollable", events(false));
+    if a.alphabet().unobservable().next().is_some() {
+        let hidden = a
+            .alphabet()
+            .unobservable()
+            .map(|(_, e)| std::borrow::Cow::Borrowed(e.name.as_str()));
+        put_list(&mut out, "unobservable", hidden);
+    }
     put_list(&mut out, "states", a.states().map(state));
     if a.num_transitions() == 0 {
         out.push_str("transitions = []\n");
@@ -368,6 +392,46 @@ transitions = [
             .alphabet()
             .is_controllable(a.alphabet().id("break").unwrap()));
         assert_eq!(a.marked_states().collect::<Vec<_>>(), [StateId(0)]);
+    }
+
+    #[test]
+    fn unobservable_events_round_trip_through_every_format_that_can_say_so() {
+        let text = MACH1.replace(
+            "states = [",
+            "unobservable = [\"break\", \"repair\"]\nstates = [",
+        );
+        let c = read(&text, p()).unwrap();
+        let hidden: Vec<&str> = c
+            .automaton
+            .alphabet()
+            .unobservable()
+            .map(|(_, e)| e.name.as_str())
+            .collect();
+        assert_eq!(hidden, ["repair", "break"]);
+        let written = write(&c);
+        assert!(
+            written.contains("unobservable = [\"repair\", \"break\"]"),
+            "{written}"
+        );
+        assert!(!write(&read(MACH1, p()).unwrap()).contains("unobservable"));
+        use crate::formats::{read_str, write_string, Format};
+        for format in [Format::Toml, Format::Gen, Format::Wmod] {
+            let again = write_string(format, std::slice::from_ref(&c)).unwrap();
+            let back = read_str(&again, format, p()).unwrap();
+            assert_eq!(
+                back[0].automaton.alphabet(),
+                c.automaton.alphabet(),
+                "{format:?}:\n{again}"
+            );
+        }
+        let refused = write_string(Format::Ads, &[c]).unwrap_err().to_string();
+        assert!(
+            refused.contains("unobservable events (repair, break)"),
+            "{refused}"
+        );
+        let (l, _, m) = err(&MACH1.replace("states = [", "unobservable = [\"brake\"]\nstates = ["));
+        assert_eq!(l, 6, "{m}");
+        assert!(m.contains("`brake` is not declared"), "{m}");
     }
 
     #[test]

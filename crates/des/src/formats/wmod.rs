@@ -113,7 +113,13 @@ struct Decl {
     order: usize,
     /// `None` for propositions.
     controllable: Option<bool>,
+    /// `Observable="false"` makes it unobservable.
+    observable: bool,
 }
+
+/// The attributes an `<EventDecl>` may have; any other is refused rather
+/// than dropped.
+const DECL_ATTRIBUTES: [&str; 4] = ["Kind", "Name", "Observable", "Scope"];
 
 /// Parses a Waters module; `origin` names the file in errors.
 pub fn read(text: &str, origin: &Path) -> Result<Vec<Component>> {
@@ -208,6 +214,22 @@ fn read_decl<'a>(
         // Index ranges (`RangeList`, …) make an event array.
         return Err(cx.unsupported(c, name_of(c)));
     }
+    if let Some(other) = d
+        .attributes()
+        .find(|a| a.namespace().is_none() && !DECL_ATTRIBUTES.contains(&a.name()))
+    {
+        return Err(cx.unsupported(d, &format!("event attribute `{}`", other.name())));
+    }
+    let observable = match d.attribute("Observable") {
+        None | Some("true") => true,
+        Some("false") => false,
+        Some(other) => {
+            return Err(cx.syntax(
+                d,
+                format!("`Observable=\"{other}\"` (expected true or false)"),
+            ))
+        }
+    };
     let controllable = match cx.attr(d, "Kind")? {
         "CONTROLLABLE" => Some(true),
         "UNCONTROLLABLE" => Some(false),
@@ -229,6 +251,7 @@ fn read_decl<'a>(
         Decl {
             order: names.len(),
             controllable,
+            observable,
         },
     );
     names.push(name);
@@ -441,11 +464,15 @@ fn read_component(
     let mut event_ids = vec![None; decl_names.len()];
     for (order, &n) in decl_names.iter().enumerate() {
         if in_alphabet[order] {
-            let controllable = decls.get(n).and_then(|d| d.controllable).unwrap_or(false);
-            event_ids[order] = Some(
-                b.add_event(n, controllable)
-                    .map_err(|e| Error::model(Location::file(cx.origin), e.to_string()))?,
-            );
+            let decl = decls.get(n);
+            let controllable = decl.and_then(|d| d.controllable).unwrap_or(false);
+            let id = b
+                .add_event(n, controllable)
+                .map_err(|e| Error::model(Location::file(cx.origin), e.to_string()))?;
+            if decl.is_some_and(|d| !d.observable) {
+                b.set_unobservable(id);
+            }
+            event_ids[order] = Some(id);
         }
     }
     let mut states = Vec::with_capacity(nodes.len());
@@ -568,12 +595,17 @@ pub fn write(components: &[Component]) -> String {
     attr(&mut out, "Name", module_name);
     let _ = writeln!(out, " xmlns=\"{MODULE_NS}\" xmlns:B=\"{BASE_NS}\">");
 
-    // Declarations: the union of the alphabets, first controllability wins.
+    // Declarations: the union of the alphabets, first controllability
+    // wins, unobservable where any component says so.
     let mut all = Alphabet::new();
     for c in components {
         for (_, e) in c.automaton.alphabet().iter() {
-            if !all.contains(&e.name) {
-                let _ = all.insert(&e.name, e.controllable);
+            match all.id(&e.name) {
+                Some(id) if !e.observable => all.set_unobservable(id),
+                Some(_) => {}
+                None => {
+                    let _ = all.insert_event(e);
+                }
             }
         }
     }
@@ -596,6 +628,9 @@ pub fn write(components: &[Component]) -> String {
             },
         );
         attr(&mut out, "Name", &e.name);
+        if !e.observable {
+            attr(&mut out, "Observable", "false");
+        }
         out.push_str("/>\n");
     }
     if any_accepting {
@@ -823,6 +858,42 @@ mod tests {
         };
         let back = read(&write(std::slice::from_ref(&c)), p()).unwrap();
         assert_eq!(back, [c]);
+    }
+
+    #[test]
+    fn unobservable_events_round_trip_and_unknown_event_attributes_are_refused() {
+        let hidden = SMALL.replace(
+            "<EventDecl Kind=\"UNCONTROLLABLE\" Name=\"break\"/>",
+            "<EventDecl Kind=\"UNCONTROLLABLE\" Name=\"break\" Observable=\"false\"/>",
+        );
+        let cs = read(&hidden, p()).unwrap();
+        let m = cs[0].automaton.alphabet();
+        assert!(!m.is_observable(m.id("break").unwrap()));
+        assert!(m.is_observable(m.id("finish").unwrap()));
+        let text = write(&cs);
+        assert!(
+            text.contains("Name=\"break\" Observable=\"false\"/>"),
+            "{text}"
+        );
+        assert_eq!(read(&text, p()).unwrap(), cs);
+        assert_eq!(
+            read(
+                &hidden.replace("Observable=\"false\"", "Observable=\"true\""),
+                p()
+            )
+            .unwrap(),
+            read(SMALL, p()).unwrap()
+        );
+        let (l, _, m) = err(&hidden.replace("Observable=\"false\"", "Observable=\"no\""));
+        assert_eq!(l, 7, "{m}");
+        assert!(m.contains("expected true or false"), "{m}");
+        let (l, _, m) =
+            err(&SMALL.replace("Name=\"finish\"/>", "Name=\"finish\" Forcible=\"true\"/>"));
+        assert_eq!(l, 6, "{m}");
+        assert!(
+            m.contains("unsupported Waters construct `event attribute `Forcible``"),
+            "{m}"
+        );
     }
 
     #[test]

@@ -197,7 +197,7 @@ fn lift(
     let mut b = AutomatonBuilder::new("counterexample");
     for &i in reduced {
         for (_, e) in components[i].alphabet().iter() {
-            b.add_event(&e.name, e.controllable)
+            b.add_event_like(e)
                 .map_err(|e| Error::Incompatible(e.to_string()))?;
         }
     }

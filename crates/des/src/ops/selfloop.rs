@@ -17,7 +17,7 @@ pub fn selfloop(a: &Automaton, events: &Alphabet) -> Result<Automaton> {
                 a.name()
             )));
         }
-        added.push(alphabet.insert(&e.name, e.controllable).expect("new event"));
+        added.push(alphabet.insert_event(e).expect("new event"));
     }
     if added.is_empty() {
         return Ok(a.clone());
@@ -71,9 +71,7 @@ pub fn inverse_projection(a: &Automaton, onto: &Alphabet) -> Result<Automaton> {
     }
     for (_, e) in onto.iter() {
         if !a.alphabet().contains(&e.name) {
-            missing
-                .insert(&e.name, e.controllable)
-                .expect("from one alphabet");
+            missing.insert_event(e).expect("from one alphabet");
         }
     }
     selfloop(a, &missing)

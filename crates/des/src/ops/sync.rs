@@ -129,8 +129,7 @@ pub fn composed_alphabet(components: &[&Automaton], mode: Composition) -> Result
             out.set_controllability_stated(union.controllability_stated());
             for (_, e) in union.iter() {
                 if components.iter().all(|a| a.alphabet().contains(&e.name)) {
-                    out.insert(&e.name, e.controllable)
-                        .expect("union has no conflicts");
+                    out.insert_event(e).expect("union has no conflicts");
                 }
             }
             out

@@ -415,8 +415,14 @@ pub fn explore(
     let events: Vec<_> = net
         .transitions()
         .iter()
-        .map(|t| b.add_event(&t.id, t.controllable))
-        .collect::<std::result::Result<_, _>>()
+        .map(|t| {
+            let id = b.add_event(&t.id, t.controllable)?;
+            if !t.observable {
+                b.set_unobservable(id);
+            }
+            Ok(id)
+        })
+        .collect::<std::result::Result<_, crate::automaton::BuildError>>()
         .map_err(|e| Error::Incompatible(format!("net `{}`: {e}", net.name())))?;
     // How often a written graph names each state: once, and once per
     // firing into or out of it.

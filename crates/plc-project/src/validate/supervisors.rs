@@ -113,6 +113,28 @@ impl Validator<'_> {
                     ),
                 ));
             };
+            if !e.observable {
+                let synthesized = matches!(source, SupervisorSource::Synthesized { .. });
+                let whose = origins
+                    .iter()
+                    .filter(|_| synthesized)
+                    .find(|o| {
+                        o.alphabet
+                            .id(&e.name)
+                            .is_some_and(|id| !o.alphabet.is_observable(id))
+                    })
+                    .map(|o| format!(" (unobservable in `{}`, `{}`)", o.name, o.file.display()))
+                    .unwrap_or_default();
+                return Err(self.error(
+                    &header,
+                    format!(
+                        "event `{}` of {described}{whose} is unobservable: the executor sees only \
+                         the events it detects, so a supervisor it runs may not move on one \
+                         (project the supervisor onto its observable events first)",
+                        e.name
+                    ),
+                ));
+            }
             local_events.push((g, id));
         }
         local_events.sort_by_key(|&(g, _)| g);

@@ -167,28 +167,6 @@ impl<'a> Parser<'a> {
         }
     }
 
-    /// Skips an attribute (`+…+`, `{…}` or a nested section) if one comes
-    /// next; returns whether it did.
-    fn skip_attribute(&mut self) -> Result<bool> {
-        let Some(t) = self.lx.peek()? else {
-            return Ok(false);
-        };
-        match t.tok {
-            Tok::Attr(_) | Tok::Block => {
-                self.lx.next()?;
-                Ok(true)
-            }
-            Tok::Begin { name, empty, .. } if name != "Consecutive" => {
-                self.lx.next()?;
-                if !empty {
-                    self.skip_element(name, t.pos)?;
-                }
-                Ok(true)
-            }
-            _ => Ok(false),
-        }
-    }
-
     /// Skips to the `</name>` matching an already consumed `<name>`.
     fn skip_element(&mut self, name: &str, pos: usize) -> Result<()> {
         let mut depth = 1usize;
@@ -232,20 +210,39 @@ impl<'a> Parser<'a> {
             match t.tok {
                 Tok::Quoted(_) | Tok::Symbol(_) => {
                     let name = self.value(&t);
-                    let controllable = match self.lx.peek()? {
+                    let (controllable, observable) = match self.lx.peek()? {
                         Some(Token {
-                            tok: Tok::Attr(a), ..
+                            tok: Tok::Attr(a),
+                            pos,
                         }) => {
                             self.lx.next()?;
                             self.attributed = true;
-                            a.contains('C')
+                            event_flags(a).map_err(|m| {
+                                self.model(pos, format!("event `{}`: {m}", shorten(&name)))
+                            })?
                         }
-                        _ => false,
+                        _ => (false, true),
                     };
-                    while self.skip_attribute()? {}
-                    self.b
+                    if let Some(extra) = self.lx.peek()? {
+                        if matches!(extra.tok, Tok::Attr(_) | Tok::Block | Tok::Begin { .. }) {
+                            return Err(self.model(
+                                extra.pos,
+                                format!(
+                                    "event `{}` carries {}, which cannot be carried here \
+                                     (an event takes one `+…+` of libFAUDES System flags)",
+                                    shorten(&name),
+                                    describe(Some(&extra))
+                                ),
+                            ));
+                        }
+                    }
+                    let id = self
+                        .b
                         .add_event(&name, controllable)
                         .map_err(|e| self.model(t.pos, e.to_string()))?;
+                    if !observable {
+                        self.b.set_unobservable(id);
+                    }
                 }
                 _ => {
                     return Err(self.syntax(
@@ -521,6 +518,36 @@ impl<'a> Parser<'a> {
     }
 }
 
+/// The libFAUDES System flags of an event attribute `+…+`: (controllable,
+/// observable). `C`/`c` and `O`/`o` say controllable and observable or
+/// not; `f` (not forcible) is the default and changes nothing. Anything
+/// else is refused rather than dropped: forcible events (`F`) and the
+/// letters of other libFAUDES attribute types (HIO, colours, …) mean
+/// something no automaton here can hold.
+fn event_flags(attr: &str) -> std::result::Result<(bool, bool), String> {
+    let (mut controllable, mut observable) = (false, true);
+    for c in attr.trim_matches('+').chars() {
+        match c {
+            'C' => controllable = true,
+            'c' => controllable = false,
+            'O' => observable = true,
+            'o' => observable = false,
+            'f' => {}
+            'F' => {
+                return Err(format!(
+                    "`{attr}` makes it forcible, which cannot be carried here (no forcible events)"
+                ))
+            }
+            other => {
+                return Err(format!(
+                    "unknown flag `{other}` in `{attr}` (libFAUDES System flags: C/c controllable, O/o observable)"
+                ))
+            }
+        }
+    }
+    Ok((controllable, observable))
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::{p, read};
@@ -555,7 +582,7 @@ mod tests {
     fn explicit_indices_ranges_attributes_and_comments() {
         let text = r#"% a comment
 <Generator name="my gen" ftype="System">
-<Alphabet> a +C+ "b" +oF+ c {x y} </Alphabet>   % trailing comment
+<Alphabet> a +C+ "b" +of+ c </Alphabet>   % trailing comment
 <States>
 1 2 <Consecutive> 4 6 </Consecutive> "idle#9" busy#12 +S+
 </States>
@@ -576,10 +603,48 @@ idle a busy
         assert_eq!(a.initial(), a.state_by_name("idle"));
         assert!(a.alphabet().is_controllable(a.alphabet().id("a").unwrap()));
         assert!(!a.alphabet().is_controllable(a.alphabet().id("b").unwrap()));
+        let unobservable: Vec<&str> = a
+            .alphabet()
+            .unobservable()
+            .map(|(_, e)| e.name.as_str())
+            .collect();
+        assert_eq!(unobservable, ["b"]);
         let busy = a.state_by_name("busy").unwrap();
         let b = a.alphabet().id("b").unwrap();
         assert_eq!(a.successor(busy, b), a.state_by_name("4"));
         assert_eq!(a.marked_states().count(), 0);
+    }
+
+    #[test]
+    fn event_flags_no_automaton_here_can_hold_are_refused_at_their_line() {
+        let gen = |alphabet: &str| {
+            format!(
+                "<Generator name=\"g\" ftype=\"System\">\n<Alphabet>\n{alphabet}\n</Alphabet>\n<States> x </States><TransRel/><InitStates> x </InitStates><MarkedStates/></Generator>"
+            )
+        };
+        for (alphabet, says) in [
+            ("a +CF+", "forcible"),
+            ("a +Y+", "unknown flag `Y`"),
+            ("a +C+ {clock}", "cannot be carried"),
+            ("a +C+ +o+", "cannot be carried"),
+        ] {
+            let err = read(&gen(alphabet), p()).unwrap_err().to_string();
+            assert!(err.contains("t.gen:3:"), "{alphabet}: {err}");
+            assert!(err.contains(says), "{alphabet}: {err}");
+        }
+        let a = read(&gen("a +Co+ b +o+ c +cOf+ d"), p()).unwrap();
+        let flags: Vec<(bool, bool)> = a
+            .alphabet()
+            .iter()
+            .map(|(_, e)| (e.controllable, e.observable))
+            .collect();
+        assert_eq!(
+            flags,
+            [(true, false), (false, false), (false, true), (false, true)]
+        );
+        let text = super::super::write(&a);
+        assert!(text.contains("a +Co+\nb +o+\nc\nd\n"), "{text}");
+        assert_eq!(read(&text, p()).unwrap().alphabet(), a.alphabet());
     }
 
     #[test]

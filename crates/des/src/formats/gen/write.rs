@@ -61,8 +61,11 @@ pub(super) fn stream_with_kind(
     out.push_str("\n<Alphabet>\n");
     for (_, e) in a.alphabet().iter() {
         put_name(&mut out, &e.name);
-        if e.controllable {
-            out.push_str(" +C+");
+        match (e.controllable, e.observable) {
+            (true, true) => out.push_str(" +C+"),
+            (true, false) => out.push_str(" +Co+"),
+            (false, false) => out.push_str(" +o+"),
+            (false, true) => {}
         }
         out.push('\n');
         flush(&mut out, false)?;
