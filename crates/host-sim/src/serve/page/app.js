@@ -231,13 +231,13 @@ function clip(cx, cy, hw, hh, tx, ty) {
 
 // Edge between two boxes: straight for forward neighbours, else bent to
 // its left so a pair of opposite edges and back edges separate.
-function edgePath(g, a, b, straight, label, cls, weight) {
+function edgePath(g, a, b, straight, label, cls, weight, arrow) {
   const dx = b.x - a.x, dy = b.y - a.y, len = Math.hypot(dx, dy) || 1;
   const bend = straight ? 0 : Math.max(22, len * 0.22);
   const cx = (a.x + b.x) / 2 - (dy / len) * bend, cy = (a.y + b.y) / 2 + (dx / len) * bend;
   const [x0, y0] = clip(a.x, a.y, a.hw + 2, a.hh + 2, cx, cy);
   const [x1, y1] = clip(b.x, b.y, b.hw + 4, b.hh + 4, cx, cy);
-  g.append(svg('path', { d: `M${x0.toFixed(1)},${y0.toFixed(1)} Q${cx.toFixed(1)},${cy.toFixed(1)} ${x1.toFixed(1)},${y1.toFixed(1)}`, class: 'edge ' + cls, 'marker-end': 'url(#arrow)' }));
+  g.append(svg('path', { d: `M${x0.toFixed(1)},${y0.toFixed(1)} Q${cx.toFixed(1)},${cy.toFixed(1)} ${x1.toFixed(1)},${y1.toFixed(1)}`, class: 'edge ' + cls, 'marker-end': arrow }));
   if (label) {
     const lx = 0.25 * x0 + 0.5 * cx + 0.25 * x1, ly = 0.25 * y0 + 0.5 * cy + 0.25 * y1;
     const t = svg('text', { x: lx.toFixed(1), y: (ly - 3).toFixed(1), class: 'elabel' + (weight ? ' weight' : ''), 'text-anchor': 'middle' }, label.text);
@@ -246,8 +246,12 @@ function edgePath(g, a, b, straight, label, cls, weight) {
   }
 }
 
+// Each diagram has its own arrowhead: a marker in a hidden diagram would
+// not draw in the others.
+let arrows = 0;
 function arrowDefs() {
-  return svg('defs', {}, svg('marker', { id: 'arrow', viewBox: '0 0 10 10', refX: '9', refY: '5', markerWidth: '7', markerHeight: '7', orient: 'auto-start-reverse' },
+  const id = 'arrow' + ++arrows;
+  return svg('defs', {}, svg('marker', { id, viewBox: '0 0 10 10', refX: '9', refY: '5', markerWidth: '7', markerHeight: '7', orient: 'auto-start-reverse' },
     svg('path', { d: 'M0,1 L10,5 L0,9 z', class: 'arrowhead' })));
 }
 
@@ -297,6 +301,7 @@ function automatonDiagram(dg) {
   nodes.forEach((nd) => { nd.x = colX[L.layer[nd.i]]; nd.y = L.pos[nd.i] * rowH; });
   const root = fitSvg(nodes, 34);
   root.append(arrowDefs());
+  const arrow = `url(#arrow${arrows})`;
   const ge = svg('g', {}), gn = svg('g', {});
   const has = new Set(edges.map((e) => e.from + ',' + e.to));
   for (const e of edges) {
@@ -304,7 +309,7 @@ function automatonDiagram(dg) {
     const a = nodes[e.from], b = nodes[e.to];
     const straight = L.layer[e.to] === L.layer[e.from] + 1 && !has.has(e.to + ',' + e.from) && Math.abs(L.pos[e.to] - L.pos[e.from]) < 1.5;
     const full = e.events.join(', ');
-    edgePath(ge, a, b, straight, { text: full.length > 26 ? full.slice(0, 24) + '…' : full, title: full }, e.controllable ? 'ctl' : 'unc');
+    edgePath(ge, a, b, straight, { text: full.length > 26 ? full.slice(0, 24) + '…' : full, title: full }, e.controllable ? 'ctl' : 'unc', false, arrow);
   }
   const groups = nodes.map((nd) => {
     const s = states[nd.i];
@@ -314,7 +319,7 @@ function automatonDiagram(dg) {
     if (s.marked) g.append(svg('rect', { class: 'inner', x: -nd.hw + 3, y: -nd.hh + 3, width: nd.hw * 2 - 6, height: nd.hh * 2 - 6, rx: 5 }));
     g.append(svg('text', { y: -nd.hh + 16, 'text-anchor': 'middle', class: 'sname' }, s.name));
     nd.lines.forEach((l, k) => g.append(svg('text', { y: -nd.hh + 29 + 12 * k, 'text-anchor': 'middle', class: 'loops' }, (k ? '' : '↺ ') + l)));
-    if (s.initial) g.append(svg('path', { d: `M${-nd.hw - 22},0 L${-nd.hw - 3},0`, class: 'edge unc initarrow', 'marker-end': 'url(#arrow)' }));
+    if (s.initial) g.append(svg('path', { d: `M${-nd.hw - 22},0 L${-nd.hw - 3},0`, class: 'edge unc initarrow', 'marker-end': arrow }));
     gn.append(g);
     return g;
   });
@@ -332,6 +337,7 @@ function netDiagram(net) {
   nodes.forEach((nd) => { nd.x = L.layer[nd.i] * 78; nd.y = L.pos[nd.i] * 70; });
   const root = fitSvg(nodes, 30);
   root.append(arrowDefs());
+  const arrow = `url(#arrow${arrows})`;
   const ge = svg('g', {}), gn = svg('g', {});
   const has = new Set(edges.map(([a, b]) => a + ',' + b));
   arcs.forEach((a, k) => {
@@ -339,7 +345,7 @@ function netDiagram(net) {
     if (!nodes[f] || !nodes[t]) return;
     const straight = L.layer[t] === L.layer[f] + 1 && !has.has(t + ',' + f) && Math.abs(L.pos[t] - L.pos[f]) < 1.5;
     const cp = net.places[a.place] && net.places[a.place].control;
-    edgePath(ge, nodes[f], nodes[t], straight, a.weight > 1 ? { text: String(a.weight) } : null, cp ? 'ctl controlarc' : 'ctl', a.weight > 1);
+    edgePath(ge, nodes[f], nodes[t], straight, a.weight > 1 ? { text: String(a.weight) } : null, cp ? 'ctl controlarc' : 'ctl', a.weight > 1, arrow);
   });
   const tokens = [], trans = [];
   (net.places || []).forEach((p, i) => {
