@@ -447,17 +447,22 @@ function render(s) {
   historySoon();
 }
 
+let faultKey = null;
 function renderFault(f) {
-  const el = $('fault');
+  const el = $('fault'), cause = f ? (typeof f === 'string' ? f : f.cause || 'fault') : null;
   el.hidden = !f;
+  if (cause === faultKey) return;     // rebuilt only when it changes: its button stays clickable
+  faultKey = cause;
   if (!f) { el.replaceChildren(); return; }
   const reset = (model.project || {}).reset;
   const physical = ['boiler', 'cell'].includes((model.plant || {}).kind);
+  const action = physical && ((model.plant || {}).actions || []).find((a) => /reset/i.test(a.name));
   const safe = (model.outputs || []).filter((o) => o.safe).map((o) => o.name);
-  el.replaceChildren(h('b', {}, 'FAULT MODE'), h('span', { class: 'cause', id: 'fault-cause' }, f.cause),
+  el.replaceChildren(h('b', {}, 'FAULT MODE'), h('span', { class: 'cause', id: 'fault-cause' }, cause),
     h('span', {}, `outputs at their safe levels${safe.length ? ` (on: ${safe.join(', ')})` : ' (all off)'}`),
-    reset ? h('span', {}, 'leave it with a rising edge of ', h('b', {}, reset)) : h('span', {}, 'no reset input: restart'),
-    reset && !physical ? h('button', { id: 'fault-reset', onclick: pulseReset }, `Pulse ${reset}`) : null);
+    reset ? h('span', {}, 'leave it with a rising edge of ', h('b', {}, reset)) : h('span', {}, 'no reset input: only a restart leaves it'),
+    reset && !physical ? h('button', { id: 'fault-reset', onclick: pulseReset }, `Pulse ${reset}`) : null,
+    action ? h('button', { id: 'fault-reset', onclick: () => act('action', { name: action.name }).catch(() => {}) }, action.label || action.name) : null);
 }
 
 // Press and release the reset input (held long enough for its debounce).
