@@ -18,8 +18,8 @@
 //!   Beremiz's IEC compiler) and gcc, run in lockstep with host-sim.
 //! - `browser [--no-build]`: the simulator page of `host-sim serve` driven
 //!   in headless Chromium (press cycle, fault and reset against the trace
-//!   and a replay, boiler fast-forward, mixers' net); screenshots in
-//!   `target/browser/`.
+//!   and a replay, boiler fast-forward, mixers' net, the testbed's long
+//!   lists); screenshots in `target/browser/`.
 //! - `guard-bench`: the guards of symbolic supervisors evaluated in QEMU
 //!   as node tables and as sums of products (instructions, bytes).
 
