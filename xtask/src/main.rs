@@ -16,6 +16,10 @@
 //!   seed project parsed by blark and validated against the TC6 schema.
 //! - `matiec`: the same exports compiled by matiec (OpenPLC's and
 //!   Beremiz's IEC compiler) and gcc, run in lockstep with host-sim.
+//! - `browser [--no-build]`: the simulator page of `host-sim serve` driven
+//!   in headless Chromium (press cycle, fault and reset against the trace
+//!   and a replay, boiler fast-forward, mixers' net, the testbed's long
+//!   lists); screenshots in `target/browser/`.
 //! - `guard-bench`: the guards of symbolic supervisors evaluated in QEMU
 //!   as node tables and as sums of products (instructions, bytes).
 
@@ -23,6 +27,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
 mod bench;
+mod browser;
 mod budgets;
 mod deps;
 mod guard_bench;
@@ -45,6 +50,7 @@ fn main() -> ExitCode {
         Some("iec") => iec::run_task(&args[1..]),
         Some("matiec") => matiec::run_task(&args[1..]),
         Some("guard-bench") => guard_bench::run_task(&args[1..]),
+        Some("browser") => browser::run_task(&args[1..]),
         _ => {
             eprintln!(
                 "usage: cargo xtask <task>\n\
@@ -57,7 +63,8 @@ fn main() -> ExitCode {
                  layers [--edges]           crates depend on lower stages only; no import circle inside a crate\n  \
                  iec [--all]                ST and PLCopen XML of every seed: blark parse, TC6 schema (--all: the largest ST too)\n  \
                  matiec                     ST and PLCopen XML of every seed compiled by matiec and gcc, run in lockstep with host-sim\n  \
-                 guard-bench                guards in QEMU as node tables and as sums of products: instructions, bytes"
+                 guard-bench                guards in QEMU as node tables and as sums of products: instructions, bytes\n  \
+                 browser [--no-build]       the simulator page (host-sim serve) in headless Chromium: clicks, trace, replay, screenshots"
             );
             Err("no task given".into())
         }
@@ -274,6 +281,9 @@ fn ci() -> Result {
             .args(["--", "--ignored"])
             .args(filter))?;
     }
+    // The simulator page in headless Chromium, on the release host-sim
+    // the tests above just built (a few seconds once Chromium is there).
+    browser::run_task(&["--no-build".into()])?;
     // The firmware: QEMU replay of every model against host-sim (zero
     // mismatches, instruction budgets), then the board build's sizes, then
     // clippy on both firmware builds for the target.

@@ -84,6 +84,37 @@ pub fn ensure_qemu() -> Result<String> {
     Ok("qemu-system-arm".into())
 }
 
+/// Makes sure headless Chromium and chromedriver are installed (Debian's
+/// `chromium` and `chromium-driver`), installing them with apt when they
+/// are not; returns their paths. `CHROMIUM` and `CHROMEDRIVER` override.
+pub fn ensure_chromium() -> Result<(String, String)> {
+    let find = |var: &str, names: &[&str]| {
+        std::env::var(var).ok().or_else(|| {
+            names
+                .iter()
+                .map(|n| format!("/usr/bin/{n}"))
+                .find(|p| Path::new(p).exists())
+        })
+    };
+    let chromium = || {
+        find(
+            "CHROMIUM",
+            &["chromium", "chromium-browser", "google-chrome"],
+        )
+    };
+    let driver = || find("CHROMEDRIVER", &["chromedriver"]);
+    if chromium().is_none() || driver().is_none() {
+        eprintln!("xtask: chromium or chromedriver is missing; installing them");
+        apt_install(&["chromium", "chromium-driver"]).map_err(|e| {
+            format!("{e}\nthe browser test needs Chromium and chromedriver (Debian: `apt-get install chromium chromium-driver`)")
+        })?;
+    }
+    match (chromium(), driver()) {
+        (Some(c), Some(d)) => Ok((c, d)),
+        _ => Err("chromium or chromedriver still missing after installing them".into()),
+    }
+}
+
 const MISSING: &str = "libclang is required to build the logic backend (`codegen --features espresso`, which the tests use; espresso-logic runs bindgen): \
      install libclang and clang's builtin headers (Debian/Ubuntu: `apt-get install libclang-dev`) \
      or set LIBCLANG_PATH";
