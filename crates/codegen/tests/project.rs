@@ -143,7 +143,8 @@ fn the_small_factory_is_synthesised_into_the_12_state_supervisor() {
             plants: plants.clone(),
             specs: specs.clone(),
             minimized: false,
-            reduced: false
+            reduced: false,
+            local: None
         }
     );
     let mut files = vec![path];

@@ -161,6 +161,20 @@ pub enum SupervisorSource {
         minimized: bool,
         /// Reduced (supervisor reduction, closed loop checked).
         reduced: bool,
+        /// With `localize`: the controllable event this local controller
+        /// decides (the local controllers together, closed loop checked).
+        local: Option<String>,
+    },
+    /// A plant component of `reduced`, a supervisor synthesised with
+    /// `reduce = true`, read from `file`: it runs beside the reduced
+    /// supervisor, which needs the plant to say what can happen (it was
+    /// reduced against it), so that the pair commands and expects exactly
+    /// what supcon's supervisor would.
+    Plant {
+        /// The reduced supervisor.
+        reduced: String,
+        /// The component's model file.
+        file: PathBuf,
     },
     /// A component of the symbolic supervisor `guarded`, read from `file`.
     Component {

@@ -275,6 +275,10 @@ pub(crate) struct RawSynthesize {
     /// Reduce the supervisor (its closed loop checked equal).
     #[serde(default)]
     pub reduce: Option<Spanned<bool>>,
+    /// Localize the supervisor: one local controller per controllable
+    /// event (their closed loop checked equal).
+    #[serde(default)]
+    pub localize: Option<Spanned<bool>>,
     /// Synthesise symbolically: components and guards, not one automaton.
     #[serde(default)]
     pub symbolic: Option<Spanned<bool>>,

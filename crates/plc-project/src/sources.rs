@@ -43,6 +43,7 @@ use std::path::{Path, PathBuf};
 use toml::Spanned;
 
 /// An automaton a supervisor was read or synthesised from.
+#[derive(Clone)]
 pub(crate) struct ModelOrigin {
     /// The model file.
     pub file: PathBuf,
@@ -70,6 +71,13 @@ pub(crate) enum LoadedEntry {
     Automaton(LoadedSupervisor),
     /// A symbolic supervisor.
     Guarded(LoadedGuarded),
+    /// A reduced supervisor (`reduce = true`) or the local controllers
+    /// of a localized one (`localize = true`, each with its event), and
+    /// the plant components they run beside, each with its model.
+    Reduced(
+        Vec<(Option<String>, LoadedSupervisor)>,
+        Vec<(Automaton, ModelOrigin)>,
+    ),
 }
 
 /// A `[[net]]` as read (and synthesised), analysed, not yet checked
@@ -238,7 +246,7 @@ impl Loader<'_> {
                         "`component` selects from a `file`; a synthesised supervisor has none",
                     ));
                 }
-                self.synthesize(synth)
+                return self.synthesize(synth);
             }
         };
         automaton.map(LoadedEntry::Automaton)
@@ -394,11 +402,10 @@ impl Loader<'_> {
         }
     }
 
-    /// Synthesises the supervisor of `synthesize = { … }`.
-    fn synthesize(
-        &mut self,
-        synth: &Spanned<super::parse::RawSynthesize>,
-    ) -> Result<LoadedSupervisor> {
+    /// Synthesises the supervisor of `synthesize = { … }`; with `reduce`
+    /// or `localize`, the reduced supervisor or the local controllers and
+    /// the plant components they run beside.
+    fn synthesize(&mut self, synth: &Spanned<super::parse::RawSynthesize>) -> Result<LoadedEntry> {
         let s = synth.get_ref();
         let SynthesisModels {
             plants,
@@ -419,6 +426,19 @@ impl Loader<'_> {
             },
         };
         let reduce = s.reduce.as_ref().is_some_and(|r| *r.get_ref());
+        let localize = s.localize.as_ref().filter(|l| *l.get_ref());
+        if let (true, Some(l)) = (reduce, localize) {
+            return Err(self.error(
+                &l.span(),
+                "`localize` and `reduce` are two ways to shrink one supervisor: choose one",
+            ));
+        }
+        if let (true, Some(l)) = (s.minimize, localize) {
+            return Err(self.error(
+                &l.span(),
+                "`localize` minimises each local controller itself: no `minimize` with it",
+            ));
+        }
         let options = ops::SynthesisOptions {
             minstate: s.minimize,
             reduce,
@@ -429,35 +449,77 @@ impl Loader<'_> {
         };
         // Synthesis's refusals name no file: they are located here, at
         // `synthesize`, once.
-        let automaton = ops::synthesize(&plant_automata, &spec_automata, options)
-            .map_err(|e| {
-                let hint = match &e {
-                    Error::StateLimit { .. } => " (raise it with `max_states` in `synthesize`)",
-                    Error::Incompatible(_) => "",
-                    _ => return e,
-                };
-                self.error(
-                    &synth.span(),
-                    format!("cannot synthesise the supervisor: {e}{hint}"),
-                )
-            })?
-            .supervisor;
-        if automaton.is_empty() {
+        let synthesis = ops::synthesize(&plant_automata, &spec_automata, options).map_err(|e| {
+            let hint = match &e {
+                Error::StateLimit { .. } => " (raise it with `max_states` in `synthesize`)",
+                Error::Incompatible(_) => "",
+                _ => return e,
+            };
+            self.error(
+                &synth.span(),
+                format!("cannot synthesise the supervisor: {e}{hint}"),
+            )
+        })?;
+        if synthesis.supervisor.is_empty() {
             return Err(self.error(
                 &synth.span(),
                 "synthesis gave the empty supervisor: the specification cannot be enforced",
             ));
         }
-        Ok(LoadedSupervisor {
-            automaton,
-            source: SupervisorSource::Synthesized {
-                plants,
-                specs,
-                minimized: s.minimize,
-                reduced: reduce,
-            },
-            origins,
-        })
+        let source = |local: Option<String>| SupervisorSource::Synthesized {
+            plants: plants.clone(),
+            specs: specs.clone(),
+            minimized: s.minimize,
+            reduced: reduce,
+            local,
+        };
+        if !reduce && localize.is_none() {
+            return Ok(LoadedEntry::Automaton(LoadedSupervisor {
+                automaton: synthesis.supervisor,
+                source: source(None),
+                origins,
+            }));
+        }
+        let controllers = if localize.is_some() {
+            let located = |e: Error| {
+                self.error(
+                    &synth.span(),
+                    format!("cannot localize the supervisor: {e}"),
+                )
+            };
+            let localization = ops::localize(&synthesis.plant, &synthesis.supervisor, max_states)
+                .map_err(located)?;
+            ops::check_localized(
+                &synthesis.plant,
+                &synthesis.supervisor,
+                &localization,
+                options.compose,
+            )
+            .map_err(located)?;
+            localization
+                .controllers
+                .into_iter()
+                .map(|(event, automaton)| {
+                    let loaded = LoadedSupervisor {
+                        automaton,
+                        source: source(Some(event.clone())),
+                        origins: origins.clone(),
+                    };
+                    (Some(event), loaded)
+                })
+                .collect()
+        } else {
+            vec![(
+                None,
+                LoadedSupervisor {
+                    automaton: synthesis.supervisor,
+                    source: source(None),
+                    origins: origins.clone(),
+                },
+            )]
+        };
+        let plant = plant_automata.into_iter().zip(origins).collect();
+        Ok(LoadedEntry::Reduced(controllers, plant))
     }
 
     /// Refuses a model path that a build script could not print for cargo

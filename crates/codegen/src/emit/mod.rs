@@ -190,12 +190,22 @@ impl<'a> Emitter<'a> {
                 specs,
                 minimized,
                 reduced,
+                local,
             } => format!(
-                "synthesised from {} plant and {} specification files{}{}",
+                "synthesised from {} plant and {} specification files{}{}{}",
                 plants.len(),
                 specs.len(),
                 if *reduced { ", reduced" } else { "" },
+                local.as_ref().map_or(String::new(), |e| format!(
+                    ", localized: the local controller of {}",
+                    quoted(e)
+                )),
                 if *minimized { ", minimised" } else { "" }
+            ),
+            SupervisorSource::Plant { reduced, file } => format!(
+                "a plant component run beside reduced supervisor {}, from {}",
+                quoted(reduced),
+                quoted(&file.display().to_string())
             ),
             SupervisorSource::Component { guarded, file } => format!(
                 "a component of symbolic supervisor {}, from {}",

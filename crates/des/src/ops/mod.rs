@@ -11,7 +11,7 @@
 //! | [`verify`] | controllability, nonblocking, nonconflict, with witnesses |
 //! | [`modular`] | controllability of one modular supervisor on its reduced plant |
 //! | [`equivalence`] | language equality, isomorphism |
-//! | [`reduce`](mod@reduce) | supervisor reduction (control-consistent classes) |
+//! | [`reduce`](mod@reduce) | supervisor reduction and localization (control covers) |
 //! | [`synthesis`](mod@synthesis) | the pipeline supcon(sync(plants), sync(specs)), minstate |
 
 pub mod condat;
@@ -33,7 +33,7 @@ pub use modular::{
     check_controllable_modular, reduced_plant, ModularCounterexample, ModularVerdict,
 };
 pub use reach::{accessible, coaccessible, coreachable, is_trim, reachable, restrict, trim};
-pub use reduce::{check_closed_loop, reduce, Reduction};
+pub use reduce::{check_closed_loop, check_localized, localize, reduce, Localization, Reduction};
 pub use selfloop::{inverse_projection, selfloop};
 pub use supcon::{supcon, supcon_with};
 pub use sync::{compose, meet, sync, ComposeOptions, Composition, Product};

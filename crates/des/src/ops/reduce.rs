@@ -327,11 +327,18 @@ fn commit(partition: &mut Partition, tent: Tentative) {
 /// loop G‖S may have at most `max_states` states.
 pub fn reduce(plant: &Automaton, sup: &Automaton, max_states: usize) -> Result<Reduction> {
     let cd = control_data(plant, sup, max_states)?;
+    let partition = cover(&cd, cd.data.clone());
+    build(sup, &cd, &partition)
+}
+
+/// The greedy search for a control cover, with `data` as the states'
+/// control data.
+fn cover(cd: &ControlData, data: Vec<Class>) -> Partition {
     let n = cd.order.len();
     let mut partition = Partition {
         root: (0..n as u32).collect(),
         members: (0..n as u32).map(|x| vec![x]).collect(),
-        data: cd.data.clone(),
+        data,
     };
     for i in 0..n as u32 {
         if partition.root(i) != i {
@@ -346,7 +353,136 @@ pub fn reduce(plant: &Automaton, sup: &Automaton, max_states: usize) -> Result<R
             }
         }
     }
-    build(sup, &cd, &partition)
+    partition
+}
+
+/// One local controller per controllable event (Cai and Wonham,
+/// "Supervisor localization", 2010): what [`localize`] found.
+#[derive(Debug, Clone)]
+pub struct Localization {
+    /// Per controllable event of the supervisor (alphabet order): the
+    /// event and its local controller. A controller's alphabet is its
+    /// event and the events that move it; the others, self-loops
+    /// everywhere, are left out.
+    pub controllers: Vec<(String, Automaton)>,
+    /// States of the closed loop G‖S.
+    pub closed_loop_states: usize,
+}
+
+/// Localizes supervisor `sup` of `plant`: for each controllable event σ a
+/// control cover that keeps apart only the states that disagree on σ
+/// (and on marking), as [`reduce`] does for all events; then the events
+/// whose transitions are all self-loops leave its alphabet (where such an
+/// event is missing the supervisor disabled it, which is another local
+/// controller's business, or the plant cannot do it), and `minstate`
+/// merges what that made equal. Run beside the plant (each component as
+/// its own automaton), the local controllers give the closed and marked
+/// languages of G‖S ([`check_localized`]).
+pub fn localize(plant: &Automaton, sup: &Automaton, max_states: usize) -> Result<Localization> {
+    let cd = control_data(plant, sup, max_states)?;
+    let mut controllers = Vec::new();
+    for (sigma, event) in sup.alphabet().iter() {
+        if !event.controllable {
+            continue;
+        }
+        let only = |bits: &[u64]| {
+            let mut out = vec![0; bits.len()];
+            out[sigma.index() / 64] = bits[sigma.index() / 64] & (1 << (sigma.index() % 64));
+            out
+        };
+        let data = cd
+            .data
+            .iter()
+            .map(|c| Class {
+                enabled: only(&c.enabled),
+                disabled: only(&c.disabled),
+                ..c.clone()
+            })
+            .collect();
+        let partition = cover(&cd, data);
+        let full = build(sup, &cd, &partition)?.automaton;
+        let mut local = super::minstate(&without_self_loop_events(&full, sigma)?);
+        local.set_name(format!("{}.{}", sup.name(), event.name));
+        controllers.push((event.name.clone(), local));
+    }
+    Ok(Localization {
+        controllers,
+        closed_loop_states: cd.closed_loop_states,
+    })
+}
+
+/// `a` without the events, other than `keep`, whose every transition is a
+/// self-loop.
+fn without_self_loop_events(a: &Automaton, keep: EventId) -> Result<Automaton> {
+    let mut moves = vec![false; a.alphabet().len()];
+    moves[keep.index()] = true;
+    for (s, e, t) in a.iter_transitions() {
+        if s != t {
+            moves[e.index()] = true;
+        }
+    }
+    let mut b = AutomatonBuilder::new(a.name());
+    b.set_controllability_stated(a.alphabet().controllability_stated());
+    let mut ids = vec![None; a.alphabet().len()];
+    for (e, event) in a.alphabet().iter() {
+        if moves[e.index()] {
+            ids[e.index()] = Some(
+                b.add_event_like(event)
+                    .map_err(|e| Error::Incompatible(e.to_string()))?,
+            );
+        }
+    }
+    let states: Vec<StateId> = a
+        .states()
+        .map(|s| {
+            if a.has_state_names() {
+                b.add_state(&a.state_name(s))
+            } else {
+                b.add_anonymous_state()
+            }
+        })
+        .collect();
+    if let Some(init) = a.initial() {
+        b.set_initial(states[init.index()])
+            .map_err(|e| Error::Incompatible(e.to_string()))?;
+    }
+    for s in a.marked_states() {
+        b.mark(states[s.index()]);
+    }
+    for (s, e, t) in a.iter_transitions() {
+        if let Some(id) = ids[e.index()] {
+            b.add_transition(states[s.index()], id, states[t.index()], 0);
+        }
+    }
+    b.build().map_err(|e| Error::Incompatible(e.to_string()))
+}
+
+/// Checks that the local controllers of `localization`, composed with
+/// `plant`, give the closed and marked languages of `plant` ‖ `original`.
+pub fn check_localized(
+    plant: &Automaton,
+    original: &Automaton,
+    localization: &Localization,
+    options: ComposeOptions<'_>,
+) -> Result<()> {
+    let options = ComposeOptions {
+        name_states: false,
+        ..options
+    };
+    let lhs = compose(&[plant, original], Composition::Sync, options)?.automaton;
+    let mut parts: Vec<&Automaton> = vec![plant];
+    parts.extend(localization.controllers.iter().map(|(_, a)| a));
+    let rhs = compose(&parts, Composition::Sync, options)?.automaton;
+    match language_difference(&lhs, &rhs) {
+        None => Ok(()),
+        Some(d) => Err(Error::Incompatible(format!(
+            "supervisor localization changed the closed loop of `{}` ({:?} language, string `{}` only {}): a bug, please report it",
+            original.name(),
+            d.language,
+            d.string.join(" "),
+            if d.in_first { "with the original" } else { "with the local controllers" }
+        ))),
+    }
 }
 
 /// The reduced supervisor: one state per class, in root order.

@@ -358,7 +358,11 @@ fn supervisor_info(supervisors: &Supervisors<'_>, j: usize) -> SupervisorInfo {
         },
         None => {
             let sup = &project.supervisors[j];
-            let component = matches!(sup.source, plc_project::SupervisorSource::Component { .. });
+            let component = matches!(
+                sup.source,
+                plc_project::SupervisorSource::Component { .. }
+                    | plc_project::SupervisorSource::Plant { .. }
+            );
             SupervisorInfo {
                 name: sup.name.clone(),
                 kind: if component { "component" } else { "automaton" },

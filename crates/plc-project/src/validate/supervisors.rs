@@ -48,6 +48,53 @@ impl Validator<'_> {
                     let g = self.guarded(raw, loaded, events, &mut supervisors)?;
                     guarded.push(g);
                 }
+                LoadedEntry::Reduced(controllers, plant) => {
+                    let header = raw.span();
+                    let (name, name_span) = match (&raw.get_ref().name, controllers.first()) {
+                        (Some(n), _) => (n.get_ref().clone(), n.span()),
+                        (None, Some((None, loaded))) => {
+                            (loaded.automaton.name().to_owned(), header.clone())
+                        }
+                        (None, _) => {
+                            return Err(self.error(
+                                &header,
+                                "a localized supervisor needs `name = \"…\"`: its local controllers are named after it",
+                            ))
+                        }
+                    };
+                    self.claim("supervisor", &name, &name_span)?;
+                    let max_logic_effort = self.max_logic_effort(raw.get_ref())?;
+                    for (automaton, origin) in plant {
+                        let component = format!("{name}.{}", automaton.name());
+                        self.claim("supervisor", &component, &header)?;
+                        let loaded = LoadedSupervisor {
+                            automaton,
+                            source: SupervisorSource::Plant {
+                                reduced: name.clone(),
+                                file: origin.file.clone(),
+                            },
+                            origins: vec![origin],
+                        };
+                        let sup =
+                            self.supervisor(&header, component, loaded, events, max_logic_effort)?;
+                        let component = sup.name.clone();
+                        supervisors.push(&component, header.clone(), sup);
+                    }
+                    for (event, loaded) in controllers {
+                        let local = match event {
+                            Some(event) => {
+                                let local = format!("{name}.{event}");
+                                self.claim("supervisor", &local, &header)?;
+                                local
+                            }
+                            None => name.clone(),
+                        };
+                        let sup =
+                            self.supervisor(&header, local, loaded, events, max_logic_effort)?;
+                        let local = sup.name.clone();
+                        supervisors.push(&local, header.clone(), sup);
+                    }
+                }
             }
         }
         Ok((supervisors, guarded))
@@ -81,6 +128,10 @@ impl Validator<'_> {
         let described = match &source {
             SupervisorSource::File(p) => format!("supervisor `{name}` (`{}`)", p.display()),
             SupervisorSource::Synthesized { .. } => format!("synthesised supervisor `{name}`"),
+            SupervisorSource::Plant { reduced, file } => format!(
+                "plant component `{name}` of reduced supervisor `{reduced}` (`{}`)",
+                file.display()
+            ),
             SupervisorSource::Component { guarded, file } => format!(
                 "component `{name}` of symbolic supervisor `{guarded}` (`{}`)",
                 file.display()
@@ -98,7 +149,9 @@ impl Validator<'_> {
         for (id, e) in alphabet.iter() {
             let Some(&g) = events.index.get(&e.name) else {
                 let whose = match source {
-                    SupervisorSource::File(_) | SupervisorSource::Component { .. } => None,
+                    SupervisorSource::File(_)
+                    | SupervisorSource::Component { .. }
+                    | SupervisorSource::Plant { .. } => None,
                     SupervisorSource::Synthesized { .. } => {
                         origins.iter().find(|o| o.alphabet.contains(&e.name))
                     }
@@ -153,9 +206,9 @@ impl Validator<'_> {
                 if theirs != event.controllable {
                     let word = |c: bool| if c { "controllable" } else { "uncontrollable" };
                     let model = match source {
-                        SupervisorSource::File(_) | SupervisorSource::Component { .. } => {
-                            described.clone()
-                        }
+                        SupervisorSource::File(_)
+                        | SupervisorSource::Component { .. }
+                        | SupervisorSource::Plant { .. } => described.clone(),
                         SupervisorSource::Synthesized { .. } => format!(
                             "`{}` (`{}`), a model of {described}",
                             o.name,
