@@ -10,13 +10,15 @@
 //! | [`condat`](mod@condat) | control data: disabled events per supervisor state |
 //! | [`verify`] | controllability, nonblocking, nonconflict, with witnesses |
 //! | [`modular`] | controllability of one modular supervisor on its reduced plant |
-//! | [`equivalence`] | language equality, isomorphism |
+//! | [`equivalence`] | language equality and inclusion, isomorphism |
+//! | [`projection`] | natural projection, the observer property |
 //! | [`synthesis`](mod@synthesis) | the pipeline supcon(sync(plants), sync(specs)), minstate |
 
 pub mod condat;
 pub mod equivalence;
 pub mod minstate;
 pub mod modular;
+pub mod projection;
 pub mod reach;
 pub mod selfloop;
 pub mod supcon;
@@ -25,11 +27,15 @@ pub mod synthesis;
 pub mod verify;
 
 pub use condat::{condat, Condat};
-pub use equivalence::{isomorphic, language_difference, language_equal, LanguageDifference};
+pub use equivalence::{
+    inclusion_counterexample, isomorphic, language_difference, language_equal, language_included,
+    LanguageDifference, LanguageKind,
+};
 pub use minstate::minstate;
 pub use modular::{
     check_controllable_modular, reduced_plant, ModularCounterexample, ModularVerdict,
 };
+pub use projection::{check_observer, project, ObserverWitness};
 pub use reach::{accessible, coaccessible, coreachable, is_trim, reachable, restrict, trim};
 pub use selfloop::{inverse_projection, selfloop};
 pub use supcon::{supcon, supcon_with};
