@@ -457,6 +457,16 @@ fn print_projection(out: &mut Out, report: &ProjectionReport) {
         ] {
             match &check.witness {
                 None => outln!(out, "{label} yes"),
+                // Only the marked property fails with nothing to add: G
+                // itself is somewhere after `s`.
+                Some(w) if w.continuation.is_empty() => outln!(
+                    out,
+                    "{label} NO: after {} (seen as {}), the projection is marked, but {name} \
+                     (in state {}) cannot reach a marked state by erased events alone",
+                    path(&w.string),
+                    path(&w.projected),
+                    w.state
+                ),
                 Some(w) => outln!(
                     out,
                     "{label} NO: after {} (seen as {}), the projection promises {} {promise}, \
