@@ -345,3 +345,46 @@ fn check_with_a_spec_decides_within_and_supremal() {
     assert_eq!(code, 0, "{report}");
     assert!(report.get("specification").is_none(), "{report}");
 }
+
+#[test]
+fn a_reader_that_stops_early_ends_every_language_verb_quietly_with_its_exit_code() {
+    // `codegen … | head -0`: no panic, nothing on stderr, the same code.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o.gen").display().to_string();
+    let cases: [(Vec<&str>, i32); 5] = [
+        (vec!["include", MACH1, MACH2], 1),
+        (vec!["equal", MACH1, MACH1], 0),
+        (vec!["compose", MACH1, MACH2, "-o", &out], 0),
+        (
+            vec!["project", MACH1, "--keep", "e10", "-o", &out, "--observer"],
+            0,
+        ),
+        (
+            vec![
+                "check", "--plant", MACH1, MACH2, "--sup", BUFSPEC, "--spec", BUFSPEC,
+            ],
+            1,
+        ),
+    ];
+    for (args, code) in cases {
+        for json in [false, true] {
+            let mut cmd = Command::new(env!("CARGO_BIN_EXE_codegen"));
+            cmd.current_dir(root());
+            if json {
+                cmd.arg("--json");
+            }
+            let mut child = cmd
+                .args(&args)
+                .stdin(std::process::Stdio::null())
+                .stdout(std::process::Stdio::piped())
+                .stderr(std::process::Stdio::piped())
+                .spawn()
+                .expect("the codegen binary runs");
+            drop(child.stdout.take());
+            let done = child.wait_with_output().unwrap();
+            let stderr = String::from_utf8_lossy(&done.stderr);
+            assert_eq!(stderr, "", "{args:?}");
+            assert_eq!(done.status.code(), Some(code), "{args:?}");
+        }
+    }
+}
