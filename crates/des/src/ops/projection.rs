@@ -51,7 +51,7 @@
 //! (or, for the observer check, pairs `(X', Y')`), or beyond
 //! [`MEMBERS_PER_STATE`] `× max_states` original states listed in the
 //! result's sets together, they stop with
-//! [`Error::StateLimit`](crate::Error::StateLimit).
+//! [`Error::StateLimit`].
 
 use super::equivalence::LanguageKind;
 use crate::automaton::{Alphabet, Automaton, EventId, StateId, StateNames, Transition};
