@@ -138,7 +138,7 @@ pub fn check_observer(
     let mut pairs: Vec<(u32, u32)> = vec![(init.0, 0)];
     let mut parent: Vec<(u32, EventId)> = vec![(u32::MAX, EventId(0))];
     index.insert((init.0, 0), 0);
-    let mut inclusion = Inclusion::new(a, &kept, max_states);
+    let mut inclusion = Inclusion::new(a, &kept, &mut sub, max_states);
     let mut i = 0;
     while i < pairs.len() {
         let (x, big_x) = pairs[i];
@@ -465,11 +465,12 @@ struct Inclusion<'a> {
     parent: Vec<(u32, EventId)>,
     /// Successors of sets that are no states of the projection.
     steps: FxHashMap<(u32, EventId), u32>,
-    empty: Option<u32>,
+    /// The empty set, where `a` cannot follow.
+    empty: u32,
 }
 
 impl<'a> Inclusion<'a> {
-    fn new(a: &'a Automaton, kept: &'a Kept, max_states: usize) -> Self {
+    fn new(a: &'a Automaton, kept: &'a Kept, sub: &mut SubsetAutomaton, max_states: usize) -> Self {
         let mut a_event = vec![EventId(0); kept.alphabet.len()];
         for (e, k) in kept.map.iter().enumerate() {
             if let Some(k) = k {
@@ -485,30 +486,35 @@ impl<'a> Inclusion<'a> {
             pairs: Vec::new(),
             parent: Vec::new(),
             steps: FxHashMap::default(),
-            empty: None,
+            empty: sub.subsets.intern(&[], a).0,
         }
     }
 
     /// The set that set `y` reaches on kept event `e` (possibly empty).
     fn step(&mut self, sub: &mut SubsetAutomaton, y: u32, e: EventId) -> Result<u32> {
+        // A state of the projection steps as the projection does: its
+        // transitions are these very successor sets.
         if (y as usize) < sub.num_states() {
-            if let Some(t) = sub.successor(y, e) {
-                return Ok(t);
-            }
-        } else if let Some(&t) = self.steps.get(&(y, e)) {
+            return Ok(sub.successor(y, e).unwrap_or(self.empty));
+        }
+        if let Some(&t) = self.steps.get(&(y, e)) {
             return Ok(t);
         }
         let set = sub.subsets.get(y).to_vec();
-        let next = self.closure.step(&set, e, self.a_event[e.index()]);
-        let (t, fresh) = sub.subsets.intern(next, self.a);
+        let next = self.closure.step(&set, e, self.a_event[e.index()]).to_vec();
+        let t = self.intern(sub, next)?;
+        self.steps.insert((y, e), t);
+        Ok(t)
+    }
+
+    /// The id of `set`, within the bound on sets.
+    fn intern(&self, sub: &mut SubsetAutomaton, set: Vec<u32>) -> Result<u32> {
+        let (id, fresh) = sub.subsets.intern(&set, self.a);
         if fresh {
             let what = format!("the observer check of projection of `{}`", self.a.name());
             sub.subsets.check(&what, self.max_states)?;
         }
-        if (y as usize) >= sub.num_states() {
-            self.steps.insert((y, e), t);
-        }
-        Ok(t)
+        Ok(id)
     }
 
     /// A shortest kept string `t` that the projection marks from state
@@ -519,10 +525,8 @@ impl<'a> Inclusion<'a> {
         x: u32,
         big_x: u32,
     ) -> Result<Option<Vec<EventId>>> {
-        let (y, _) = sub.subsets.intern(self.closure.of([StateId(x)]), self.a);
-        if self.empty.is_none() {
-            self.empty = Some(sub.subsets.intern(&[], self.a).0);
-        }
+        let start_set = self.closure.of([StateId(x)]).to_vec();
+        let y = self.intern(sub, start_set)?;
         let fails = |sub: &SubsetAutomaton, (hx, hy): (u32, u32)| {
             sub.subsets.marked[hx as usize] && !sub.subsets.marked[hy as usize]
         };
@@ -690,6 +694,11 @@ mod tests {
         assert_eq!(
             err.to_string(),
             "projection of `M` exceeds the limit of 2 states"
+        );
+        let err = check_observer(&machine(), &["go"], Marked, 1).unwrap_err();
+        assert!(
+            matches!(err, Error::StateLimit { max_states: 1, .. }),
+            "{err:?}"
         );
     }
 
