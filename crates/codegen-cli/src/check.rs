@@ -1,4 +1,6 @@
-//! `codegen check`: controllability, nonblocking, nonconflict.
+//! `codegen check`: controllability, nonblocking, nonconflict; with
+//! `--spec`, whether the closed loop stays within the specification and
+//! is the supremal controllable one (supcon's languages).
 //!
 //! Every composite state in the report comes with its key: the state of
 //! each component, plant components first (in command-line order), then
@@ -6,6 +8,7 @@
 
 use super::error::CliError;
 use super::key::Key;
+use super::lang::Counterexample;
 use super::output::{outln, Out};
 use super::{load, Outcome, Role};
 use des::ops::{self, BlockingWitness, UncontrollableWitness};
@@ -61,7 +64,65 @@ struct Report {
     nonconflicting: Option<bool>,
     #[serde(skip_serializing_if = "Option::is_none")]
     conflict: Option<Blocking>,
+    /// With `--spec` only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    specification: Option<SpecReport>,
     holds: bool,
+}
+
+/// The closed loop of the plant with every supervisor against the
+/// specification and against supcon(plant, specification).
+#[derive(Debug, serde::Serialize)]
+struct SpecReport {
+    /// The specification components.
+    specs: Vec<String>,
+    /// L and Lm of the closed loop within those of plant ‖ specification.
+    within: bool,
+    /// A shortest string of the closed loop that plant ‖ specification
+    /// lacks.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    outside: Option<Counterexample>,
+    /// The closed loop has supcon's closed and marked languages.
+    supremal: bool,
+    /// A shortest string that one of them has (`in`: `supcon` or
+    /// `closed_loop`) and the other lacks.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    difference: Option<Counterexample>,
+    supcon_states: usize,
+}
+
+/// Decides the `--spec` questions for the closed loop of `plant` with
+/// `sups`.
+fn check_spec(
+    plant: &Automaton,
+    sups: &[Automaton],
+    spec_files: &[PathBuf],
+) -> Result<SpecReport, CliError> {
+    let specs = load(spec_files, Role::Spec)?;
+    let spec_refs: Vec<&Automaton> = specs.iter().collect();
+    let spec = ops::sync(&spec_refs)?;
+    // Refuses specification events the plant lacks, as synth does.
+    let supcon = ops::supcon(plant, &spec)?;
+    let mut parts = vec![plant];
+    parts.extend(sups);
+    let closed_loop = ops::sync(&parts)?;
+    // The specification's own events only: self-looped by the plant's.
+    let legal = ops::sync(&[plant, &spec])?;
+    let outside = ops::inclusion_counterexample(&closed_loop, &legal).map(|d| Counterexample {
+        string: d.string,
+        language: d.language,
+        r#in: None,
+    });
+    let difference = ops::language_difference(&closed_loop, &supcon)
+        .map(|d| Counterexample::of(d, "closed_loop", "supcon"));
+    Ok(SpecReport {
+        specs: specs.iter().map(|s| s.name().to_owned()).collect(),
+        within: outside.is_none(),
+        outside,
+        supremal: difference.is_none(),
+        difference,
+        supcon_states: supcon.num_states(),
+    })
 }
 
 /// An event string as printed: its events spaced, or `(the empty string)`.
@@ -84,6 +145,7 @@ fn keyed(state: &str, key: Option<&Key>) -> String {
 pub fn run(
     plant_files: &[PathBuf],
     sup_files: &[PathBuf],
+    spec_files: &[PathBuf],
     json: bool,
     out: &mut Out,
 ) -> Result<Outcome, CliError> {
@@ -124,12 +186,21 @@ pub fn run(
     } else {
         (None, None)
     };
-    let holds =
-        reports.iter().all(|r| r.controllable && r.nonblocking) && nonconflicting != Some(false);
+    let specification = if spec_files.is_empty() {
+        None
+    } else {
+        Some(check_spec(&plant, &sups, spec_files)?)
+    };
+    let holds = reports.iter().all(|r| r.controllable && r.nonblocking)
+        && nonconflicting != Some(false)
+        && specification
+            .as_ref()
+            .is_none_or(|s| s.within && s.supremal);
     let report = Report {
         supervisors: reports,
         nonconflicting,
         conflict,
+        specification,
         holds,
     };
     if json {
@@ -184,5 +255,53 @@ fn print_text(out: &mut Out, report: &Report) {
             keyed(&b.witness.state, b.components.as_ref())
         ),
         _ => {}
+    }
+    if let Some(spec) = &report.specification {
+        print_spec(out, spec, report.supervisors.len());
+    }
+}
+
+fn print_spec(out: &mut Out, spec: &SpecReport, supervisors: usize) {
+    outln!(
+        out,
+        "specification {}: the closed loop of the plant with {}",
+        spec.specs.join(", "),
+        if supervisors == 1 {
+            "the supervisor".to_owned()
+        } else {
+            format!("the {supervisors} supervisors")
+        }
+    );
+    match &spec.outside {
+        None => outln!(
+            out,
+            "  within:       yes (closed and marked languages within plant ‖ specification)"
+        ),
+        Some(c) => outln!(
+            out,
+            "  within:       NO: {} is in {l}(closed loop) but not in {l}(plant ‖ specification)",
+            path(&c.string),
+            l = c.letter()
+        ),
+    }
+    match &spec.difference {
+        None => outln!(
+            out,
+            "  supremal:     yes (supcon's closed and marked languages, {} states)",
+            spec.supcon_states
+        ),
+        Some(d) => {
+            let (has, lacks) = if d.r#in == Some("supcon") {
+                ("supcon", "closed loop")
+            } else {
+                ("closed loop", "supcon")
+            };
+            outln!(
+                out,
+                "  supremal:     NO: {} is in {l}({has}) but not in {l}({lacks})",
+                path(&d.string),
+                l = d.letter()
+            );
+        }
     }
 }

@@ -14,6 +14,7 @@ mod error;
 mod gen;
 mod info;
 mod key;
+mod lang;
 mod net_control;
 mod output;
 mod petri;
@@ -57,7 +58,8 @@ enum Command {
     /// Synthesise a supervisor: supcon(sync(plants), sync(specs)).
     Synth(synth::SynthArgs),
     /// Check supervisors against a plant: controllable, nonblocking,
-    /// and (for several) nonconflicting.
+    /// and (for several) nonconflicting; with `--spec`, also whether the
+    /// closed loop stays within the specification and is supcon's.
     Check {
         /// Plant component files (their synchronous composition is the plant).
         #[arg(long = "plant", required = true, num_args = 1..)]
@@ -65,7 +67,24 @@ enum Command {
         /// Supervisor files.
         #[arg(long = "sup", required = true, num_args = 1..)]
         sups: Vec<PathBuf>,
+        /// Specification files (composed, extended to the plant alphabet,
+        /// as `synth` does): the closed loop of the plant with every
+        /// supervisor must stay within plant ‖ specification and have
+        /// supcon's languages.
+        #[arg(long = "spec", num_args = 1..)]
+        specs: Vec<PathBuf>,
     },
+    /// Language inclusion: L(A) ⊆ L(B) and Lm(A) ⊆ Lm(B), else a shortest
+    /// string of A that B lacks.
+    Include(lang::PairArgs),
+    /// Language equality of A and B, else a shortest string in one and
+    /// not the other.
+    Equal(lang::PairArgs),
+    /// Synchronous composition of the automata in the files.
+    Compose(lang::ComposeArgs),
+    /// Natural projection onto the events kept; with `--observer`, the
+    /// observer properties with a shortest counterexample.
+    Project(lang::ProjectArgs),
     /// Modular controllability: each supervisor decided on its reduced
     /// plant (the plant components sharing events with it), the whole
     /// plant never composed; a shortest counterexample when one fails.
@@ -123,7 +142,15 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Info { files } => info::run(&files, json, &mut out),
         Command::Synth(args) => synth::run(&args, json, &mut out),
-        Command::Check { plants, sups } => check::run(&plants, &sups, json, &mut out),
+        Command::Check {
+            plants,
+            sups,
+            specs,
+        } => check::run(&plants, &sups, &specs, json, &mut out),
+        Command::Include(args) => lang::include(&args, json, &mut out),
+        Command::Equal(args) => lang::equal(&args, json, &mut out),
+        Command::Compose(args) => lang::compose(&args, json, &mut out),
+        Command::Project(args) => lang::project(&args, json, &mut out),
         Command::Verify(args) => verify::run(&args, json, &mut out),
         Command::Condat { plants, sup } => condat::run(&plants, &sup, json, &mut out),
         Command::Convert(args) => convert::run(&args, json, &mut out),
@@ -233,6 +260,16 @@ pub fn load_components(path: &Path, name: Option<&str>) -> Result<Vec<Component>
         )));
     }
     Ok(chosen)
+}
+
+/// The name of an automaton written to `output`: `name` if given, else
+/// the file's stem, else `fallback`.
+pub fn output_name(output: &Path, name: Option<&str>, fallback: &str) -> String {
+    name.map(str::to_owned).unwrap_or_else(|| {
+        output
+            .file_stem()
+            .map_or_else(|| fallback.to_owned(), |s| s.to_string_lossy().into_owned())
+    })
 }
 
 /// `states/transitions` plus event counts, for reports.

@@ -3,7 +3,7 @@
 use super::error::CliError;
 use super::output::{outln, Out};
 use super::progress::Spinner;
-use super::{load, Outcome, Role, Size};
+use super::{load, output_name, Outcome, Role, Size};
 use des::formats::{self, Component, Kind};
 use des::ops::synthesis::Synthesis;
 use des::ops::{self, ComposeOptions, SynthesisOptions};
@@ -156,13 +156,11 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
         ..Size::of(&sup)
     });
 
-    let name = args.name.clone().unwrap_or_else(|| {
-        args.output.file_stem().map_or_else(
-            || "supervisor".to_owned(),
-            |s| s.to_string_lossy().into_owned(),
-        )
-    });
-    sup.set_name(name);
+    sup.set_name(output_name(
+        &args.output,
+        args.name.as_deref(),
+        "supervisor",
+    ));
     spinner.phase("writing");
     let mark = Instant::now();
     // Written from the supervisor itself, not a copy of it.

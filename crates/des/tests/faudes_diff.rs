@@ -14,7 +14,8 @@
 //!   language are unique up to renaming states).
 //!
 //! A second test minimises random automata on both sides (sizes equal,
-//! results isomorphic, languages kept).
+//! results isomorphic, languages kept). A third projects random automata
+//! onto random event subsets (`faudes_diff/projection.rs`).
 //!
 //! Both tests also write every automaton of ours they compare (plant
 //! composition, supervisor, minimal supervisor; minimal automaton) as a
@@ -55,6 +56,9 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::time::Instant;
+
+#[path = "faudes_diff/projection.rs"]
+mod projection;
 
 const DEFAULT_SEED: u64 = 0x5EED_FA0D_E500_0001;
 const DEFAULT_CASES: usize = 200;
@@ -298,12 +302,36 @@ fn require_faudes() {
     }
 }
 
+/// A problem or an answer: it belongs to the case of this id.
+trait Case {
+    fn id(&self) -> usize;
+}
+
+impl Case for Problem {
+    fn id(&self) -> usize {
+        Problem::id(self)
+    }
+}
+
+impl Case for Answer {
+    fn id(&self) -> usize {
+        self.id
+    }
+}
+
 /// Runs the oracle on `problems` (one process per batch, batches on all
 /// cores) and returns the answers in problem order.
 fn ask_oracle(problems: &[Problem]) -> Vec<Answer> {
+    ask(problems)
+}
+
+/// [`ask_oracle`] for problems and answers of any kind.
+fn ask<P: Case + Serialize + Sync, A: Case + serde::de::DeserializeOwned + Send>(
+    problems: &[P],
+) -> Vec<A> {
     let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
-    let batches: Vec<&[Problem]> = problems.chunks(BATCH).collect();
-    let mut answers: Vec<Vec<Answer>> = Vec::with_capacity(batches.len());
+    let batches: Vec<&[P]> = problems.chunks(BATCH).collect();
+    let mut answers: Vec<Vec<A>> = Vec::with_capacity(batches.len());
     for group in batches.chunks(threads) {
         std::thread::scope(|scope| {
             let handles: Vec<_> = group
@@ -315,15 +343,15 @@ fn ask_oracle(problems: &[Problem]) -> Vec<Answer> {
             }
         });
     }
-    let answers: Vec<Answer> = answers.into_iter().flatten().collect();
+    let answers: Vec<A> = answers.into_iter().flatten().collect();
     assert_eq!(answers.len(), problems.len(), "oracle answer count");
     for (p, a) in problems.iter().zip(&answers) {
-        assert_eq!(p.id(), a.id, "oracle answers out of order");
+        assert_eq!(p.id(), a.id(), "oracle answers out of order");
     }
     answers
 }
 
-fn ask_oracle_once(problems: &[Problem]) -> Vec<Answer> {
+fn ask_oracle_once<P: Serialize, A: serde::de::DeserializeOwned>(problems: &[P]) -> Vec<A> {
     let input = serde_json::to_vec(problems).unwrap();
     let script = oracle_script();
     let mut child = Command::new(python())
@@ -716,7 +744,7 @@ impl Report {
         }
     }
 
-    fn case(&mut self, problem: &Problem, issues: Issues) {
+    fn case(&mut self, problem: &(impl Case + Serialize), issues: Issues) {
         if issues.0.is_empty() {
             return;
         }

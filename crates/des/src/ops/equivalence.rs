@@ -1,4 +1,5 @@
-//! Language equality and isomorphism of deterministic automata.
+//! Language equality, inclusion and isomorphism of deterministic
+//! automata, with shortest counterexamples.
 
 use crate::automaton::{Automaton, EventId, StateId};
 use std::collections::VecDeque;
@@ -28,7 +29,44 @@ pub struct LanguageDifference {
 /// identified by name). `None` means both are equal; otherwise a shortest
 /// distinguishing string.
 pub fn language_difference(a: &Automaton, b: &Automaton) -> Option<LanguageDifference> {
+    first_difference(a, b, Direction::Both)
+}
+
+/// A shortest string of `a`'s closed or marked language that is not in
+/// `b`'s (`in_first` is then `true`); `None` when `L(a) ⊆ L(b)` and
+/// `Lm(a) ⊆ Lm(b)` (events identified by name).
+pub fn inclusion_counterexample(a: &Automaton, b: &Automaton) -> Option<LanguageDifference> {
+    first_difference(a, b, Direction::FirstOnly)
+}
+
+/// `true` when the closed and marked languages of `a` are within those of
+/// `b`.
+pub fn language_included(a: &Automaton, b: &Automaton) -> bool {
+    inclusion_counterexample(a, b).is_none()
+}
+
+/// Which strings [`first_difference`] looks for.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Direction {
+    /// In either automaton's language and not the other's.
+    Both,
+    /// In the first automaton's language and not the second's.
+    FirstOnly,
+}
+
+/// Breadth-first over pairs of states of `a` and `b`: the first string
+/// found that one language has and the other lacks (with
+/// [`Direction::FirstOnly`], only those `a` has). Marking is compared as a
+/// pair is reached, so a marked difference is found no later than a closed
+/// one of the same length: the string is a shortest one.
+fn first_difference(
+    a: &Automaton,
+    b: &Automaton,
+    direction: Direction,
+) -> Option<LanguageDifference> {
+    let both = direction == Direction::Both;
     let (ia, ib) = match (a.initial(), b.initial()) {
+        (None, _) if !both => return None,
         (None, None) => return None,
         (Some(_), None) | (None, Some(_)) => {
             return Some(LanguageDifference {
@@ -51,15 +89,11 @@ pub fn language_difference(a: &Automaton, b: &Automaton) -> Option<LanguageDiffe
         .map(|(_, e)| a.alphabet().id(&e.name))
         .collect();
 
-    // Breadth-first over pairs; `parent` rebuilds the shortest string.
+    // `parent` rebuilds the shortest string.
     let mut index = rustc_hash::FxHashMap::default();
     let mut parent: Vec<(u32, EventId)> = Vec::new();
     let mut pairs: Vec<(StateId, StateId)> = Vec::new();
     let mut queue = VecDeque::new();
-    index.insert((ia, ib), 0u32);
-    pairs.push((ia, ib));
-    parent.push((u32::MAX, EventId(0)));
-    queue.push_back(0u32);
     let string_to = |mut i: u32, parent: &[(u32, EventId)]| {
         let mut s = Vec::new();
         while parent[i as usize].0 != u32::MAX {
@@ -69,15 +103,26 @@ pub fn language_difference(a: &Automaton, b: &Automaton) -> Option<LanguageDiffe
         s.reverse();
         s
     };
+    // A marked difference at the pair `(sa, sb)`.
+    let marking = |sa: StateId, sb: StateId| {
+        let (ma, mb) = (a.is_marked(sa), b.is_marked(sb));
+        (ma != mb && (both || ma)).then_some(ma)
+    };
+    let marked_difference =
+        |i: u32, in_first: bool, parent: &[(u32, EventId)]| LanguageDifference {
+            string: string_to(i, parent),
+            language: LanguageKind::Marked,
+            in_first,
+        };
+    index.insert((ia, ib), 0u32);
+    pairs.push((ia, ib));
+    parent.push((u32::MAX, EventId(0)));
+    if let Some(in_first) = marking(ia, ib) {
+        return Some(marked_difference(0, in_first, &parent));
+    }
+    queue.push_back(0u32);
     while let Some(i) = queue.pop_front() {
         let (sa, sb) = pairs[i as usize];
-        if a.is_marked(sa) != b.is_marked(sb) {
-            return Some(LanguageDifference {
-                string: string_to(i, &parent),
-                language: LanguageKind::Marked,
-                in_first: a.is_marked(sa),
-            });
-        }
         for t in a.transitions(sa) {
             let tb = a_to_b[t.event.index()].and_then(|e| b.successor(sb, e));
             let Some(tb) = tb else {
@@ -94,8 +139,14 @@ pub fn language_difference(a: &Automaton, b: &Automaton) -> Option<LanguageDiffe
                 v.insert(j);
                 pairs.push((t.target, tb));
                 parent.push((i, t.event));
+                if let Some(in_first) = marking(t.target, tb) {
+                    return Some(marked_difference(j, in_first, &parent));
+                }
                 queue.push_back(j);
             }
+        }
+        if !both {
+            continue;
         }
         for t in b.transitions(sb) {
             let defined = b_to_a[t.event.index()].is_some_and(|e| a.successor(sa, e).is_some());
@@ -236,5 +287,60 @@ mod tests {
             &e,
             &Automaton::empty("F", crate::automaton::Alphabet::new())
         ));
+    }
+
+    #[test]
+    fn inclusion_finds_only_strings_of_the_first_language() {
+        let g = two_loop();
+        // H: a b only, marked as G. L(H) ⊆ L(G), Lm(H) ⊆ Lm(G).
+        let h = auto(
+            "H",
+            &[("a", true), ("b", false)],
+            &[("0", "a", "1"), ("1", "b", "2")],
+            &["0", "2"],
+        );
+        assert!(language_included(&h, &g));
+        let d = inclusion_counterexample(&g, &h).unwrap();
+        assert_eq!(d.string, ["a", "b", "a"]);
+        assert_eq!((d.language, d.in_first), (LanguageKind::Closed, true));
+        // G marks the empty string, H does not.
+        let h0 = auto(
+            "H",
+            &[("a", true), ("b", false)],
+            &[("0", "a", "1")],
+            &["1"],
+        );
+        let d = inclusion_counterexample(&g, &h0).unwrap();
+        assert!(d.string.is_empty());
+        assert_eq!(d.language, LanguageKind::Marked);
+        let e = Automaton::empty("E", crate::automaton::Alphabet::new());
+        assert!(language_included(&e, &g));
+        assert_eq!(
+            inclusion_counterexample(&g, &e).unwrap().string,
+            Vec::<String>::new()
+        );
+    }
+
+    #[test]
+    fn a_marked_difference_is_not_passed_over_for_a_longer_closed_one() {
+        // After `a` only G goes on with `c` (a closed difference of
+        // length 2); after `b` only G is marked (length 1).
+        let g = auto(
+            "G",
+            &[("a", true), ("b", true), ("c", true)],
+            &[("0", "a", "1"), ("1", "c", "3"), ("0", "b", "2")],
+            &["2"],
+        );
+        let h = auto(
+            "H",
+            &[("a", true), ("b", true), ("c", true)],
+            &[("0", "a", "1"), ("0", "b", "2")],
+            &[],
+        );
+        let d = language_difference(&g, &h).unwrap();
+        assert_eq!(
+            (d.string, d.language),
+            (vec!["b".to_owned()], LanguageKind::Marked)
+        );
     }
 }

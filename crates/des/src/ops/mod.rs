@@ -10,7 +10,8 @@
 //! | [`condat`](mod@condat) | control data: disabled events per supervisor state |
 //! | [`verify`] | controllability, nonblocking, nonconflict, with witnesses |
 //! | [`modular`] | controllability of one modular supervisor on its reduced plant |
-//! | [`equivalence`] | language equality, isomorphism |
+//! | [`equivalence`] | language equality and inclusion, isomorphism |
+//! | [`projection`] | natural projection, the observer property |
 //! | [`reduce`](mod@reduce) | supervisor reduction and localization (control covers) |
 //! | [`synthesis`](mod@synthesis) | the pipeline supcon(sync(plants), sync(specs)), minstate |
 
@@ -18,6 +19,7 @@ pub mod condat;
 pub mod equivalence;
 pub mod minstate;
 pub mod modular;
+pub mod projection;
 pub mod reach;
 pub mod reduce;
 pub mod selfloop;
@@ -27,11 +29,15 @@ pub mod synthesis;
 pub mod verify;
 
 pub use condat::{condat, Condat};
-pub use equivalence::{isomorphic, language_difference, language_equal, LanguageDifference};
+pub use equivalence::{
+    inclusion_counterexample, isomorphic, language_difference, language_equal, language_included,
+    LanguageDifference, LanguageKind,
+};
 pub use minstate::minstate;
 pub use modular::{
     check_controllable_modular, reduced_plant, ModularCounterexample, ModularVerdict,
 };
+pub use projection::{check_observer, project, ObserverWitness};
 pub use reach::{accessible, coaccessible, coreachable, is_trim, reachable, restrict, trim};
 pub use reduce::{check_closed_loop, check_localized, localize, reduce, Localization, Reduction};
 pub use selfloop::{inverse_projection, selfloop};

@@ -19,6 +19,9 @@ with states numbered 0..n-1. Problems come in two kinds:
   bool, "min": automaton, "min_size": [...]}.
 - minimisation: {"id", "minimize": automaton}. Result: {"id", "min":
   automaton, "min_size": [states, transitions]}.
+- projection: {"id", "project": automaton, "keep": [event name, ...]}.
+  Result: {"id", "projection": Project(automaton, keep), "observer":
+  IsNaturalObserver(automaton, keep)}.
 
 Either kind may carry "gen": [{"what": str, "text": str}, ...], files in
 libFAUDES's .gen format as our writer produced them. Each is read with
@@ -64,6 +67,8 @@ def main():
         try:
             if "minimize" in problem:
                 result = minimize(faudes, problem)
+            elif "project" in problem:
+                result = project(faudes, problem)
             else:
                 result = synthesise(faudes, problem)
         except Exception as e:  # libFAUDES throws plain Exceptions
@@ -223,6 +228,22 @@ def minimize(faudes, problem):
         "id": problem["id"],
         "min": to_json(minimal, table, "min"),
         "min_size": size(minimal),
+    }
+
+
+def project(faudes, problem):
+    """Natural projection and the natural observer property."""
+    a = problem["project"]
+    keep = faudes.EventSet()
+    for name in problem["keep"]:
+        keep.Insert(name)
+    g = build(faudes, a)
+    projection = faudes.Generator()
+    faudes.Project(g, keep, projection)
+    return {
+        "id": problem["id"],
+        "projection": to_json(projection, controllability([a]), "projection"),
+        "observer": bool(faudes.IsNaturalObserver(g, keep)),
     }
 
 
