@@ -20,6 +20,7 @@ mod output;
 mod petri;
 mod plc;
 mod progress;
+mod reduce;
 mod symbolic;
 mod synth;
 mod verify;
@@ -85,6 +86,12 @@ enum Command {
     /// Natural projection onto the events kept; with `--observer`, the
     /// observer properties with a shortest counterexample.
     Project(lang::ProjectArgs),
+    /// Supervisor reduction: a smaller supervisor with the same closed
+    /// loop with the plant (checked), to run beside the plant components.
+    Reduce(reduce::ReduceArgs),
+    /// Supervisor localization: one local controller per controllable
+    /// event, together with the plant the same closed loop (checked).
+    Localize(reduce::LocalizeArgs),
     /// Modular controllability: each supervisor decided on its reduced
     /// plant (the plant components sharing events with it), the whole
     /// plant never composed; a shortest counterexample when one fails.
@@ -151,6 +158,8 @@ fn main() -> ExitCode {
         Command::Equal(args) => lang::equal(&args, json, &mut out),
         Command::Compose(args) => lang::compose(&args, json, &mut out),
         Command::Project(args) => lang::project(&args, json, &mut out),
+        Command::Reduce(args) => reduce::reduce(&args, json, &mut out),
+        Command::Localize(args) => reduce::localize(&args, json, &mut out),
         Command::Verify(args) => verify::run(&args, json, &mut out),
         Command::Condat { plants, sup } => condat::run(&plants, &sup, json, &mut out),
         Command::Convert(args) => convert::run(&args, json, &mut out),
