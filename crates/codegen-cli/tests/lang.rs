@@ -3,32 +3,13 @@
 //! with exit code 0 when the property holds, 1 with a shortest
 //! counterexample when it fails, and 2 for bad input.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use common::{root, run, supervisor, BRSPEC, BUFSPEC, MACH1, MACH2};
+use std::path::Path;
 use std::process::Command;
 
-const MACH1: &str = "models/bench/smallfactory/MACH1.gen";
-const MACH2: &str = "models/bench/smallfactory/MACH2.gen";
-const BUFSPEC: &str = "models/bench/smallfactory/BUFSPEC.gen";
-const BRSPEC: &str = "models/bench/smallfactory/BRSPEC.gen";
 const MODULE: &str = "crates/des/tests/fixtures/formats/smallfactory.wmod";
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// Exit code, standard output and standard error of `codegen args…`.
-fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_codegen"))
-        .current_dir(root())
-        .args(args)
-        .output()
-        .expect("the codegen binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
 
 /// Exit code and JSON report of `codegen --json args…`.
 fn run_json(args: &[&str]) -> (i32, serde_json::Value) {
@@ -44,16 +25,6 @@ fn write(dir: &Path, name: &str, text: &str) -> String {
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
     path.display().to_string()
-}
-
-/// The small factory's supervisor, synthesised into `dir`.
-fn supervisor(dir: &Path) -> String {
-    let out = dir.join("sup.gen").display().to_string();
-    let args = [
-        "synth", "--plant", MACH1, MACH2, "--spec", BUFSPEC, BRSPEC, "-o", &out,
-    ];
-    assert_eq!(run(&args).0, 0);
-    out
 }
 
 #[test]

@@ -2,41 +2,9 @@
 //! small factory's supervisor reduced and localized, and `check --spec`
 //! confirming that beside the plant they give supcon's closed loop.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
-const MACH1: &str = "models/bench/smallfactory/MACH1.gen";
-const MACH2: &str = "models/bench/smallfactory/MACH2.gen";
-const BUFSPEC: &str = "models/bench/smallfactory/BUFSPEC.gen";
-const BRSPEC: &str = "models/bench/smallfactory/BRSPEC.gen";
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// Exit code, standard output and standard error of `codegen args…`.
-fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_codegen"))
-        .current_dir(root())
-        .args(args)
-        .output()
-        .expect("the codegen binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-/// The small factory's supcon supervisor, written into `dir`.
-fn supervisor(dir: &Path) -> String {
-    let out = dir.join("sup.gen").display().to_string();
-    let args = [
-        "synth", "--plant", MACH1, MACH2, "--spec", BUFSPEC, BRSPEC, "-o", &out,
-    ];
-    assert_eq!(run(&args).0, 0);
-    out
-}
+use common::{run, supervisor, BRSPEC, BUFSPEC, MACH1, MACH2};
 
 /// `check --spec` of `sups` beside the plant: their closed loop has
 /// supcon's languages. (A local controller alone may block an
