@@ -25,7 +25,9 @@
 //! usual greedy search: states in order, each one's class tries to absorb
 //! each later state's class, with every pair of successor classes the
 //! merge forces merged too, all or nothing, and never a class settled
-//! earlier. A class is marked when it holds a state x with T(x) = 1 and
+//! earlier. The result depends on the order, so the search runs in four
+//! orders (breadth and depth first through the closed loop, by state
+//! number, backwards) and keeps the smallest. A class is marked when it holds a state x with T(x) = 1 and
 //! M(x) = 1 (where T = 0 the plant marks nothing, so its marking is moot).
 //!
 //! The closed loop is computed once (a composition, bounded by
@@ -327,8 +329,108 @@ fn commit(partition: &mut Partition, tent: Tentative) {
 /// loop G‖S may have at most `max_states` states.
 pub fn reduce(plant: &Automaton, sup: &Automaton, max_states: usize) -> Result<Reduction> {
     let cd = control_data(plant, sup, max_states)?;
-    let partition = cover(&cd, cd.data.clone());
-    build(sup, &cd, &partition)
+    let mut best: Option<Reduction> = None;
+    for order in Order::ALL {
+        let cd = cd.reordered(order);
+        let partition = cover(&cd, cd.data.clone());
+        let candidate = build(sup, &cd, &partition)?;
+        let size = |r: &Reduction| (r.automaton.num_states(), r.automaton.num_transitions());
+        if best.as_ref().is_none_or(|b| size(&candidate) < size(b)) {
+            best = Some(candidate);
+        }
+    }
+    Ok(best.expect("at least one order"))
+}
+
+/// The orders the greedy search visits states in ([`reduce`] keeps the
+/// smallest result): the search is order-sensitive, and no one order wins
+/// everywhere (on 1,000 random problems each of these gives some
+/// smallest result the others miss).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Order {
+    /// Breadth first through the closed loop.
+    BreadthFirst,
+    /// By the supervisor's state numbers.
+    Numbered,
+    /// Depth first through the closed loop.
+    DepthFirst,
+    /// Breadth first, the initial state first and the rest backwards.
+    Backwards,
+}
+
+impl Order {
+    const ALL: [Order; 4] = [
+        Order::BreadthFirst,
+        Order::Numbered,
+        Order::DepthFirst,
+        Order::Backwards,
+    ];
+}
+
+impl ControlData {
+    /// The same data with states visited in `order` (the initial state
+    /// stays first).
+    fn reordered(&self, order: Order) -> ControlData {
+        let n = self.order.len();
+        // `perm[new] = old`.
+        let perm: Vec<u32> = match order {
+            Order::BreadthFirst => (0..n as u32).collect(),
+            Order::Numbered => {
+                let mut p: Vec<u32> = (0..n as u32).collect();
+                p[1..].sort_by_key(|&x| self.order[x as usize]);
+                p
+            }
+            Order::Backwards => {
+                let mut p: Vec<u32> = (0..n as u32).collect();
+                p[1..].reverse();
+                p
+            }
+            Order::DepthFirst => {
+                let mut p = Vec::with_capacity(n);
+                let mut seen = vec![false; n];
+                let mut stack = if n > 0 { vec![0u32] } else { Vec::new() };
+                while let Some(x) = stack.pop() {
+                    if std::mem::replace(&mut seen[x as usize], true) {
+                        continue;
+                    }
+                    p.push(x);
+                    for &(_, y) in self.moves[x as usize].iter().rev() {
+                        if !seen[y as usize] {
+                            stack.push(y);
+                        }
+                    }
+                }
+                p
+            }
+        };
+        let mut new_of = vec![NONE; n];
+        for (new, &old) in perm.iter().enumerate() {
+            new_of[old as usize] = new as u32;
+        }
+        let renumber = |x: u32| if x == NONE { NONE } else { new_of[x as usize] };
+        ControlData {
+            order: perm.iter().map(|&o| self.order[o as usize]).collect(),
+            position: self.position.iter().map(|&p| renumber(p)).collect(),
+            moves: perm
+                .iter()
+                .map(|&o| {
+                    self.moves[o as usize]
+                        .iter()
+                        .map(|&(e, y)| (e, renumber(y)))
+                        .collect()
+                })
+                .collect(),
+            data: perm
+                .iter()
+                .map(|&o| {
+                    let mut c = self.data[o as usize].clone();
+                    c.next.iter_mut().for_each(|x| *x = renumber(*x));
+                    c
+                })
+                .collect(),
+            closed_loop_states: self.closed_loop_states,
+        }
+    }
 }
 
 /// The greedy search for a control cover, with `data` as the states'

@@ -207,8 +207,10 @@ def synthesise(faudes, problem):
     faudes.SupCon(plant, contr, spec, sup)
     minimal = faudes.Generator()
     faudes.StateMin(sup, minimal)
+    reduced = supreduce(faudes, plant, sup, contr, table) if sup.Size() > 0 else None
     return {
         "id": problem["id"],
+        "reduced": reduced,
         "plant_size": size(plant),
         "spec_size": size(spec),
         "sup": to_json(sup, table, "sup"),
@@ -217,6 +219,37 @@ def synthesise(faudes, problem):
         "min": to_json(minimal, table, "min"),
         "min_size": size(minimal),
     }
+
+
+def supreduce(faudes, plant, sup, contr, table):
+    """libFAUDES's SupReduce of `sup` for `plant`, run in a forked child:
+    it crashes on some inputs (SIGSEGV), which must not take the other
+    problems of the batch with it. The reduced supervisor as JSON, or
+    {"crashed": signal}."""
+    read_end, write_end = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        os.close(read_end)
+        try:
+            system = faudes.System(sup)
+            system.SetControllable(contr)
+            plant_system = faudes.System(plant)
+            plant_system.SetControllable(contr)
+            reduced = faudes.System()
+            faudes.SupReduce(plant_system, system, reduced)
+            text = json.dumps(to_json(reduced, table, "reduced"))
+        except Exception as e:  # libFAUDES throws plain Exceptions
+            text = json.dumps({"error": f"{type(e).__name__}: {e}"})
+        with os.fdopen(write_end, "w") as w:
+            w.write(text)
+        os._exit(0)
+    os.close(write_end)
+    with os.fdopen(read_end) as r:
+        text = r.read()
+    _, status = os.waitpid(pid, 0)
+    if os.WIFSIGNALED(status):
+        return {"crashed": os.WTERMSIG(status)}
+    return json.loads(text)
 
 
 def minimize(faudes, problem):
