@@ -10,6 +10,7 @@
 //! | [`condat`](mod@condat) | control data: disabled events per supervisor state |
 //! | [`verify`] | controllability, nonblocking, nonconflict, with witnesses |
 //! | [`modular`] | controllability of one modular supervisor on its reduced plant |
+//! | [`partial`] | normality, supremal normal and controllable-normal sublanguages, observability |
 //! | [`equivalence`] | language equality, isomorphism |
 //! | [`synthesis`](mod@synthesis) | the pipeline supcon(sync(plants), sync(specs)), minstate |
 
@@ -17,6 +18,7 @@ pub mod condat;
 pub mod equivalence;
 pub mod minstate;
 pub mod modular;
+pub mod partial;
 pub mod reach;
 pub mod selfloop;
 pub mod supcon;
@@ -29,6 +31,10 @@ pub use equivalence::{isomorphic, language_difference, language_equal, LanguageD
 pub use minstate::minstate;
 pub use modular::{
     check_controllable_modular, reduced_plant, ModularCounterexample, ModularVerdict,
+};
+pub use partial::{
+    check_observable, is_normal, is_normal_closed, sup_con_normal, sup_con_normal_closed,
+    sup_normal, sup_normal_closed,
 };
 pub use reach::{accessible, coaccessible, coreachable, is_trim, reachable, restrict, trim};
 pub use selfloop::{inverse_projection, selfloop};
