@@ -14,11 +14,15 @@
 //! - [`sup_con_normal`], on marked languages: the iteration that
 //!   libFAUDES's `SupConNorm` performs (after Cieslak et al. 1988 and
 //!   Lin and Wonham 1988's fixpoint view): K₀ = trim(Lm ∩ Em), then
-//!   Kᵢ₊₁ = trim(K₀ ∩ supconnormclosed(L, closure(Kᵢ))) until Kᵢ₊₁ = Kᵢ.
-//!   The sequence decreases; its limit is controllable with respect to L,
-//!   its closure normal with respect to L, and it is nonblocking (trim).
-//!   When Em is relatively closed with respect to Lm and G is nonblocking
-//!   it is the supremal such sublanguage of Lm ∩ Em.
+//!   Kᵢ₊₁ = trim(K₀ ∩ supconnormclosed(closure(Lm), closure(Kᵢ))) until
+//!   Kᵢ₊₁ = Kᵢ. The sequence decreases; its limit is nonblocking (trim),
+//!   controllable with respect to closure(Lm) and its closure is normal
+//!   with respect to closure(Lm). When G is nonblocking closure(Lm) = L;
+//!   when it blocks, libFAUDES (and so we) answer for G's nonblocking
+//!   part, which the differential tests confirm: the result may then let
+//!   an uncontrollable or unobservable event lead into G's blocking part.
+//!   When Em is relatively closed with respect to Lm the result is the
+//!   supremal such sublanguage of Lm ∩ Em.
 
 use super::supnorm::{cut, named_cut};
 use super::{event_mask, over_plant_alphabet, product};
@@ -55,7 +59,10 @@ pub fn sup_con_normal_closed(
 /// The supremal controllable and normal sublanguage of Lm ∩ Em for the
 /// plant `plant` and specification `spec` as libFAUDES's `SupConNorm`
 /// computes it (see the [module docs](self)): a trim automaton, empty when
-/// nothing is left.
+/// nothing is left. Controllability (events not in `controllable`) and
+/// normality (projection onto `observable`) hold with respect to the
+/// plant's nonblocking part: trim the plant first, or check that it is
+/// nonblocking, if that differs from what you mean.
 ///
 /// Errors beyond `max_states` states in any product or subset
 /// construction, or when the iteration has not reached its fixpoint after
@@ -70,9 +77,17 @@ pub fn sup_con_normal(
     let (spread, observable) = masks(plant, controllable, observable)?;
     let spec = over_plant_alphabet(plant, spec)?;
     let start = trim(&product(plant, &spec, max_states)?);
+    let nonblocking = trim(plant);
     let mut k = start.clone();
     for _ in 0..max_states.max(1) {
-        let allowed = cut(plant, &k, Some(&spread), &observable, true, max_states)?;
+        let allowed = cut(
+            &nonblocking,
+            &k,
+            Some(&spread),
+            &observable,
+            true,
+            max_states,
+        )?;
         let next = trim(&product(&start, &allowed, max_states)?);
         if language_equal(&next, &k) {
             let mut k = next;
