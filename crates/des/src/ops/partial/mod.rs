@@ -158,7 +158,9 @@ fn over_plant_alphabet(plant: &Automaton, k: &Automaton) -> Result<Automaton> {
     check_spec_alphabet(plant, k)?;
     let n = k.num_states();
     let full = complement(k, plant.alphabet(), |s| k.is_marked(s), false);
-    Ok(keep_states(&full, |s| s.index() < n))
+    let mut extended = keep_states(&full, |s| s.index() < n);
+    extended.set_name(k.name());
+    Ok(extended)
 }
 
 /// The synchronous composition of `a` and `b`, states unnamed, refused
