@@ -24,6 +24,9 @@
 //!   can never disable an unobservable event, so unobservable events act
 //!   as uncontrollable ones (the formula generalises Brandt et al. 1990 to
 //!   Σc ⊄ Σo; see [`sup_con_normal_closed`]).
+//! - On marked languages, [`sup_con_normal`] iterates that closed
+//!   operation with the intersection with Lm ∩ Em to a fixpoint, as
+//!   libFAUDES's `SupConNorm` does.
 //!
 //! Which language of an automaton each operation reads (closed or marked)
 //! follows libFAUDES 2.34, against which `tests/faudes_diff.rs` checks
@@ -33,7 +36,7 @@
 //!
 //! An automaton whose alphabet lacks some plant events stands for its
 //! inverse projection onto the plant's alphabet (those events self-looped
-//! everywhere), as specifications do in [`supcon`](super::supcon); its
+//! everywhere), as specifications do in [`supcon`](mod@super::supcon); its
 //! events must all be plant events. Event sets are given by name, and every
 //! name must be a plant event.
 //!

@@ -57,12 +57,16 @@ pub fn sup_con_normal_closed(
 }
 
 /// The supremal controllable and normal sublanguage of Lm ∩ Em for the
-/// plant `plant` and specification `spec` as libFAUDES's `SupConNorm`
-/// computes it (see the [module docs](self)): a trim automaton, empty when
-/// nothing is left. Controllability (events not in `controllable`) and
-/// normality (projection onto `observable`) hold with respect to the
-/// plant's nonblocking part: trim the plant first, or check that it is
-/// nonblocking, if that differs from what you mean.
+/// plant `plant` and specification `spec`, as libFAUDES's `SupConNorm`
+/// computes it: K₀ = trim(Lm ∩ Em), then
+/// Kᵢ₊₁ = trim(K₀ ∩ supconnormclosed(closure(Lm), closure(Kᵢ))) until
+/// Kᵢ₊₁ = Kᵢ; a trim automaton, empty when nothing is left.
+/// Controllability (events not in `controllable`) and normality of the
+/// closure (projection onto `observable`) hold with respect to the
+/// plant's nonblocking part closure(Lm), which is L when the plant is
+/// nonblocking; trim a blocking plant first if that is not what you mean.
+/// When Em is relatively closed with respect to Lm, the result is the
+/// supremal such sublanguage.
 ///
 /// Errors beyond `max_states` states in any product or subset
 /// construction, or when the iteration has not reached its fixpoint after
