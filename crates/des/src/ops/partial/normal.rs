@@ -85,7 +85,7 @@ fn normality(
         }));
     }
     let not_k = complement(k, alphabet, |s| !k.is_marked(s), true);
-    let seen = project_dfa(k, &observable, max_states)?;
+    let seen = project_dfa(k, &observable, true, max_states)?;
     let g_not_k = product(g, &not_k, max_states)?;
     let suspects = product(&g_not_k, &seen, max_states)?;
     let Some((_, path)) = shortest_path_to(&suspects, |s| suspects.is_marked(s)) else {

@@ -81,10 +81,13 @@ fn unobservable_closure(
 
 /// P(a): the deterministic automaton over the events of `a` where
 /// `observable` holds (a mask over `a`'s event ids), refused beyond
-/// `max_states` subsets.
+/// `max_states` subsets. Without `beyond_marked`, marked subsets are not
+/// expanded (no outgoing transitions): for callers that cut there, which
+/// spares the subset construction most of its states.
 pub(super) fn project_dfa(
     a: &Automaton,
     observable: &[bool],
+    beyond_marked: bool,
     max_states: usize,
 ) -> Result<Automaton> {
     let mut alphabet = Alphabet::new();
@@ -118,6 +121,11 @@ pub(super) fn project_dfa(
         let subset = subsets.get(id);
         if subset.iter().any(|&s| a.is_marked(StateId(s))) {
             marked.push(id);
+            if !beyond_marked {
+                offsets.push(edges.len() as u32);
+                id += 1;
+                continue;
+            }
         }
         for &s in subset {
             for t in a.transitions(StateId(s)) {
@@ -187,11 +195,11 @@ mod tests {
             ],
             &["4"],
         );
-        let p = project_dfa(&g, &[false, true, true], 100).unwrap();
+        let p = project_dfa(&g, &[false, true, true], true, 100).unwrap();
         assert_eq!(p.alphabet().len(), 2);
         // {0,1} -a-> {2,3} -b-> {4}.
         assert_eq!((p.num_states(), p.num_transitions()), (3, 2));
         assert_eq!(p.marked_states().count(), 1);
-        assert!(project_dfa(&g, &[false, true, true], 2).is_err());
+        assert!(project_dfa(&g, &[false, true, true], true, 2).is_err());
     }
 }

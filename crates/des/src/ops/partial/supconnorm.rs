@@ -29,6 +29,7 @@ use super::{event_mask, over_plant_alphabet, product};
 use crate::automaton::Automaton;
 use crate::error::{Error, Result};
 use crate::ops::equivalence::language_equal;
+use crate::ops::minstate::minstate;
 use crate::ops::reach::trim;
 
 /// The supremal closed sublanguage of the closed languages E ∩ L of
@@ -92,7 +93,10 @@ pub fn sup_con_normal(
             true,
             max_states,
         )?;
-        let next = trim(&product(&start, &allowed, max_states)?);
+        // Minimal, or the products of the next round grow with every
+        // round's observer states (past 100,000 subsets on 12-state
+        // plants).
+        let next = minstate(&trim(&product(&start, &allowed, max_states)?));
         if language_equal(&next, &k) {
             let mut k = next;
             k.set_name(format!("supconnorm({},{})", plant.name(), spec.name()));

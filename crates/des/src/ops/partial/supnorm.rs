@@ -97,7 +97,7 @@ pub(super) fn cut(
         None => a.marked().clone(),
         Some(spread) => backward(&a, a.marked(), spread),
     };
-    let seen = project_dfa(&remark(&a, bad), observable, max_states)?;
+    let seen = project_dfa(&remark(&a, bad), observable, !closed, max_states)?;
     let inside = closure(&keep_states(&a, |s| !a.is_marked(s)));
     if closed {
         let clean = closure(&keep_states(&seen, |s| !seen.is_marked(s)));
