@@ -17,6 +17,11 @@
 //! results isomorphic, languages kept). A third projects random automata
 //! onto random event subsets (`faudes_diff/projection.rs`).
 //!
+//! Three more check partial observation (section at the end): normality
+//! (`IsNormal`), supremal normal (`SupNorm`, `SupNormClosed`) and supremal
+//! controllable and normal sublanguages (`SupConNorm`,
+//! `SupConNormClosed`), 1,000, 1,000 and 300 cases by default.
+//!
 //! Both tests also write every automaton of ours they compare (plant
 //! composition, supervisor, minimal supervisor; minimal automaton) as a
 //! `.gen` file with our writer and have libFAUDES read it: libFAUDES must
@@ -46,9 +51,11 @@
 //! like a pass.
 
 use des::formats::gen;
+use des::ops::partial::NormalityViolation;
 use des::ops::{
-    accessible, check_closed_loop, inverse_projection, is_trim, isomorphic, language_difference,
-    minstate, reduce, supcon, sync, trim,
+    accessible, check_closed_loop, check_controllable, inverse_projection, is_normal,
+    is_normal_closed, is_trim, isomorphic, language_difference, minstate, reduce, sup_con_normal,
+    sup_con_normal_closed, sup_normal, sup_normal_closed, supcon, sync, trim,
 };
 use des::{Automaton, AutomatonBuilder, StateId};
 use serde::{Deserialize, Serialize};
@@ -121,18 +128,30 @@ enum Problem {
         #[serde(skip_serializing_if = "Vec::is_empty")]
         gen: Vec<GenFile>,
     },
+    /// A problem of partial observation, under its kind's key.
+    Partial {
+        id: usize,
+        #[serde(flatten)]
+        case: PartialCase,
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        gen: Vec<GenFile>,
+    },
 }
 
 impl Problem {
     fn id(&self) -> usize {
         match self {
-            Problem::Synthesis { id, .. } | Problem::Minimize { id, .. } => *id,
+            Problem::Synthesis { id, .. }
+            | Problem::Minimize { id, .. }
+            | Problem::Partial { id, .. } => *id,
         }
     }
 
     fn gen_mut(&mut self) -> &mut Vec<GenFile> {
         match self {
-            Problem::Synthesis { gen, .. } | Problem::Minimize { gen, .. } => gen,
+            Problem::Synthesis { gen, .. }
+            | Problem::Minimize { gen, .. }
+            | Problem::Partial { gen, .. } => gen,
         }
     }
 }
@@ -227,6 +246,12 @@ struct Answer {
     /// libFAUDES's `SupReduce` of the supervisor (none for an empty one).
     #[serde(default)]
     reduced: Option<Reduced>,
+    /// IsNormal on the marked languages.
+    normal: Option<bool>,
+    /// IsNormal on the generated languages.
+    normal_closed: Option<bool>,
+    /// SupNormClosed or SupConNormClosed.
+    sup_closed: Option<JsonAutomaton>,
     /// libFAUDES's reading of each of our `.gen` files, in order.
     #[serde(default)]
     gen_read: Vec<GenRead>,
@@ -1065,7 +1090,7 @@ fn minstate_agrees_with_libfaudes_statemin() {
         .iter()
         .map(|p| match p {
             Problem::Minimize { minimize, .. } => minimize.build(),
-            Problem::Synthesis { .. } => unreachable!(),
+            _ => unreachable!(),
         })
         .collect();
     let minimal: Vec<Automaton> = inputs.iter().map(minstate).collect();
@@ -1119,5 +1144,450 @@ fn minstate_agrees_with_libfaudes_statemin() {
             "fewer than 25% of the automata were reducible"
         );
         assert!(blocking * 5 >= n, "fewer than 20% blocking inputs");
+    }
+}
+
+// ---------------------------------------------------------------------
+// Partial observation: IsNormal, SupNorm, SupConNorm
+//
+// Three more tests, each on its own kind of problem (keys "normal",
+// "supnorm", "supconnorm" in oracle.py), 1,000 cases each for normality
+// and supremal normal sublanguages and 300 for supremal controllable and
+// normal ones unless FAUDES_DIFF_CASES says otherwise:
+//
+// - `is_normal` (marked languages) and `is_normal_closed` against
+//   `IsNormal` on the marked and on the generated languages: same verdict,
+//   and each of our counterexamples checked by running its strings;
+// - `sup_normal` and `sup_normal_closed` against `SupNorm` and
+//   `SupNormClosed`: same closed and marked languages;
+// - `sup_con_normal` and `sup_con_normal_closed` against `SupConNorm` and
+//   `SupConNormClosed` on the synthesis problems above with a random
+//   observable set: same languages; ours controllable, its closure normal.
+//
+// K is always a sublanguage of the plant (Km ⊆ Lm and K ⊆ L), which
+// libFAUDES requires: a product of G with a random automaton over the
+// observable events (normal by construction), over all events, or G with
+// transitions and markings taken away.
+
+/// States allowed to every construction of the partial-observation tests.
+const PARTIAL_LIMIT: usize = 100_000;
+
+/// A problem of partial observation, serialised under its kind's key.
+#[derive(Debug, Clone, Serialize)]
+#[serde(rename_all = "lowercase")]
+enum PartialCase {
+    Normal(NormalityCase),
+    Supnorm(NormalityCase),
+    Supconnorm(SupConNormCase),
+}
+
+/// A plant, a sublanguage K of it and the observable events.
+#[derive(Debug, Clone, Serialize)]
+struct NormalityCase {
+    plant: JsonAutomaton,
+    k: JsonAutomaton,
+    observable: Vec<String>,
+}
+
+/// A synthesis problem with the events named controllable and observable.
+#[derive(Debug, Clone, Serialize)]
+struct SupConNormCase {
+    plant: Vec<JsonAutomaton>,
+    spec: Vec<JsonAutomaton>,
+    controllable: Vec<String>,
+    observable: Vec<String>,
+}
+
+/// The settings with `default` cases unless FAUDES_DIFF_CASES is set.
+fn partial_settings(default: usize) -> Settings {
+    let mut settings = Settings::from_env();
+    if std::env::var("FAUDES_DIFF_CASES").is_err() {
+        settings.cases = default;
+    }
+    settings
+}
+
+/// Each event of `events` with chance `p`, by name.
+fn some_events(rng: &mut Rng, events: &[(String, bool)], p: f64) -> Vec<String> {
+    events
+        .iter()
+        .filter(|_| rng.chance(p))
+        .map(|e| e.0.clone())
+        .collect()
+}
+
+fn normality_case(seed: u64, id: usize) -> NormalityCase {
+    let mut rng = Rng::for_case(seed ^ 0x4E4F_524D_414C_0001, id);
+    // Observable events are drawn as controllable ones (e0 and others),
+    // unobservable ones as uncontrollable (e1 and others), rarer: where
+    // every state has a hidden move, everything looks like everything.
+    let events: Vec<(String, bool)> = (0..rng.range(2, 5))
+        .map(|i| (format!("e{i}"), i == 0 || (i > 1 && rng.chance(0.6))))
+        .collect();
+    let observable: Vec<String> = events.iter().filter(|e| e.1).map(|e| e.0.clone()).collect();
+    let density = one_of(&mut rng, &[0.4, 0.6, 0.8]);
+    let hidden_density = one_of(&mut rng, &[0.25, 0.4, 0.55]);
+    let marking = one_of(&mut rng, &[0.3, 0.6, 1.0]);
+    let shape = Shape {
+        states: rng.range(2, 7),
+        controllable: density,
+        uncontrollable: hidden_density,
+        marking,
+        initial_marked: marking,
+        resting_start: 0.0,
+    };
+    let plant = random_automaton(&mut rng, "G", &events, shape);
+    let g = plant.build();
+    let k = match rng.range(0, 2) {
+        0 | 1 => {
+            let over: Vec<(String, bool)> = if rng.chance(0.25) {
+                events
+                    .iter()
+                    .filter(|e| observable.contains(&e.0))
+                    .cloned()
+                    .collect()
+            } else {
+                events.clone()
+            };
+            let h = Shape {
+                states: rng.range(1, 4),
+                controllable: 0.6,
+                uncontrollable: 0.6,
+                marking: 0.7,
+                initial_marked: 0.8,
+                ..shape
+            };
+            let h = random_automaton(&mut rng, "H", &over, h).build();
+            sync(&[&g, &h]).unwrap()
+        }
+        _ => {
+            let mut k = plant.clone();
+            k.transitions.retain(|_| rng.chance(0.65));
+            k.marked.retain(|_| rng.chance(0.7));
+            k.build()
+        }
+    };
+    NormalityCase {
+        plant,
+        k: to_json(&k, "K"),
+        observable,
+    }
+}
+
+/// Where `string` leads in `a`: `None` outside its closed language, else
+/// whether the state is marked.
+fn run(a: &Automaton, string: &[String]) -> Option<bool> {
+    let mut s = a.initial()?;
+    for e in string {
+        s = a.successor(s, a.alphabet().id(e)?)?;
+    }
+    Some(a.is_marked(s))
+}
+
+/// Checks a counterexample to normality of K (marked, or closed when
+/// `closed`) by running its strings.
+fn check_normality_witness(
+    issues: &mut Issues,
+    case: &NormalityCase,
+    witness: &NormalityViolation,
+    closed: bool,
+) {
+    let (g, k) = (case.plant.build(), case.k.build());
+    let holds = |r: Option<bool>| r.is_some_and(|m| closed || m);
+    let NormalityViolation::LooksLike { string, look_alike } = witness else {
+        issues.add(format!(
+            "K is a sublanguage of G, yet ours says {witness:?}"
+        ));
+        return;
+    };
+    let seen = |s: &[String]| -> Vec<String> {
+        s.iter()
+            .filter(|e| case.observable.contains(e))
+            .cloned()
+            .collect()
+    };
+    let valid = holds(run(&g, string))
+        && !holds(run(&k, string))
+        && holds(run(&k, look_alike))
+        && seen(string) == seen(look_alike);
+    if !valid {
+        issues.add(format!(
+            "our counterexample is wrong (closed: {closed}): {witness:?}"
+        ));
+    }
+}
+
+/// Draws `settings`' cases with `draw(seed, id)`, asks the oracle about
+/// each as `kind`, and has `compare` note the differences of every case
+/// libFAUDES answered; a case it threw on is a difference too.
+fn run_partial<C: Clone>(
+    settings: &Settings,
+    test: &'static str,
+    draw: impl Fn(u64, usize) -> C,
+    kind: fn(C) -> PartialCase,
+    mut compare: impl FnMut(&C, &Answer, &mut Issues),
+) -> Report {
+    let cases: Vec<C> = settings
+        .ids()
+        .into_iter()
+        .map(|id| draw(settings.seed, id))
+        .collect();
+    let problems: Vec<Problem> = cases
+        .iter()
+        .zip(settings.ids())
+        .map(|(c, id)| Problem::Partial {
+            id,
+            case: kind(c.clone()),
+            gen: Vec::new(),
+        })
+        .collect();
+    let answers = ask_oracle(&problems);
+    let mut report = Report::new(settings.seed, test);
+    for ((problem, answer), case) in problems.iter().zip(&answers).zip(&cases) {
+        let mut issues = Issues::default();
+        match &answer.error {
+            Some(e) => issues.add(format!("libFAUDES threw: {e}")),
+            None => compare(case, answer, &mut issues),
+        }
+        report.case(problem, issues);
+    }
+    report
+}
+
+#[test]
+#[ignore = "needs python3 with faudes (pip install faudes); run by cargo xtask ci"]
+fn normality_agrees_with_libfaudes_isnormal() {
+    require_faudes();
+    let settings = partial_settings(1000);
+    let start = Instant::now();
+    let (mut normal, mut normal_closed) = (0, 0);
+    let test = "normality_agrees_with_libfaudes_isnormal";
+    let kind = PartialCase::Normal;
+    let report = run_partial(
+        &settings,
+        test,
+        normality_case,
+        kind,
+        |case, answer, issues| {
+            let (g, k) = (case.plant.build(), case.k.build());
+            let ours = is_normal(&g, &k, &case.observable, PARTIAL_LIMIT).unwrap();
+            let ours_closed = is_normal_closed(&g, &k, &case.observable, PARTIAL_LIMIT).unwrap();
+            for (what, verdict, theirs, closed) in [
+                ("IsNormal (marked)", &ours, answer.normal, false),
+                (
+                    "IsNormal (closed)",
+                    &ours_closed,
+                    answer.normal_closed,
+                    true,
+                ),
+            ] {
+                if Some(verdict.is_none()) != theirs {
+                    issues.add(format!(
+                        "{what}: ours {}, libFAUDES {theirs:?}",
+                        verdict.is_none()
+                    ));
+                }
+                if let Some(w) = verdict {
+                    check_normality_witness(issues, case, w, closed);
+                }
+            }
+            normal += usize::from(ours.is_none());
+            normal_closed += usize::from(ours_closed.is_none());
+        },
+    );
+    let n = settings.ids().len();
+    eprintln!(
+        "faudes_diff normality: seed {:#x}, {n} cases, {} disagree; {:.1}% normal (marked), \
+         {:.1}% normal (closed); {:.2?}",
+        settings.seed,
+        report.failed.len(),
+        percent(normal, n),
+        percent(normal_closed, n),
+        start.elapsed(),
+    );
+    report.finish(n);
+    if settings.only.is_none() && n >= 100 {
+        for (what, count) in [("marked", normal), ("closed", normal_closed)] {
+            assert!(
+                count * 5 >= n && (n - count) * 5 >= n,
+                "normal ({what}) in {count} of {n} cases: want 20% to 80%"
+            );
+        }
+    }
+}
+
+#[test]
+#[ignore = "needs python3 with faudes (pip install faudes); run by cargo xtask ci"]
+fn sup_normal_agrees_with_libfaudes_supnorm() {
+    require_faudes();
+    let settings = partial_settings(1000);
+    let start = Instant::now();
+    let (mut empty, mut whole, mut cut, mut cut_closed) = (0, 0, 0, 0);
+    let test = "sup_normal_agrees_with_libfaudes_supnorm";
+    let draw = |seed, id| normality_case(seed ^ 0x5355_504E, id);
+    let report = run_partial(
+        &settings,
+        test,
+        draw,
+        PartialCase::Supnorm,
+        |case, answer, issues| {
+            let (g, k) = (case.plant.build(), case.k.build());
+            let obs = &case.observable;
+            let ours = sup_normal(&g, &k, obs, PARTIAL_LIMIT).unwrap();
+            let ours_closed = sup_normal_closed(&g, &k, obs, PARTIAL_LIMIT).unwrap();
+            issues.language("SupNorm", &ours, &answer.sup.as_ref().expect("sup").build());
+            let theirs = answer.sup_closed.as_ref().expect("sup_closed").build();
+            issues.language("SupNormClosed", &ours_closed, &theirs);
+            if is_normal_closed(&g, &k, obs, PARTIAL_LIMIT)
+                .unwrap()
+                .is_none()
+            {
+                whole += 1;
+            } else {
+                empty += usize::from(ours.is_empty());
+                cut += usize::from(!ours.is_empty());
+                cut_closed += usize::from(!ours_closed.is_empty());
+            }
+        },
+    );
+    let n = settings.ids().len();
+    eprintln!(
+        "faudes_diff supnorm: seed {:#x}, {n} cases, {} disagree; K normal (closed) in {:.1}%; \
+         else SupNorm empty in {:.1}%, cut in {:.1}% (SupNormClosed non-empty in {:.1}%); {:.2?}",
+        settings.seed,
+        report.failed.len(),
+        percent(whole, n),
+        percent(empty, n),
+        percent(cut, n),
+        percent(cut_closed, n),
+        start.elapsed(),
+    );
+    report.finish(n);
+    if settings.only.is_none() && n >= 100 {
+        assert!(
+            cut * 10 >= n && cut_closed * 20 >= n,
+            "fewer than 10% of the SupNorm or 5% of the SupNormClosed results cut K"
+        );
+    }
+}
+
+/// At most this many states in the plant and in the specification of a
+/// SupConNorm case: libFAUDES's SupConNormClosed takes seconds, sometimes
+/// minutes, on plants of 100 states (and gives 34,350 states where ours
+/// gives the same language in far fewer).
+const SUPCONNORM_STATES: usize = 12;
+
+/// A synthesis problem whose plant and specification compose to at most
+/// [`SUPCONNORM_STATES`] states each, and the events named controllable
+/// (as the plant says) and observable (at random).
+fn sup_con_normal_case(seed: u64, id: usize) -> SupConNormCase {
+    let small = |v: &[JsonAutomaton]| {
+        let parts: Vec<Automaton> = v.iter().map(JsonAutomaton::build).collect();
+        sync(&parts.iter().collect::<Vec<_>>())
+            .unwrap()
+            .num_states()
+            <= SUPCONNORM_STATES
+    };
+    let (plant, spec) = (0u64..)
+        .find_map(|attempt| {
+            let Problem::Synthesis { plant, spec, .. } =
+                synthesis_problem(seed ^ attempt.wrapping_mul(0x9E37_79B9), id)
+            else {
+                unreachable!()
+            };
+            (small(&plant) && small(&spec)).then_some((plant, spec))
+        })
+        .expect("some attempt is small");
+    let mut rng = Rng::for_case(seed ^ 0x434F_4E4E_4F52_4D00, id);
+    let mut events: Vec<(String, bool)> = plant.iter().flat_map(|g| g.events.clone()).collect();
+    events.sort();
+    events.dedup();
+    let controllable = events.iter().filter(|e| e.1).map(|e| e.0.clone()).collect();
+    let observable = some_events(&mut rng, &events, 0.6);
+    SupConNormCase {
+        plant,
+        spec,
+        controllable,
+        observable,
+    }
+}
+
+#[test]
+#[ignore = "needs python3 with faudes (pip install faudes); run by cargo xtask ci"]
+fn sup_con_normal_agrees_with_libfaudes_supconnorm() {
+    require_faudes();
+    let settings = partial_settings(300);
+    let start = Instant::now();
+    let (mut nothing, mut as_supcon, mut below_supcon, mut emptied) = (0, 0, 0, 0);
+    let test = "sup_con_normal_agrees_with_libfaudes_supconnorm";
+    let draw = sup_con_normal_case;
+    let report = run_partial(
+        &settings,
+        test,
+        draw,
+        PartialCase::Supconnorm,
+        |case, answer, issues| {
+            let build =
+                |v: &[JsonAutomaton]| v.iter().map(JsonAutomaton::build).collect::<Vec<_>>();
+            let (plants, specs) = (build(&case.plant), build(&case.spec));
+            let g = sync(&plants.iter().collect::<Vec<_>>()).unwrap();
+            let e = sync(&specs.iter().collect::<Vec<_>>()).unwrap();
+            let (c, o) = (&case.controllable, &case.observable);
+            let ours = sup_con_normal(&g, &e, c, o, PARTIAL_LIMIT).unwrap();
+            let ours_closed = sup_con_normal_closed(&g, &e, c, o, PARTIAL_LIMIT).unwrap();
+            issues.language(
+                "SupConNorm",
+                &ours,
+                &answer.sup.as_ref().expect("sup").build(),
+            );
+            let theirs = answer.sup_closed.as_ref().expect("sup_closed").build();
+            issues.language("SupConNormClosed", &ours_closed, &theirs);
+            // SupConNorm answers for the plant's nonblocking part, as
+            // libFAUDES does; SupConNormClosed for its closed language.
+            let nonblocking = trim(&g);
+            for (what, sup, plant) in [
+                ("SupConNorm", &ours, &nonblocking),
+                ("SupConNormClosed", &ours_closed, &g),
+            ] {
+                if check_controllable(plant, sup).unwrap().is_some() {
+                    issues.add(format!("our {what} is not controllable"));
+                }
+                if let Some(w) = is_normal_closed(plant, sup, o, PARTIAL_LIMIT).unwrap() {
+                    issues.add(format!("the closure of our {what} is not normal: {w:?}"));
+                }
+            }
+            if !is_trim(&ours) {
+                issues.add("our SupConNorm is not trim".into());
+            }
+            let full = supcon(&g, &e).unwrap();
+            if full.is_empty() {
+                nothing += 1;
+            } else if language_difference(&ours, &full).is_none() {
+                as_supcon += 1;
+            } else if ours.is_empty() {
+                emptied += 1;
+            } else {
+                below_supcon += 1;
+            }
+        },
+    );
+    let n = settings.ids().len();
+    eprintln!(
+        "faudes_diff supconnorm: seed {:#x}, {n} cases, {} disagree; supcon empty in {:.1}%; \
+         else supconnorm equal to supcon in {:.1}%, below it in {:.1}%, empty in {:.1}%; {:.2?}",
+        settings.seed,
+        report.failed.len(),
+        percent(nothing, n),
+        percent(as_supcon, n),
+        percent(below_supcon, n),
+        percent(emptied, n),
+        start.elapsed(),
+    );
+    report.finish(n);
+    if settings.only.is_none() && n >= 100 {
+        assert!(
+            below_supcon * 40 >= n && emptied * 10 >= n,
+            "fewer than 2.5% of the results restricted or 10% emptied by partial observation"
+        );
     }
 }

@@ -11,6 +11,7 @@
 //! | [`verify`] | controllability, nonblocking, nonconflict, with witnesses |
 //! | [`modular`] | controllability of one modular supervisor on its reduced plant |
 //! | [`equivalence`] | language equality and inclusion, isomorphism |
+//! | [`partial`] | normality, supremal normal and controllable-normal sublanguages, observability |
 //! | [`projection`] | natural projection, the observer property |
 //! | [`reduce`](mod@reduce) | supervisor reduction and localization (control covers) |
 //! | [`synthesis`](mod@synthesis) | the pipeline supcon(sync(plants), sync(specs)), minstate |
@@ -19,6 +20,7 @@ pub mod condat;
 pub mod equivalence;
 pub mod minstate;
 pub mod modular;
+pub mod partial;
 pub mod projection;
 pub mod reach;
 pub mod reduce;
@@ -36,6 +38,10 @@ pub use equivalence::{
 pub use minstate::minstate;
 pub use modular::{
     check_controllable_modular, reduced_plant, ModularCounterexample, ModularVerdict,
+};
+pub use partial::{
+    check_observable, is_normal, is_normal_closed, sup_con_normal, sup_con_normal_closed,
+    sup_normal, sup_normal_closed,
 };
 pub use projection::{check_observer, project, ObserverWitness};
 pub use reach::{accessible, coaccessible, coreachable, is_trim, reachable, restrict, trim};
