@@ -105,7 +105,9 @@ pub fn ensure_chromium() -> Result<(String, String)> {
     let driver = || find("CHROMEDRIVER", &["chromedriver"]);
     if chromium().is_none() || driver().is_none() {
         eprintln!("xtask: chromium or chromedriver is missing; installing them");
-        apt_install(&["chromium", "chromium-driver"]).map_err(|e| {
+        // Fonts are only recommended by the package; without them every
+        // label of the screenshots would be a row of boxes.
+        apt_install(&["chromium", "chromium-driver", "fonts-dejavu-core"]).map_err(|e| {
             format!("{e}\nthe browser test needs Chromium and chromedriver (Debian: `apt-get install chromium chromium-driver`)")
         })?;
     }
