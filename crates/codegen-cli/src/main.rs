@@ -17,6 +17,7 @@ mod key;
 mod lang;
 mod net_control;
 mod output;
+mod partial;
 mod petri;
 mod plc;
 mod progress;
@@ -86,6 +87,20 @@ enum Command {
     /// Natural projection onto the events kept; with `--observer`, the
     /// observer properties with a shortest counterexample.
     Project(lang::ProjectArgs),
+    /// Normality of K (`--sup`) with respect to the plant and the
+    /// projection onto the observable events, else a shortest string of
+    /// the plant outside K that looks like one of K.
+    Normal(partial::CheckArgs),
+    /// Observability (Lin–Wonham) of K (`--sup`) with respect to the
+    /// plant, else two strings that look alike after which K allows and
+    /// forbids one controllable event.
+    Observable(partial::CheckArgs),
+    /// The supremal normal sublanguage of the specification (libFAUDES
+    /// `SupNorm`, `--closed`: `SupNormClosed`).
+    Supnorm(partial::SupArgs),
+    /// The supremal controllable and normal sublanguage (libFAUDES
+    /// `SupConNorm`, `--closed`: `SupConNormClosed`).
+    Supconnorm(partial::SupArgs),
     /// Supervisor reduction: a smaller supervisor with the same closed
     /// loop with the plant (checked), to run beside the plant components.
     Reduce(reduce::ReduceArgs),
@@ -158,6 +173,10 @@ fn main() -> ExitCode {
         Command::Equal(args) => lang::equal(&args, json, &mut out),
         Command::Compose(args) => lang::compose(&args, json, &mut out),
         Command::Project(args) => lang::project(&args, json, &mut out),
+        Command::Normal(args) => partial::normal(&args, json, &mut out),
+        Command::Observable(args) => partial::observable(&args, json, &mut out),
+        Command::Supnorm(args) => partial::supremal(&args, false, json, &mut out),
+        Command::Supconnorm(args) => partial::supremal(&args, true, json, &mut out),
         Command::Reduce(args) => reduce::reduce(&args, json, &mut out),
         Command::Localize(args) => reduce::localize(&args, json, &mut out),
         Command::Verify(args) => verify::run(&args, json, &mut out),
