@@ -567,22 +567,44 @@ pub fn check_localized(
     localization: &Localization,
     options: ComposeOptions<'_>,
 ) -> Result<()> {
+    let controllers: Vec<&Automaton> = localization.controllers.iter().map(|(_, a)| a).collect();
+    same_closed_loop(
+        plant,
+        original,
+        &controllers,
+        ("localization", "with the local controllers"),
+        options,
+    )
+}
+
+/// Checks that `replacement` (composed) gives `plant` the closed and
+/// marked languages `original` gives it; `what` names the operation and
+/// the replacement in the error, which has a shortest distinguishing
+/// string.
+fn same_closed_loop(
+    plant: &Automaton,
+    original: &Automaton,
+    replacement: &[&Automaton],
+    what: (&str, &str),
+    options: ComposeOptions<'_>,
+) -> Result<()> {
     let options = ComposeOptions {
         name_states: false,
         ..options
     };
     let lhs = compose(&[plant, original], Composition::Sync, options)?.automaton;
     let mut parts: Vec<&Automaton> = vec![plant];
-    parts.extend(localization.controllers.iter().map(|(_, a)| a));
+    parts.extend_from_slice(replacement);
     let rhs = compose(&parts, Composition::Sync, options)?.automaton;
     match language_difference(&lhs, &rhs) {
         None => Ok(()),
         Some(d) => Err(Error::Incompatible(format!(
-            "supervisor localization changed the closed loop of `{}` ({:?} language, string `{}` only {}): a bug, please report it",
+            "supervisor {} changed the closed loop of `{}` ({:?} language, string `{}` only {}): a bug, please report it",
+            what.0,
             original.name(),
             d.language,
             d.string.join(" "),
-            if d.in_first { "with the original" } else { "with the local controllers" }
+            if d.in_first { "with the original" } else { what.1 }
         ))),
     }
 }
@@ -657,20 +679,11 @@ pub fn check_closed_loop(
     reduced: &Automaton,
     options: ComposeOptions<'_>,
 ) -> Result<()> {
-    let options = ComposeOptions {
-        name_states: false,
-        ..options
-    };
-    let lhs = compose(&[plant, original], Composition::Sync, options)?.automaton;
-    let rhs = compose(&[plant, reduced], Composition::Sync, options)?.automaton;
-    match language_difference(&lhs, &rhs) {
-        None => Ok(()),
-        Some(d) => Err(Error::Incompatible(format!(
-            "supervisor reduction changed the closed loop of `{}` ({:?} language, string `{}` only {}): a bug, please report it",
-            original.name(),
-            d.language,
-            d.string.join(" "),
-            if d.in_first { "with the original" } else { "with the reduced supervisor" }
-        ))),
-    }
+    same_closed_loop(
+        plant,
+        original,
+        &[reduced],
+        ("reduction", "with the reduced supervisor"),
+        options,
+    )
 }
