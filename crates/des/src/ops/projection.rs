@@ -91,7 +91,8 @@ pub struct ObserverWitness {
 pub fn project(a: &Automaton, keep: &[impl AsRef<str>], max_states: usize) -> Result<Automaton> {
     let kept = Kept::new(a, keep)?;
     let name = format!("project({})", a.name());
-    let Some(sub) = SubsetAutomaton::build_for(a, &kept, LanguageKind::Marked, max_states)? else {
+    let Some(sub) = SubsetAutomaton::build_for(a, &kept, LanguageKind::Marked, true, max_states)?
+    else {
         return Ok(Automaton::empty(name, kept.alphabet));
     };
     let n = sub.num_states();
@@ -114,6 +115,39 @@ pub fn project(a: &Automaton, keep: &[impl AsRef<str>], max_states: usize) -> Re
     ))
 }
 
+/// The projection of `a` onto the events where `kept` holds (a mask over
+/// `a`'s event ids), states unnamed (numbered in breadth-first order), for
+/// the operations of partial observation. Without `expand_marked`, a set
+/// holding a marked state gets no outgoing transitions: for callers that
+/// cut there, which spares the subset construction most of its states.
+/// Bounded by `max_states` as [`project`] is.
+pub(crate) fn project_mask(
+    a: &Automaton,
+    kept: &[bool],
+    expand_marked: bool,
+    max_states: usize,
+) -> Result<Automaton> {
+    let kept = Kept::from_mask(a, kept);
+    let name = format!("P({})", a.name());
+    let sub =
+        SubsetAutomaton::build_for(a, &kept, LanguageKind::Marked, expand_marked, max_states)?;
+    let Some(sub) = sub else {
+        return Ok(Automaton::empty(name, kept.alphabet));
+    };
+    let n = sub.num_states();
+    let mut marked = FixedBitSet::with_capacity(n);
+    marked.extend((0..n).filter(|&i| sub.subsets.marked[i]));
+    Ok(Automaton::from_parts(
+        name,
+        kept.alphabet,
+        StateNames::Indices,
+        Some(StateId(0)),
+        marked,
+        sub.offsets,
+        sub.edges,
+    ))
+}
+
 /// Decides whether the projection of `a` onto `keep` is an
 /// `Lm(a)`-observer (`language` [`LanguageKind::Marked`]) or an
 /// `L(a)`-observer ([`LanguageKind::Closed`]); see the module docs.
@@ -127,7 +161,7 @@ pub fn check_observer(
     max_states: usize,
 ) -> Result<Option<ObserverWitness>> {
     let kept = Kept::new(a, keep)?;
-    let Some(mut sub) = SubsetAutomaton::build_for(a, &kept, language, max_states)? else {
+    let Some(mut sub) = SubsetAutomaton::build_for(a, &kept, language, true, max_states)? else {
         return Ok(None);
     };
     let init = a
@@ -190,6 +224,24 @@ struct Kept {
 }
 
 impl Kept {
+    /// The events where `mask` holds (indexed by `a`'s event ids).
+    fn from_mask(a: &Automaton, mask: &[bool]) -> Kept {
+        let mut alphabet = Alphabet::new();
+        alphabet.set_controllability_stated(a.alphabet().controllability_stated());
+        let map = a
+            .alphabet()
+            .iter()
+            .map(|(id, e)| {
+                mask[id.index()].then(|| {
+                    alphabet
+                        .insert(&e.name, e.controllable)
+                        .expect("from one alphabet")
+                })
+            })
+            .collect();
+        Kept { map, alphabet }
+    }
+
     fn new(a: &Automaton, keep: &[impl AsRef<str>]) -> Result<Kept> {
         let mut wanted = FxHashSet::default();
         for name in keep {
@@ -202,20 +254,12 @@ impl Kept {
             }
             wanted.insert(name);
         }
-        let mut alphabet = Alphabet::new();
-        alphabet.set_controllability_stated(a.alphabet().controllability_stated());
-        let map = a
+        let mask: Vec<bool> = a
             .alphabet()
             .iter()
-            .map(|(_, e)| {
-                wanted.contains(e.name.as_str()).then(|| {
-                    alphabet
-                        .insert(&e.name, e.controllable)
-                        .expect("from one alphabet")
-                })
-            })
+            .map(|(_, e)| wanted.contains(e.name.as_str()))
             .collect();
-        Ok(Kept { map, alphabet })
+        Ok(Kept::from_mask(a, &mask))
     }
 }
 
@@ -351,11 +395,13 @@ struct SubsetAutomaton {
 
 impl SubsetAutomaton {
     /// `None` when `a` has no initial state. Sets are marked as `language`
-    /// says: by a marked member, or (closed) always.
+    /// says: by a marked member, or (closed) always. Without
+    /// `expand_marked`, marked sets get no transitions.
     fn build_for(
         a: &Automaton,
         kept: &Kept,
         language: LanguageKind,
+        expand_marked: bool,
         max_states: usize,
     ) -> Result<Option<SubsetAutomaton>> {
         let Some(init) = a.initial() else {
@@ -375,6 +421,11 @@ impl SubsetAutomaton {
         let mut edges = Vec::new();
         let mut s = 0;
         while s < subsets.len() {
+            if !expand_marked && subsets.marked[s] {
+                offsets.push(edges.len() as u32);
+                s += 1;
+                continue;
+            }
             for &x in subsets.get(s as u32) {
                 for t in a.transitions(StateId(x)) {
                     if let Some(e) = kept.map[t.event.index()] {
@@ -594,6 +645,36 @@ mod tests {
     use crate::ops::sync::DEFAULT_MAX_STATES as LIMIT;
     use crate::testing::auto;
     use LanguageKind::{Closed, Marked};
+
+    #[test]
+    fn a_mask_projection_erases_and_merges_and_may_stop_at_marked_sets() {
+        // 0 -u-> 1 -a-> 2, 0 -a-> 3 -b-> 4 (marked) -a-> 0; u unobservable.
+        let g = auto(
+            "G",
+            &[("u", false), ("a", true), ("b", true)],
+            &[
+                ("0", "u", "1"),
+                ("1", "a", "2"),
+                ("0", "a", "3"),
+                ("3", "b", "4"),
+                ("4", "a", "0"),
+            ],
+            &["4"],
+        );
+        let mask = [false, true, true];
+        let p = project_mask(&g, &mask, true, 100).unwrap();
+        assert_eq!(p.alphabet().len(), 2);
+        // {0,1} -a-> {2,3} -b-> {4} -a-> {0,1}.
+        assert_eq!((p.num_states(), p.num_transitions()), (3, 3));
+        assert_eq!(p.marked_states().count(), 1);
+        // Not expanded beyond the marked set: its `a` is gone.
+        let cut = project_mask(&g, &mask, false, 100).unwrap();
+        assert_eq!((cut.num_states(), cut.num_transitions()), (3, 2));
+        assert!(project_mask(&g, &mask, true, 2).is_err());
+        // The same language as the named projection.
+        let named = project(&g, &["a", "b"], 100).unwrap();
+        assert!(language_equal(&p, &named));
+    }
 
     /// A machine that starts (`go`), works silently (`tick`) and then
     /// either finishes (`done`, marked) or breaks (`jam`), and is repaired

@@ -52,7 +52,6 @@
 
 mod normal;
 mod observable;
-mod observer;
 mod supconnorm;
 mod supnorm;
 

@@ -11,10 +11,10 @@
 //!    projection P(K) (made deterministic) reaches a state that is marked
 //!    in all three ([`NormalityViolation::LooksLike`]).
 
-use super::observer::project_dfa;
 use super::{closure, complement, event_mask, names, over_plant_alphabet, product};
 use crate::automaton::{Alphabet, Automaton, EventId, StateId, StateNames, Transition};
 use crate::error::Result;
+use crate::ops::projection::project_mask;
 use crate::ops::reach::shortest_path_to;
 use fixedbitset::FixedBitSet;
 
@@ -85,7 +85,7 @@ fn normality(
         }));
     }
     let not_k = complement(k, alphabet, |s| !k.is_marked(s), true);
-    let seen = project_dfa(k, &observable, true, max_states)?;
+    let seen = project_mask(k, &observable, true, max_states)?;
     let g_not_k = product(g, &not_k, max_states)?;
     let suspects = product(&g_not_k, &seen, max_states)?;
     let Some((_, path)) = shortest_path_to(&suspects, |s| suspects.is_marked(s)) else {

@@ -19,10 +19,10 @@
 //! observation is clean (and, for the closed variant, cut at the first
 //! tainted one).
 
-use super::observer::project_dfa;
 use super::{closure, complement, event_mask, keep_states, over_plant_alphabet, product, remark};
 use crate::automaton::Automaton;
 use crate::error::Result;
+use crate::ops::projection::project_mask;
 use crate::ops::reach::{trim, Reverse};
 use fixedbitset::FixedBitSet;
 
@@ -97,7 +97,7 @@ pub(super) fn cut(
         None => a.marked().clone(),
         Some(spread) => backward(&a, a.marked(), spread),
     };
-    let seen = project_dfa(&remark(&a, bad), observable, !closed, max_states)?;
+    let seen = project_mask(&remark(&a, bad), observable, !closed, max_states)?;
     let inside = closure(&keep_states(&a, |s| !a.is_marked(s)));
     if closed {
         let clean = closure(&keep_states(&seen, |s| !seen.is_marked(s)));
