@@ -62,6 +62,12 @@ struct Report {
     minimised: Option<Size>,
     /// After supervisor reduction (before minstate).
     reduced: Option<Size>,
+    /// The plant's unobservable events: `supervisor` is then supconnorm's
+    /// result and `observed` its projection onto the other events.
+    unobservable: Vec<String>,
+    /// The projected supervisor (before minstate), under partial
+    /// observation.
+    observed: Option<Size>,
     /// The components the supervisor's state names are made of, in order
     /// (plants, then specifications): `0.1.2` is the state of the first
     /// component, then of the second, … `None` with `--no-state-names`.
@@ -87,6 +93,7 @@ struct Timings {
     supcon: f64,
     minstate: f64,
     reduce: f64,
+    observe: f64,
     write: f64,
     total: f64,
 }
@@ -137,6 +144,8 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
         supervisor: mut sup,
         supcon_size,
         reduced_size,
+        unobservable,
+        observed_size,
         timings,
     } = ops::synthesize(&plants, &specs, options).map_err(CliError::max_states)?;
     t.compose_plant = timings.compose_plant.as_secs_f64() * 1e3;
@@ -144,6 +153,7 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
     t.supcon = timings.supcon.as_secs_f64() * 1e3;
     t.minstate = timings.minstate.as_secs_f64() * 1e3;
     t.reduce = timings.reduce.as_secs_f64() * 1e3;
+    t.observe = timings.observe.as_secs_f64() * 1e3;
     let supervisor = Size {
         states: supcon_size.states,
         transitions: supcon_size.transitions,
@@ -153,6 +163,11 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
     let reduced = reduced_size.map(|r| Size {
         states: r.states,
         transitions: r.transitions,
+        ..Size::of(&sup)
+    });
+    let observed = observed_size.map(|o| Size {
+        states: o.states,
+        transitions: o.transitions,
         ..Size::of(&sup)
     });
 
@@ -181,6 +196,8 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
         empty: sup.is_empty(),
         minimised,
         reduced,
+        unobservable,
+        observed,
         state_names,
         output: args.output.display().to_string(),
         milliseconds: t,
@@ -204,12 +221,33 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
             report.milliseconds.compose_spec
         );
     }
+    let partial = !report.unobservable.is_empty();
     outln!(
         out,
-        "supervisor: {} ({:.1} ms)",
+        "{} {} ({:.1} ms)",
+        if partial {
+            "supconnorm:"
+        } else {
+            "supervisor:"
+        },
         report.supervisor,
         report.milliseconds.supcon
     );
+    if let Some(o) = &report.observed {
+        let unseen: Vec<String> = report
+            .unobservable
+            .iter()
+            .map(|e| format!("`{e}`"))
+            .collect();
+        outln!(
+            out,
+            "observed:   {} ({:.1} ms, projected onto the observable events, {} unobservable; \
+             closed loop and commands checked)",
+            o,
+            report.milliseconds.observe,
+            unseen.join(", ")
+        );
+    }
     if let Some(r) = &report.reduced {
         outln!(
             out,
@@ -226,7 +264,13 @@ pub fn run(args: &SynthArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
             report.milliseconds.minstate
         );
     }
-    if let (Some(key), false) = (&report.state_names, report.empty) {
+    if let (Some(key), true, false) = (&report.state_names, partial, report.empty) {
+        outln!(
+            out,
+            "states:     named {{{},…}}: the states a string the controller sees may lead to",
+            key.join(".")
+        );
+    } else if let (Some(key), false) = (&report.state_names, report.empty) {
         outln!(
             out,
             "states:     named {}{}",

@@ -155,3 +155,50 @@ fn supconnorm_is_controllable_and_normal() {
     ]);
     assert_eq!(code, 2, "{stderr}");
 }
+
+#[test]
+fn synth_under_partial_observation_writes_the_projected_supervisor() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cell.toml").display().to_string();
+    let files = [
+        "models/breakdown/m1.toml",
+        "models/breakdown/m2.toml",
+        "models/breakdown/buffer.toml",
+        "models/breakdown/zone.toml",
+    ];
+    let synth = |extra: &[&str]| {
+        let mut args = vec!["synth", "--plant", files[0], files[1], "--spec"];
+        args.extend(&files[2..]);
+        args.extend(["-o", &out]);
+        args.extend(extra);
+        run(&args)
+    };
+    let (code, stdout, stderr) = synth(&[]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("supconnorm: 14 states"), "{stdout}");
+    assert!(
+        stdout.contains("observed:   10 states") && stdout.contains("`b1` unobservable"),
+        "{stdout}"
+    );
+    let written = std::fs::read_to_string(&out).unwrap();
+    assert!(!written.contains("b1"), "{written}");
+    assert!(
+        written.contains("\"{working.idle.one.clear,down.idle.one.m1_down}\""),
+        "{written}"
+    );
+    // With the plant, the written supervisor is controllable and
+    // nonblocking; it is normal for the events the plant lets it see.
+    let (code, _, stderr) = run(&["check", "--plant", files[0], files[1], "--sup", &out]);
+    assert_eq!(code, 0, "{stderr}");
+    // The same in JSON, and refused with reduction.
+    let (code, stdout, _) = run(&[
+        "--json", "synth", "--plant", files[0], files[1], "--spec", files[2], files[3], "-o", &out,
+    ]);
+    assert_eq!(code, 0);
+    let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(report["unobservable"], serde_json::json!(["b1"]));
+    assert_eq!(report["observed"]["states"], 10);
+    let (code, _, stderr) = synth(&["--reduce"]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("`b1` are unobservable"), "{stderr}");
+}

@@ -711,8 +711,30 @@ const ERRORS: &[(&str, &str)] = &[
         "mini/hidden.toml`) is unobservable: the executor sees only the events it detects",
     ),
     (
-        "[plc]\nname = \"x\"\n[inputs]\ni = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"i\" }\n[[supervisor]] # <-\nname = \"s\"\nsynthesize = { plants = [\"mini/hidden_plant.toml\"] }\n",
-        "event `done` of synthesised supervisor `s` (unobservable in `hidden_machine`",
+        "[plc]\nname = \"x\"\n[inputs]\ni = {}\nj = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"i\" }\nstep = { rising = \"j\" } # <-\n[[supervisor]]\nname = \"s\"\nsynthesize = { plants = [\"mini/silent_step.toml\"] }\n",
+        "event `step` is unobservable in `silent_step` (`",
+    ),
+    // Synthesis runs the projected supervisor, unless it would command
+    // what the plant may not be able to do.
+    (
+        "[plc]\nname = \"x\"\n[inputs]\ni = {}\n[events]\ngo = { controllable = true }\n[[supervisor]]\nname = \"s\"\nsynthesize = { plants = [\"mini/hidden_plant.toml\"] } # <-\n",
+        "cannot synthesise the supervisor: after `go` the controller, which cannot see `done`, would command `go`: the closed loop allows it after a string that looks the same, not after this one",
+    ),
+    (
+        "[plc]\nname = \"x\"\n[inputs]\ni = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"i\" }\n[[supervisor]]\nname = \"s\"\nsynthesize = { plants = [\"mini/hidden_go.toml\"] } # <-\n",
+        "cannot synthesise the supervisor: event `go` is controllable and unobservable",
+    ),
+    (
+        "[plc]\nname = \"x\"\n[inputs]\ni = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"i\" }\n[[supervisor]]\nname = \"s\"\nsynthesize = { plants = [\"mini/silent_step.toml\"], reduce = true } # <-\n",
+        "supervisor reduction assumes a supervisor that sees every event, and the plant's events `step` are unobservable",
+    ),
+    (
+        "[plc]\nname = \"x\"\n[inputs]\ni = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"i\" }\n[[supervisor]]\nname = \"s\"\nsynthesize = { plants = [\"mini/silent_step.toml\"], localize = true } # <-\n",
+        "localization assumes a supervisor that sees every event",
+    ),
+    (
+        "[plc]\nname = \"x\"\n[inputs]\ni = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"i\" }\n[[supervisor]]\nname = \"s\"\nsynthesize = { plants = [\"mini/silent_step.toml\"], symbolic = true } # <-\n",
+        "symbolic synthesis assumes a supervisor that sees every event, and the events `step` are unobservable",
     ),
 ];
 

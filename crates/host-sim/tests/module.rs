@@ -15,9 +15,11 @@
 //! on the sensors leave, the whole closed loop comes to rest in a state
 //! marked in every component.
 
+mod common;
+
 use codegen::backend::Backend;
+use common::plant::Plant;
 use des::automaton::StateId;
-use des::Automaton;
 use host_sim::rng::Rng;
 use host_sim::sim::Sim;
 use plc_project::{GuardedSource, Trigger};
@@ -28,55 +30,14 @@ fn below(rng: &mut Rng, n: usize) -> usize {
     (rng.next_u64() % n as u64) as usize
 }
 
-/// The plant: its automata and their states.
-struct Plant {
-    automata: Vec<Automaton>,
-    states: Vec<StateId>,
-}
-
-impl Plant {
-    /// The plant automata the module's supervisor was synthesised from.
-    fn of(sim: &Sim) -> Plant {
-        let GuardedSource::Synthesized { plants, .. } = &sim.project().guarded[0].source else {
-            panic!("the module's supervisor is synthesised symbolically");
-        };
-        let automata: Vec<Automaton> = plants
-            .iter()
-            .flat_map(|p| des::formats::read_file(p).unwrap())
-            .map(|c| c.automaton)
-            .collect();
-        assert_eq!(automata.len(), 20, "10 light sensors and 10 belts");
-        let states = automata.iter().map(|a| a.initial().unwrap()).collect();
-        Plant { automata, states }
-    }
-
-    /// Whether every plant automaton having `event` allows it now.
-    fn allows(&self, event: &str) -> bool {
-        self.automata.iter().zip(&self.states).all(|(a, &s)| {
-            a.alphabet()
-                .id(event)
-                .is_none_or(|e| a.successor(s, e).is_some())
-        })
-    }
-
-    /// Moves every plant automaton having `event`; `false` if one refuses.
-    fn take(&mut self, event: &str) -> bool {
-        for (a, s) in self.automata.iter().zip(self.states.iter_mut()) {
-            if let Some(e) = a.alphabet().id(event) {
-                match a.successor(*s, e) {
-                    Some(next) => *s = next,
-                    None => return false,
-                }
-            }
-        }
-        true
-    }
-
-    /// The state name of plant automaton `name`.
-    fn state(&self, name: &str) -> String {
-        let k = self.automata.iter().position(|a| a.name() == name).unwrap();
-        self.automata[k].state_name(self.states[k]).into_owned()
-    }
+/// The plant automata the module's supervisor was synthesised from.
+fn plant_of(sim: &Sim) -> Plant {
+    let GuardedSource::Synthesized { plants, .. } = &sim.project().guarded[0].source else {
+        panic!("the module's supervisor is synthesised symbolically");
+    };
+    let plant = Plant::of_files(plants);
+    assert_eq!(plant.len(), 20, "10 light sensors and 10 belts");
+    plant
 }
 
 /// The uncontrollable events and the input each one's edge moves (`true`:
@@ -162,7 +123,7 @@ fn the_module_runs_its_plant_without_a_fault_and_comes_to_rest() {
     sim.retain_trace(false);
     assert_eq!(sim.project().supervisors.len(), 40, "40 components");
     assert_eq!(sim.project().guarded[0].closed_loop_states, "3570467226624");
-    let mut plant = Plant::of(&sim);
+    let mut plant = plant_of(&sim);
     // Scan 0 sees no edges (docs/semantics.md): the plant starts after it.
     assert_eq!(sim.scan().fault, None);
     let mut rng = Rng::new(0xB0DE);

@@ -164,6 +164,66 @@ fn plant_automata_move_with_the_executed_events_and_drive_a_run_without_faults()
 }
 
 #[test]
+fn an_unobservable_plant_event_is_a_button_that_moves_the_plant_unseen() {
+    let mut app = app("breakdown.plc.toml");
+    let model = call(&mut app, "GET", "/api/model", "");
+    assert_eq!(
+        model["plant"]["actions"],
+        serde_json::json!([{ "name": "b1", "label": "b1 (unseen)" }]),
+        "{model}"
+    );
+    // M1 idle: it cannot break down; the refusal names the plant's states.
+    let reply = app.handle("POST", "/api/action", br#"{"name":"b1"}"#);
+    let text = String::from_utf8_lossy(&reply.body).into_owned();
+    assert_eq!(reply.status, 400, "{text}");
+    assert!(text.contains("M1 idle"), "{text}");
+    // Started (scan 0 commands s1), M1 breaks down: the plant moves, the
+    // controller's state does not, and a repair is then expected.
+    call(&mut app, "POST", "/api/step", r#"{"scans":1}"#);
+    let before = state(&app.session, "cell");
+    assert!(
+        before.starts_with("{working.idle.empty.clear,down"),
+        "{before}"
+    );
+    call(&mut app, "POST", "/api/action", r#"{"name":"b1"}"#);
+    let host_sim::serve::machine::Machine::Automata(plant) = app.session.machine() else {
+        panic!("the breakdown cell runs on its plant automata");
+    };
+    assert_eq!(plant.state_names()[0], "down");
+    call(&mut app, "POST", "/api/step", r#"{"scans":1}"#);
+    assert_eq!(state(&app.session, "cell"), before);
+    // Repaired, M1 is started again at once.
+    call(&mut app, "POST", "/api/event", r#"{"name":"r1"}"#);
+    let executed: Vec<String> = app.session.log().flat_map(|e| e.events.clone()).collect();
+    assert_eq!(executed, ["s1", "r1", "s1"]);
+    let host_sim::serve::machine::Machine::Automata(plant) = app.session.machine() else {
+        unreachable!()
+    };
+    assert_eq!(plant.state_names()[0], "working");
+    // The random driver breaks M1 down now and then, without a fault.
+    app.session
+        .set_driver(host_sim::serve::session::Driver::Random);
+    app.session.step(20_000);
+    assert!(app.session.fault().is_none(), "{:?}", app.session.fault());
+    let log: Vec<_> = app.session.log().cloned().collect();
+    let unseen = log
+        .iter()
+        .filter(|e| e.note.as_deref().unwrap_or("").contains("b1 (unseen)"))
+        .count();
+    assert!(unseen >= 5, "{unseen} breakdowns");
+    assert!(
+        log.iter()
+            .all(|e| !e.note.as_deref().unwrap_or("").contains("cannot do")),
+        "a command the plant could not follow: {:?}",
+        log.iter()
+            .filter(|e| e.note.as_deref().unwrap_or("").contains("cannot do"))
+            .take(3)
+            .collect::<Vec<_>>()
+    );
+    assert_replays(&app.session);
+}
+
+#[test]
 fn the_boiler_runs_on_its_physics_and_its_inputs_replay() {
     let mut app = app("boiler/boiler.plc.toml");
     let model = call(&mut app, "GET", "/api/model", "");

@@ -480,6 +480,21 @@ impl Loader<'_> {
                 origins,
             }));
         }
+        if let (Some(l), false) = (localize, synthesis.unobservable.is_empty()) {
+            return Err(self.error(
+                &l.span(),
+                format!(
+                    "localization assumes a supervisor that sees every event, and the plant's \
+                     events {} are unobservable: synthesise without `localize`",
+                    synthesis
+                        .unobservable
+                        .iter()
+                        .map(|e| format!("`{e}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            ));
+        }
         let controllers = if localize.is_some() {
             let located = |e: Error| {
                 self.error(

@@ -223,6 +223,24 @@ impl Automaton {
         self.alphabet.set_controllability_stated(stated);
     }
 
+    /// Makes the event `name` unobservable; `false` when the alphabet
+    /// lacks it.
+    pub fn set_unobservable(&mut self, name: &str) -> bool {
+        match self.alphabet.id(name) {
+            Some(id) => {
+                self.alphabet.set_unobservable(id);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Names the states, one name per state in order.
+    pub(crate) fn set_state_names(&mut self, names: Vec<String>) {
+        debug_assert_eq!(names.len(), self.num_states());
+        self.state_names = StateNames::Stored(names);
+    }
+
     /// Drops state names (operations then number states).
     pub fn clear_state_names(&mut self) {
         self.state_names = StateNames::Indices;

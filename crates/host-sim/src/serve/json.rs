@@ -46,8 +46,8 @@ struct PlantInfo {
 
 #[derive(Debug, Serialize)]
 struct ActionInfo {
-    name: &'static str,
-    label: &'static str,
+    name: String,
+    label: String,
 }
 
 #[derive(Debug, Serialize)]
@@ -223,8 +223,8 @@ pub fn model(session: &Session, file: &str) -> Model {
                 .actions()
                 .iter()
                 .map(|a| ActionInfo {
-                    name: a.name,
-                    label: a.label,
+                    name: a.name.clone(),
+                    label: a.label.clone(),
                 })
                 .collect(),
             analog: machine

@@ -7,6 +7,8 @@
 //! - [`Machine::Automata`]: the plant automata the project's supervisors
 //!   were synthesised from ([`PlantAutomata`]), moved by every executed
 //!   event; they say which uncontrollable events the machine can do next.
+//!   Their unobservable events (a breakdown no sensor sees) are actions:
+//!   the plant moves, the controller sees nothing.
 //! - [`Machine::Boiler`], [`Machine::Cell`]: the physical simulations of
 //!   [`crate::boiler`] and [`crate::cell`]; the plant sets every input, the
 //!   user acts on it through its [`PlantAction`]s.
@@ -34,22 +36,25 @@ pub enum PlantChoice {
     Cell,
 }
 
-/// An action on a physical plant, offered as a button.
+/// An action on a plant, offered as a button.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum PlantAction {
     /// Something done to the boiler.
     Boiler(boiler::Action),
     /// A start button of the cell pressed (`true`) or released.
     Cell(Unit, bool),
+    /// Unobservable event `k` of the plant automata
+    /// ([`PlantAutomata::silent`]), taken where the plant can.
+    Silent(usize),
 }
 
 /// A named [`PlantAction`].
 #[derive(Debug, Clone)]
 pub struct NamedAction {
     /// Its name in the API.
-    pub name: &'static str,
+    pub name: String,
     /// Its label on the page.
-    pub label: &'static str,
+    pub label: String,
     /// What it does.
     pub action: PlantAction,
 }
@@ -76,6 +81,9 @@ pub struct PlantAutomata {
     states: Vec<StateId>,
     /// Per component, per project event: its id there, if in its alphabet.
     ids: Vec<Vec<Option<EventId>>>,
+    /// The unobservable events no project event names, each with its id
+    /// per component.
+    silent: Vec<(String, Vec<Option<EventId>>)>,
 }
 
 impl PlantAutomata {
@@ -122,6 +130,18 @@ impl PlantAutomata {
                     .collect()
             })
             .collect();
+        let mut silent: Vec<(String, Vec<Option<EventId>>)> = Vec::new();
+        for a in &components {
+            for (_, e) in a.alphabet().unobservable() {
+                if project.event(&e.name).is_none() && silent.iter().all(|(n, _)| *n != e.name) {
+                    let per = components
+                        .iter()
+                        .map(|c| c.alphabet().id(&e.name))
+                        .collect();
+                    silent.push((e.name.clone(), per));
+                }
+            }
+        }
         let states = components
             .iter()
             .map(|a| a.initial().unwrap_or(StateId(0)))
@@ -130,7 +150,36 @@ impl PlantAutomata {
             components,
             states,
             ids,
+            silent,
         }))
+    }
+
+    /// The unobservable events the controller never sees, by name.
+    pub fn silent(&self) -> impl ExactSizeIterator<Item = &str> {
+        self.silent.iter().map(|(n, _)| n.as_str())
+    }
+
+    /// Whether the plant can do unobservable event `k` now.
+    pub fn silent_possible(&self, k: usize) -> bool {
+        let per = &self.silent[k].1;
+        self.components
+            .iter()
+            .enumerate()
+            .all(|(c, a)| per[c].is_none_or(|id| a.successor(self.states[c], id).is_some()))
+    }
+
+    /// Takes unobservable event `k` when the plant can (`true`); else
+    /// nothing moves.
+    pub fn take_silent(&mut self, k: usize) -> bool {
+        if !self.silent_possible(k) {
+            return false;
+        }
+        for (c, a) in self.components.iter().enumerate() {
+            if let Some(id) = self.silent[k].1[c] {
+                self.states[c] = a.successor(self.states[c], id).expect("possible");
+            }
+        }
+        true
     }
 
     /// The components.
@@ -281,10 +330,21 @@ impl Machine {
             Machine::Supervisors => "no plant model: you move the inputs; the supervisors say \
                                      which events they expect"
                 .to_owned(),
-            Machine::Automata(a) => format!(
+            Machine::Automata(a) if a.silent.is_empty() => format!(
                 "the project's {} plant automata, moved by every executed event; you (or the \
                  random driver) choose among the uncontrollable events they can do",
                 a.components.len()
+            ),
+            Machine::Automata(a) => format!(
+                "the project's {} plant automata, moved by every executed event; you (or the \
+                 random driver) choose among the uncontrollable events they can do, and \
+                 {} the controller cannot see (buttons: the plant moves, nothing is sensed)",
+                a.components.len(),
+                a.silent
+                    .iter()
+                    .map(|(n, _)| format!("`{n}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ),
             Machine::Boiler { .. } => "the gas-fired water-bath boiler's physics (flames, bath \
                                        and flue-gas temperatures) sets every input"
@@ -300,18 +360,19 @@ impl Machine {
         matches!(self, Machine::Boiler { .. } | Machine::Cell { .. })
     }
 
-    /// The physical plant's actions (none for the others).
+    /// The plant's actions: the physical plants', the plant automata's
+    /// unobservable events.
     pub fn actions(&self) -> Vec<NamedAction> {
         use boiler::Action as B;
         use boiler::Input as I;
-        let b = |name, label, action| NamedAction {
-            name,
-            label,
+        let b = |name: &str, label: &str, action| NamedAction {
+            name: name.to_owned(),
+            label: label.to_owned(),
             action: PlantAction::Boiler(action),
         };
-        let c = |name, label, unit, pressed| NamedAction {
-            name,
-            label,
+        let c = |name: &str, label: &str, unit, pressed| NamedAction {
+            name: name.to_owned(),
+            label: label.to_owned(),
             action: PlantAction::Cell(unit, pressed),
         };
         match self {
@@ -375,19 +436,31 @@ impl Machine {
                 c("start_b_press", "Start B: press", Unit::B, true),
                 c("start_b_release", "Start B: release", Unit::B, false),
             ],
-            _ => Vec::new(),
+            Machine::Automata(a) => a
+                .silent()
+                .enumerate()
+                .map(|(k, name)| NamedAction {
+                    name: name.to_owned(),
+                    label: format!("{name} (unseen)"),
+                    action: PlantAction::Silent(k),
+                })
+                .collect(),
+            Machine::Supervisors => Vec::new(),
         }
     }
 
-    /// Applies `action` to the physical plant.
-    pub fn apply(&mut self, action: PlantAction) {
+    /// Applies `action` to the plant; `false` when the plant cannot take
+    /// it now (an unobservable event its automata do not allow).
+    pub fn apply(&mut self, action: PlantAction) -> bool {
         match (self, action) {
             (Machine::Boiler { plant, .. }, PlantAction::Boiler(a)) => a.apply_to(plant),
             (Machine::Cell { plant, .. }, PlantAction::Cell(unit, pressed)) => {
                 plant.press(unit, pressed)
             }
+            (Machine::Automata(a), PlantAction::Silent(k)) => return a.take_silent(k),
             _ => {}
         }
+        true
     }
 
     /// The physical plant's analog quantities (none for the others).

@@ -72,6 +72,9 @@ pub struct Session {
     /// The raw image the next scan reads (the user's, or the machine's).
     raw: Vec<bool>,
     pending: Vec<Change>,
+    /// Events the driver made an input edge for, not yet executed, with
+    /// the scan it was made in.
+    awaiting: Vec<(usize, u64)>,
     /// Operator buttons to release once their event is seen.
     release: Vec<(usize, usize)>,
     notes: Vec<String>,
@@ -119,6 +122,7 @@ impl Session {
             period,
             scans: 0,
             pending: Vec::new(),
+            awaiting: Vec::new(),
             release: Vec::new(),
             notes: Vec::new(),
             log: VecDeque::new(),
@@ -162,6 +166,7 @@ impl Session {
         self.scans = 0;
         self.raw.iter_mut().for_each(|v| *v = false);
         self.pending.clear();
+        self.awaiting.clear();
         self.release.clear();
         self.notes.clear();
         self.log.clear();
@@ -294,8 +299,13 @@ impl Session {
             .iter()
             .position(|a| a.name == name)
             .ok_or_else(|| format!("`{name}` is not an action of this plant"))?;
-        self.machine.apply(self.actions[k].action);
-        self.notes.push(self.actions[k].label.to_owned());
+        if !self.machine.apply(self.actions[k].action) {
+            return Err(format!(
+                "the plant cannot do `{name}` now (its automata are in {})",
+                self.plant_states()
+            ));
+        }
+        self.notes.push(self.actions[k].label.clone());
         Ok(())
     }
 
@@ -401,6 +411,10 @@ impl Session {
             .iter()
             .filter_map(|name| project.event(name))
             .collect();
+        // An edge lost to a fault or to the filter is not waited for long.
+        let scan = row.scan;
+        self.awaiting
+            .retain(|&(e, at)| !events.contains(&e) && scan < at + 100);
         if let Machine::Automata(plant) = &mut self.machine {
             for &e in &events {
                 if let Err(who) = plant.step(e) {
@@ -463,7 +477,7 @@ impl Session {
     /// pressed a few scans later; else now and then an expected event the
     /// machine can do (or a plant action), and request inputs flipped.
     fn drive(&mut self) {
-        if !self.actions.is_empty() {
+        if self.machine.is_physical() {
             if self.rng.one_in(3_000) {
                 let k = (self.rng.next_u64() % self.actions.len() as u64) as usize;
                 self.machine.apply(self.actions[k].action);
@@ -471,6 +485,16 @@ impl Session {
                     .push(format!("driver: {}", self.actions[k].label));
             }
             return;
+        }
+        // Now and then an unobservable event the plant can do, never while
+        // an event it made is on its way through the input filter (the
+        // plant moves with that event when the executor executes it).
+        if !self.actions.is_empty() && self.awaiting.is_empty() && self.rng.one_in(40) {
+            let k = (self.rng.next_u64() % self.actions.len() as u64) as usize;
+            if self.machine.apply(self.actions[k].action) {
+                self.notes
+                    .push(format!("driver: {}", self.actions[k].label));
+            }
         }
         if !self.pending.is_empty() {
             return;
@@ -509,6 +533,7 @@ impl Session {
                 let name = project.events[e].name.clone();
                 if self.schedule(e).is_ok() {
                     self.notes.push(format!("driver: {name}"));
+                    self.awaiting.push((e, self.scans));
                 }
             }
         }
@@ -539,6 +564,21 @@ impl Session {
         self.sim
             .supervisors()
             .event_feasible(e, self.sim.controller().states())
+    }
+
+    /// The plant automata's states as `M1 down, M2 idle` (empty for other
+    /// machines).
+    fn plant_states(&self) -> String {
+        match &self.machine {
+            Machine::Automata(a) => a
+                .components()
+                .iter()
+                .zip(a.state_names())
+                .map(|(c, s)| format!("{} {s}", c.name()))
+                .collect::<Vec<_>>()
+                .join(", "),
+            _ => String::new(),
+        }
     }
 
     /// Whether the machine can do event `e` now (always, but for plant

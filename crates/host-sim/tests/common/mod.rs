@@ -4,6 +4,7 @@
 
 #![allow(dead_code)]
 
+pub mod plant;
 pub mod waveform;
 
 use host_sim::{Lockstep, TraceRow};

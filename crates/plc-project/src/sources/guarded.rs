@@ -151,6 +151,29 @@ impl Loader<'_> {
             spec_automata,
             origins,
         } = self.synthesis_models(s)?;
+        let mut unobservable: Vec<String> = Vec::new();
+        for a in plant_automata.iter().chain(&spec_automata) {
+            for (_, e) in a.alphabet().unobservable() {
+                if !unobservable.contains(&e.name) {
+                    unobservable.push(e.name.clone());
+                }
+            }
+        }
+        if !unobservable.is_empty() {
+            return Err(self.error(
+                &synth.span(),
+                format!(
+                    "symbolic synthesis assumes a supervisor that sees every event, and the \
+                     events {} are unobservable: synthesise without `symbolic` (the explicit \
+                     supervisor runs projected onto the observable events)",
+                    unobservable
+                        .iter()
+                        .map(|e| format!("`{e}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            ));
+        }
         let synthesis = des_symbolic::synthesize(&plant_automata, &spec_automata).map_err(|e| {
             self.error(
                 &synth.span(),

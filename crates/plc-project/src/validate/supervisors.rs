@@ -8,6 +8,10 @@
 //! - Controllability must agree with every automaton that has the event
 //!   and states controllability (for a synthesised supervisor: every plant
 //!   and specification file it was synthesised from).
+//! - A supervisor the executor runs moves on observable events only. An
+//!   event a model of a synthesised supervisor declares unobservable may
+//!   not be declared in `[events]` (the controller cannot see it: no
+//!   input edge, no command); synthesis runs the projected supervisor.
 
 use super::super::model::{Event, Guarded, Supervisor, SupervisorSource};
 use super::super::parse::RawSupervisor;
@@ -191,6 +195,29 @@ impl Validator<'_> {
             local_events.push((g, id));
         }
         local_events.sort_by_key(|&(g, _)| g);
+
+        // What the models say the controller cannot see, it may not declare.
+        if matches!(source, SupervisorSource::Synthesized { .. }) {
+            for o in &origins {
+                for (_, e) in o.alphabet.unobservable() {
+                    let Some(&g) = events.index.get(&e.name) else {
+                        continue;
+                    };
+                    return Err(self.error(
+                        &events.spans[g],
+                        format!(
+                            "event `{}` is unobservable in `{}` (`{}`), a model of {described}: \
+                             the controller cannot see it, so it is no input edge and no \
+                             command; remove it from [events] (the supervisor runs on the \
+                             events the controller sees)",
+                            e.name,
+                            o.name,
+                            o.file.display()
+                        ),
+                    ));
+                }
+            }
+        }
 
         // Controllability against every source that states it.
         for &(g, _) in &local_events {

@@ -52,11 +52,13 @@
 
 mod normal;
 mod observable;
+mod observed;
 mod supconnorm;
 mod supnorm;
 
 pub use normal::{is_normal, is_normal_closed, NormalityViolation};
 pub use observable::{check_observable, ObservabilityViolation};
+pub use observed::{check_observed, name_after, observable_events, observed_supervisor};
 pub use supconnorm::{sup_con_normal, sup_con_normal_closed};
 pub use supnorm::{sup_normal, sup_normal_closed};
 
