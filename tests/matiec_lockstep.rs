@@ -428,6 +428,7 @@ matiec_tests! {
     module_compiles_and_runs_in_lockstep: 11, 32;
     testbed_compiles_and_runs_in_lockstep: 12, 34;
     testbed_whole_compiles_and_runs_in_lockstep: 13, 35;
+    breakdown_compiles_and_runs_in_lockstep: 14, 36;
 }
 
 /// Guards written as chains of BOOL temporaries (`GN[k]`, the `CHOSEN`

@@ -25,7 +25,7 @@ pub fn load(rel: &str) -> Project {
 /// the boiler both ways, the nets, names IEC compilers reserve, the
 /// conveyor module's symbolic supervisor (guards), the manufacturing
 /// testbed (45 automata) and its guard supervisor of the whole (51).
-pub const PROJECTS: [&str; 14] = [
+pub const PROJECTS: [&str; 15] = [
     "models/motivating.plc.toml",
     "models/press.plc.toml",
     "models/press7.plc.toml",
@@ -40,6 +40,7 @@ pub const PROJECTS: [&str; 14] = [
     "models/module.plc.toml",
     "models/testbed/testbed.plc.toml",
     "models/testbed/whole.plc.toml",
+    "models/breakdown.plc.toml",
 ];
 
 /// What one scan left, on either side, in the executor's terms.

@@ -42,6 +42,9 @@
 //! - `FAUDES_DIFF_SEED`: the seed (decimal or `0x…`; default below); case
 //!   `i` depends only on the seed and `i`;
 //! - `FAUDES_DIFF_ONLY`: run only this case id (to reproduce a failure);
+//! - `FAUDES_DIFF_DUMP`: a directory where each case whose reduction is
+//!   larger than libFAUDES's is written (`case-ID.wmod`: plant,
+//!   supervisor, both reductions);
 //! - `PYTHON`: the interpreter (default `python3`).
 //!
 //! Both tests are ignored by default: they need Python with libFAUDES.
@@ -987,6 +990,9 @@ fn supcon_and_minstate_agree_with_libfaudes() {
                                     theirs.num_states()
                                 );
                                 tally.reduced_larger += 1;
+                                if let Ok(dir) = std::env::var("FAUDES_DIFF_DUMP") {
+                                    dump(&dir, problem.id(), &[g, sup, &ours, &theirs]);
+                                }
                             }
                         }
                     }
@@ -1590,4 +1596,26 @@ fn sup_con_normal_agrees_with_libfaudes_supconnorm() {
             "fewer than 2.5% of the results restricted or 10% emptied by partial observation"
         );
     }
+}
+
+/// Writes `parts` (renamed plant, sup, ours, theirs) to `DIR/case-ID.wmod`.
+fn dump(dir: &str, id: usize, parts: &[&Automaton]) {
+    let components: Vec<des::formats::Component> = parts
+        .iter()
+        .zip(["plant", "sup", "ours", "theirs"])
+        .map(|(a, name)| {
+            let mut a = (*a).clone();
+            a.set_name(name);
+            des::formats::Component {
+                kind: des::formats::Kind::Unspecified,
+                automaton: a,
+            }
+        })
+        .collect();
+    let path = std::path::Path::new(dir).join(format!("case-{id}.wmod"));
+    des::formats::write_file(&path, &components).expect("dump written");
+    eprintln!(
+        "faudes_diff supcon: case {id} written to {}",
+        path.display()
+    );
 }
