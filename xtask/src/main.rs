@@ -8,6 +8,9 @@
 //! - `qemu [PROJECT] [SCENARIO]`: the firmware replay harness in QEMU for
 //!   every model (zero mismatches against host-sim, instructions per scan,
 //!   budgets, ratios to a `match` baseline).
+//! - `reduction [MODEL…]`: the synthesised supervisors of models in full,
+//!   reduced and localized form, measured as `qemu` measures a model
+//!   (tables, flash, instructions per scan): a report, no budgets.
 //! - `size [MODEL…]`: flash and static RAM of the board firmware.
 //! - `deps`: no build a new user starts with needs libclang (bindgen).
 //! - `layers`: the one-way rules: workspace crates depend only on lower
@@ -35,6 +38,7 @@ mod iec;
 mod layers;
 mod matiec;
 mod qemu;
+mod reduction;
 mod size;
 mod sysdeps;
 
@@ -44,6 +48,7 @@ fn main() -> ExitCode {
         Some("ci") => ci(),
         Some("bench-faudes") => bench::run(&args[1..]),
         Some("qemu") => qemu::run_task(&args[1..]),
+        Some("reduction") => reduction::run_task(&args[1..]),
         Some("size") => size::run_task(&args[1..]),
         Some("deps") => deps::run_task(&args[1..]),
         Some("layers") => layers::run_task(&args[1..]),
@@ -58,6 +63,7 @@ fn main() -> ExitCode {
                  ci                         fmt, clippy, all tests, differential tests vs libFAUDES\n  \
                  bench-faudes [--runs N] [MODEL|FAMILY:N…]  supcon (explicit, symbolic) vs libFAUDES\n  \
                  qemu [PROJECT] [SCENARIO]  replay in QEMU: zero mismatches, instructions per scan, budgets\n  \
+                 reduction [MODEL…]         full, reduced and localized supervisors in QEMU: flash, instructions per scan\n  \
                  size [MODEL…]              flash and static RAM of the board firmware, budgets\n  \
                  deps                       the README's commands and the firmware build without libclang (cargo tree)\n  \
                  layers [--edges]           crates depend on lower stages only; no import circle inside a crate\n  \

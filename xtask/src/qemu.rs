@@ -224,7 +224,12 @@ fn closed_loop_inputs(name: &str, model: &ModelBudget, dir: &Path) -> Result<Pat
 }
 
 /// Records the scenario of `project` with host-sim.
-fn record(name: &str, project: &str, inputs: Option<&Path>, dir: &Path) -> Result<PathBuf> {
+pub(crate) fn record(
+    name: &str,
+    project: &str,
+    inputs: Option<&Path>,
+    dir: &Path,
+) -> Result<PathBuf> {
     let out = dir.join(format!("{name}.scenario"));
     let mut cmd = cargo();
     cmd.args([
@@ -252,7 +257,7 @@ fn record(name: &str, project: &str, inputs: Option<&Path>, dir: &Path) -> Resul
 }
 
 /// Builds the harness for `project` and `backend`; the ELF's path.
-fn build(
+pub(crate) fn build(
     project: &str,
     backend: &str,
     scenario: &Path,
@@ -298,7 +303,7 @@ pub fn firmware_build(features: &str, bin: &str, target: &str) -> Command {
 }
 
 /// Runs `elf` in QEMU with a timeout; the harness's figures.
-fn run_qemu(qemu: &str, elf: &Path) -> Result<Figures> {
+pub(crate) fn run_qemu(qemu: &str, elf: &Path) -> Result<Figures> {
     let (status, stdout) = run_elf(qemu, elf)?;
     let figures = stdout
         .lines()

@@ -99,17 +99,41 @@ pub fn run(
     if args.ladder {
         regenerate.push_str(" --ladder");
     }
-    let export = iec::export(&project, &io, &regenerate)?;
-    let text = match flavour {
-        Flavour::St if args.configuration => {
+    // The ladder first: when only a reduced or localized form of the
+    // synthesised supervisors fits its rung limit, the whole file exports
+    // that form, so that the controller and the ladder run the same
+    // supervisors.
+    let fitted = match flavour {
+        Flavour::PlcOpen if args.ladder => Some(iec::ladder::render_fitting(
+            &project,
+            args.max_rungs,
+            |shrink| project::load_shrunk(&args.project, shrink),
+        )?),
+        _ => None,
+    };
+    let exported = match fitted.as_ref().and_then(|f| f.shrunk.as_ref()) {
+        Some(shrunk) => {
+            warn(format_args!(
+                "{}: the ladder and the program export the {} form (`{} = true`): {}",
+                args.project.display(),
+                shrunk.shrink.adjective(),
+                shrunk.shrink.key(),
+                shrunk.summary
+            ));
+            &shrunk.project
+        }
+        None => &project,
+    };
+    let export = iec::export(exported, &io, &regenerate)?;
+    let text = match (flavour, fitted) {
+        (Flavour::St, _) if args.configuration => {
             iec::st::print(&export) + &iec::st::configuration(&export)
         }
-        Flavour::St => iec::st::print(&export),
-        Flavour::PlcOpen if args.ladder => {
-            let ladder = iec::ladder::render(&project, args.max_rungs)?;
-            iec::plcopen::print_with(&export, &[ladder.pou_xml])
+        (Flavour::St, _) => iec::st::print(&export),
+        (Flavour::PlcOpen, Some(fitted)) => {
+            iec::plcopen::print_with(&export, &[fitted.ladder.pou_xml])
         }
-        Flavour::PlcOpen => iec::plcopen::print(&export),
+        (Flavour::PlcOpen, None) => iec::plcopen::print(&export),
     };
     if args.stats {
         let stats = Stats {

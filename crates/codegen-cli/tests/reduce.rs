@@ -110,3 +110,52 @@ fn bad_input_is_refused_with_exit_2() {
     assert_eq!(code, 2);
     assert!(stderr.contains("nope.gen"), "{stderr}");
 }
+
+/// `codegen plcopen --ladder` on the AGV: its full ladder (11,349 rungs)
+/// is over a limit of 800, the reduced one (3,100) too, the localized one
+/// (750) fits: standard error says so, and the file holds the local
+/// controllers in the program and in the ladder, whose documentation
+/// names what was localized. Under 700 nothing fits, and the refusal
+/// lists both forms tried.
+#[test]
+fn the_ladder_export_falls_back_on_the_localized_agv() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("agv.xml").display().to_string();
+    let (code, stdout, stderr) = run(&[
+        "plcopen",
+        "models/agv.plc.toml",
+        "--ladder",
+        "--max-rungs",
+        "800",
+        "-o",
+        &out,
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.is_empty(), "{stdout}");
+    assert!(
+        stderr.contains(
+            "models/agv.plc.toml: the ladder and the program export the localized form (`localize = true`): \
+             supervisor 'agv' (synthesised, 4406 states) runs localized as 10 local controllers"
+        ) && stderr.contains("750 rungs, where the full ladder would have 11349, over the limit of 800"),
+        "{stderr}"
+    );
+    let xml = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        xml.contains("X_agv_e11_"),
+        "the ladder's state bits are the local controllers'"
+    );
+    assert!(xml.contains("runs localized as 10 local controllers"));
+    let (code, _, stderr) = run(&[
+        "plcopen",
+        "models/agv.plc.toml",
+        "--ladder",
+        "--max-rungs",
+        "700",
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("models/agv.plc.toml:96:1: the ladder (LD) rendering would have 11349 rungs, over the limit of 700")
+            && stderr.contains("tried reduced (`reduce = true`): 3100 rungs; tried localized (`localize = true`): 750 rungs"),
+        "{stderr}"
+    );
+}

@@ -89,7 +89,11 @@
 //! synthesised ones do not (boiler 8,665, agv 11,349: refused).
 //! [`render`] refuses a ladder over its limit naming the line of the
 //! supervisor that makes most of the rungs, the rung count and the
-//! limit. Petri nets (`[[net]]`) are not rendered: a project with one is
+//! limit. [`render_fitting`] tries the smaller forms of a synthesised
+//! supervisor first (reduced, then localized, beside its plant
+//! components: the same closed loop), and renders the first that fits,
+//! saying so in the function block's documentation; its refusal lists
+//! the forms tried. Petri nets (`[[net]]`) are not rendered: a project with one is
 //! refused, since enables without the net's places would be wrong. Nor are
 //! the guards of symbolic supervisors (`[[supervisor]]` with `guards` or a
 //! symbolic `synthesize`): a guard is any Boolean function of the
@@ -102,7 +106,7 @@ use super::comment_text;
 use super::names::{identifier, Namer};
 use des::automaton::StateId;
 use des::{Error, Location, Result};
-use plc_project::{Action, Drive, Project};
+use plc_project::{Action, Drive, Project, Shrink, SupervisorSource};
 use std::fmt::Write;
 
 /// Rungs a ladder may have unless the caller says otherwise.
@@ -280,6 +284,182 @@ pub fn pou_name(project: &Project) -> String {
 /// all always hold (at the line of its `[[supervisor]]`), and one whose
 /// ladder would have more than `limit` rungs.
 pub fn render(project: &Project, limit: usize) -> Result<Ladder> {
+    let built = build(project)?;
+    if built.rungs.len() > limit {
+        return Err(over_limit(project, &built.rungs, limit, ""));
+    }
+    Ok(finish(project, built, None))
+}
+
+/// A ladder that fits its rung limit, and the project it renders.
+#[derive(Debug, Clone)]
+pub struct Fitted {
+    /// The ladder.
+    pub ladder: Ladder,
+    /// `None`: the ladder renders the project as given. `Some`: only a
+    /// smaller form of its synthesised supervisors fits, and the ladder
+    /// renders that form.
+    pub shrunk: Option<Shrunk>,
+}
+
+/// The smaller form a [`Fitted`] ladder renders instead of the full one.
+#[derive(Debug, Clone)]
+pub struct Shrunk {
+    /// Reduced or localized.
+    pub shrink: Shrink,
+    /// The project with its synthesised supervisors in that form: the
+    /// one the ladder's state bits and interface are of, and the one to
+    /// export beside it.
+    pub project: Project,
+    /// The rungs of the full ladder (over the limit).
+    pub full_rungs: usize,
+    /// What was shrunk, one sentence: each synthesised supervisor with
+    /// its states before and after, and the rungs before and after.
+    pub summary: String,
+}
+
+/// [`render`], falling back on a smaller form of the project's
+/// synthesised supervisors when the full ladder is over `limit`.
+///
+/// A supervisor synthesised without `reduce` or `localize`
+/// (`synthesize = { … }`) can be run reduced, or as local controllers,
+/// beside its plant components with the same closed-loop behaviour (the
+/// project loader checks that equality whenever it builds either form).
+/// When the full ladder is over the limit and the project has such a
+/// supervisor, `shrunk` loads the project in the reduced form, then in
+/// the localized one ([`plc_project::load_shrunk`] for a project file;
+/// `Ok(None)` for a project without such a supervisor), and the first
+/// whose ladder fits is rendered, its summary in the function block's
+/// documentation. When none fits, the error is [`render`]'s, with the
+/// rung count of each form tried (or why it could not be loaded).
+pub fn render_fitting(
+    project: &Project,
+    limit: usize,
+    shrunk: impl Fn(Shrink) -> Result<Option<Project>>,
+) -> Result<Fitted> {
+    let full = build(project)?;
+    if full.rungs.len() <= limit {
+        return Ok(Fitted {
+            ladder: finish(project, full, None),
+            shrunk: None,
+        });
+    }
+    let candidates = shrinkable(project);
+    let mut tried = String::new();
+    if !candidates.is_empty() {
+        for shrink in [Shrink::Reduce, Shrink::Localize] {
+            let form = format!("{} (`{} = true`)", shrink.adjective(), shrink.key());
+            let small = match shrunk(shrink) {
+                Ok(Some(small)) => small,
+                Ok(None) => continue,
+                Err(e) => {
+                    let _ = write!(tried, "; tried {form}: it does not load ({e})");
+                    continue;
+                }
+            };
+            let built = build(&small)?;
+            if built.rungs.len() > limit {
+                let _ = write!(tried, "; tried {form}: {} rungs", built.rungs.len());
+                continue;
+            }
+            let summary = summary(project, &candidates, &small, shrink, &full, &built, limit);
+            let ladder = finish(&small, built, Some(&summary));
+            return Ok(Fitted {
+                ladder,
+                shrunk: Some(Shrunk {
+                    shrink,
+                    project: small,
+                    full_rungs: full.rungs.len(),
+                    summary,
+                }),
+            });
+        }
+    }
+    Err(over_limit(project, &full.rungs, limit, &tried))
+}
+
+/// The supervisors of `project` synthesised as one automaton without
+/// `reduce` or `localize`: those [`Shrink`] changes.
+fn shrinkable(project: &Project) -> Vec<usize> {
+    (0..project.supervisors.len())
+        .filter(|&j| {
+            matches!(
+                project.supervisors[j].source,
+                SupervisorSource::Synthesized {
+                    reduced: false,
+                    local: None,
+                    ..
+                }
+            )
+        })
+        .collect()
+}
+
+/// The sentence saying what a fitted ladder renders instead of `full`.
+fn summary(
+    project: &Project,
+    candidates: &[usize],
+    small: &Project,
+    shrink: Shrink,
+    full: &Built,
+    built: &Built,
+    limit: usize,
+) -> String {
+    let parts: Vec<String> = candidates
+        .iter()
+        .map(|&j| {
+            let sup = &project.supervisors[j];
+            let mut plant = 0;
+            let mut controllers = Vec::new();
+            for s in &small.supervisors {
+                match &s.source {
+                    SupervisorSource::Plant { reduced, .. } if *reduced == sup.name => plant += 1,
+                    SupervisorSource::Synthesized { .. }
+                        if s.name == sup.name
+                            || s.name.strip_prefix(sup.name.as_str())
+                                .is_some_and(|rest| rest.starts_with('.')) =>
+                    {
+                        controllers.push(s.automaton.num_states())
+                    }
+                    _ => {}
+                }
+            }
+            let after = match (shrink, controllers.as_slice()) {
+                (Shrink::Reduce, [n]) => format!("{n} states"),
+                _ => format!(
+                    "{} local controllers of {} states in all",
+                    controllers.len(),
+                    controllers.iter().sum::<usize>()
+                ),
+            };
+            format!(
+                "supervisor '{}' (synthesised, {} states) runs {} as {after} beside its {plant} plant components",
+                sup.name,
+                sup.automaton.num_states(),
+                shrink.adjective()
+            )
+        })
+        .collect();
+    format!(
+        "{}, with the same closed-loop behaviour (checked when the project was loaded): {} rungs, where the full ladder would have {}, over the limit of {limit}.",
+        parts.join("; "),
+        built.rungs.len(),
+        full.rungs.len()
+    )
+}
+
+/// The rungs of a rendering before they are printed.
+struct Built {
+    name: String,
+    init: String,
+    names: Names,
+    pending: Vec<(String, usize, StateId)>,
+    rungs: Vec<Rung>,
+}
+
+/// The rungs of `project`'s ladder, whatever their number; refuses a
+/// project with Petri nets or guards that matter ([`render`]).
+fn build(project: &Project) -> Result<Built> {
     if let Some(net) = project.nets.first() {
         return Err(Error::model(
             Location::new(&project.path, net.line, 1),
@@ -359,8 +539,26 @@ pub fn render(project: &Project, limit: usize) -> Result<Ladder> {
     builder.enable_rungs();
     builder.output_rungs();
     let Builder { rungs, pending, .. } = builder;
-    check_limit(project, &rungs, limit)?;
-    let pou_xml = pou_xml(project, &name, &init, &names, &pending, &rungs);
+    Ok(Built {
+        name,
+        init,
+        names,
+        pending,
+        rungs,
+    })
+}
+
+/// The ladder of `built`; `note`, if any, joins the function block's
+/// documentation.
+fn finish(project: &Project, built: Built, note: Option<&str>) -> Ladder {
+    let Built {
+        name,
+        init,
+        names,
+        pending,
+        rungs,
+    } = built;
+    let pou_xml = pou_xml(project, &name, &init, &names, &pending, &rungs, note);
     let written = |o: usize| {
         let output = &project.outputs[o];
         matches!(output.drive, Drive::States(_))
@@ -379,18 +577,18 @@ pub fn render(project: &Project, limit: usize) -> Result<Ladder> {
         states: names.states,
         enables: names.enables,
     };
-    Ok(Ladder {
+    Ladder {
         name,
         pou_xml,
         rungs,
         interface,
-    })
+    }
 }
 
-fn check_limit(project: &Project, rungs: &[Rung], limit: usize) -> Result<()> {
-    if rungs.len() <= limit {
-        return Ok(());
-    }
+/// The refusal of `rungs`, over `limit`, at the line of the supervisor
+/// that makes most of them; `tried` (empty, or starting with `; `) says
+/// what else was tried.
+fn over_limit(project: &Project, rungs: &[Rung], limit: usize, tried: &str) -> Error {
     let own = |j: usize| {
         rungs
             .iter()
@@ -414,13 +612,13 @@ fn check_limit(project: &Project, rungs: &[Rung], limit: usize) -> Result<()> {
         ),
         None => (0, String::new()),
     };
-    Err(Error::model(
+    Error::model(
         Location::new(&project.path, line, if line > 0 { 1 } else { 0 }),
         format!(
-            "the ladder (LD) rendering would have {} rungs, over the limit of {limit}{whose}; export the supervisors as Structured Text (transition arrays) instead",
+            "the ladder (LD) rendering would have {} rungs, over the limit of {limit}{whose}{tried}; export the supervisors as Structured Text (transition arrays) instead",
             rungs.len()
         ),
-    ))
+    )
 }
 
 struct Builder<'a> {
@@ -805,6 +1003,7 @@ fn pou_xml(
     names: &Names,
     pending: &[(String, usize, StateId)],
     rungs: &[Rung],
+    note: Option<&str>,
 ) -> String {
     let mut inputs = vec![BoolVar {
         name: init.to_owned(),
@@ -930,9 +1129,10 @@ fn pou_xml(
         out,
         "  <documentation>{}</documentation>",
         xhtml(&format!(
-            "Supervisors of project '{}' as ladder logic: call once per scan with the events the controller executed (at most one command per call keeps the order of docs/semantics.md); {} rungs.",
+            "Supervisors of project '{}' as ladder logic: call once per scan with the events the controller executed (at most one command per call keeps the order of docs/semantics.md); {} rungs.{}",
             project.name,
-            rungs.len()
+            rungs.len(),
+            note.map_or(String::new(), |n| format!(" {n}"))
         ))
     );
     out.push_str("</pou>\n");

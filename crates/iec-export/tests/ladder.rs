@@ -221,14 +221,23 @@ impl Plc {
         }
     }
 
-    fn power(&self, id: u64) -> bool {
+    /// Whether node `id` is powered; `known` holds the nodes of the rung
+    /// already evaluated (series blocks of parallel contacts share their
+    /// feeds: without it the work would grow as the product of the
+    /// blocks' sizes).
+    fn power(&self, id: u64, known: &mut HashMap<u64, bool>) -> bool {
+        if let Some(&p) = known.get(&id) {
+            return p;
+        }
         let (node, feeds) = &self.nodes[&id];
-        let fed = || feeds.iter().any(|&f| self.power(f));
-        match node {
+        let mut fed = || feeds.iter().any(|&f| self.power(f, known));
+        let p = match node {
             Node::Rail => true,
             Node::Contact { var, negated } => fed() && (self.vars[var] != *negated),
             Node::Coil { .. } => fed(),
-        }
+        };
+        known.insert(id, p);
+        p
     }
 
     /// One call: the inputs in `on` TRUE, every other input FALSE; the
@@ -240,11 +249,14 @@ impl Plc {
                 .insert(input.clone(), on.contains(&input.as_str()));
         }
         for rung in &self.rungs {
+            let mut known = HashMap::new();
             let powered: Vec<(String, Storage, bool)> = rung
                 .coils
                 .iter()
                 .map(|&c| match &self.nodes[&c].0 {
-                    Node::Coil { var, storage } => (var.clone(), *storage, self.power(c)),
+                    Node::Coil { var, storage } => {
+                        (var.clone(), *storage, self.power(c, &mut known))
+                    }
                     _ => unreachable!(),
                 })
                 .collect();
@@ -816,4 +828,222 @@ fn the_ladder_joins_the_exported_project_as_a_third_pou() {
         assert_eq!(count(&doc, tag), count(&alone, tag), "{tag}");
         assert!(count(&doc, tag) > 0, "{tag}");
     }
+}
+
+// ---------------------------------------------------------------------
+// The fallback on reduced and localized supervisors.
+
+/// The small factory (two machines and a buffer, models/bench) as a
+/// project whose supervisor is synthesised, in a fresh directory.
+fn small_factory(dir: &Path) -> PathBuf {
+    let bench = models().join("bench/smallfactory");
+    let bench = bench.display();
+    let path = dir.join("factory.plc.toml");
+    std::fs::write(
+        &path,
+        format!(
+            r#"[plc]
+name = "factory"
+scan_period_ms = 10
+max_commands_per_scan = 1
+
+[inputs]
+done1 = {{}}
+break1 = {{}}
+done2 = {{}}
+break2 = {{}}
+
+[events]
+e10 = {{ rising = "done1" }}
+e12 = {{ rising = "break1" }}
+e20 = {{ rising = "done2" }}
+e22 = {{ rising = "break2" }}
+e11 = {{ controllable = true }}
+e13 = {{ controllable = true }}
+e21 = {{ controllable = true }}
+e23 = {{ controllable = true }}
+
+[[supervisor]]
+name = "factory"
+synthesize = {{ plants = ["{bench}/MACH?.gen"], specs = ["{bench}/*SPEC.gen"] }}
+"#
+        ),
+    )
+    .unwrap();
+    path
+}
+
+/// The controllable events a project's supervisors allow in `states`.
+fn allowed(p: &Project, states: &[StateId]) -> Vec<String> {
+    (0..p.events.len())
+        .filter(|&e| p.events[e].controllable && feasible(p, states, e))
+        .map(|e| p.events[e].name.clone())
+        .collect()
+}
+
+/// `steps` calls of the fitted ladder of `small` (the shrunk project),
+/// one event each, chosen at random among those the full project's
+/// supervisors allow, in lockstep with both projects' automata: the
+/// ladder's state bits follow `small`'s automata, and its enables are
+/// the events the *full* supervisor allows (the same closed loop).
+/// Returns the number of events of each kind executed.
+fn lockstep_with_the_full_supervisor(
+    full: &Project,
+    small: &Project,
+    ladder: &Ladder,
+    steps: usize,
+) -> (usize, usize) {
+    let mut plc = Plc::parse(&wrapped(ladder, &format!("{}.fitted.xml", ladder.name)));
+    xml_matches_the_rung_list(&plc, ladder);
+    let initial = |p: &Project| Expected {
+        states: p
+            .supervisors
+            .iter()
+            .map(|s| s.automaton.initial().unwrap())
+            .collect(),
+        levels: BTreeMap::new(),
+    };
+    let (mut big, mut x) = (initial(full), initial(small));
+    plc.call(&[&ladder.interface.init]);
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut executed = (0, 0);
+    for step in 0..steps {
+        check(&plc, ladder, small, &x, &format!("step {step}"));
+        let enables: Vec<String> = (0..small.events.len())
+            .filter(|&e| {
+                ladder.interface.enables[e]
+                    .as_ref()
+                    .is_some_and(|en| plc.get(en))
+            })
+            .map(|e| small.events[e].name.clone())
+            .collect();
+        assert_eq!(enables, allowed(full, &big.states), "step {step}");
+        let possible: Vec<usize> = (0..full.events.len())
+            .filter(|&e| feasible(full, &big.states, e))
+            .collect();
+        assert!(!possible.is_empty(), "step {step}: the closed loop blocks");
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        let e = possible[(seed % possible.len() as u64) as usize];
+        let name = &full.events[e].name;
+        let se = small.event(name).expect("the same events");
+        assert!(feasible(small, &x.states, se), "step {step}: {name}");
+        execute(full, &mut big, e);
+        execute(small, &mut x, se);
+        plc.call(&[&ladder.interface.events[se]]);
+        if full.events[e].controllable {
+            executed.1 += 1;
+        } else {
+            executed.0 += 1;
+        }
+    }
+    executed
+}
+
+/// The small factory's 12-state supervisor makes 29 rungs; reduced it is
+/// 3 states beside the two machines, 20 rungs: under a limit of 28 the
+/// ladder renders that form, says so, agrees with the automata on every
+/// state and event, and allows what the full supervisor allows along a
+/// random run.
+#[test]
+fn a_ladder_over_the_limit_falls_back_on_the_reduced_supervisor() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = small_factory(dir.path());
+    let full = project::load(&path).unwrap();
+    let full_rungs = ladder::render(&full, usize::MAX).unwrap().rungs.len();
+    assert_eq!(full_rungs, 29);
+    let fitted =
+        ladder::render_fitting(&full, full_rungs, |s| project::load_shrunk(&path, s)).unwrap();
+    assert!(fitted.shrunk.is_none(), "the full ladder fits its own size");
+    let limit = full_rungs - 1;
+    assert!(ladder::render(&full, limit).is_err());
+    let fitted = ladder::render_fitting(&full, limit, |s| project::load_shrunk(&path, s)).unwrap();
+    let shrunk = fitted.shrunk.as_ref().expect("a smaller form fits");
+    assert_eq!(shrunk.shrink, project::Shrink::Reduce);
+    assert_eq!(shrunk.full_rungs, full_rungs);
+    let ladder = &fitted.ladder;
+    assert_eq!(ladder.rungs.len(), 20);
+    let small = &shrunk.project;
+    let names: Vec<&str> = small.supervisors.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["factory.MACH1", "factory.MACH2", "factory"]);
+    let reduced = small.supervisors[2].automaton.num_states();
+    assert!(reduced < full.supervisors[0].automaton.num_states());
+    for said in [
+        format!(
+            "supervisor 'factory' (synthesised, {} states) runs reduced as {reduced} states beside its 2 plant components",
+            full.supervisors[0].automaton.num_states()
+        ),
+        format!("{} rungs, where the full", ladder.rungs.len()),
+        format!("would have {full_rungs}, over the limit of {limit}"),
+    ] {
+        assert!(shrunk.summary.contains(&said), "{said}: {}", shrunk.summary);
+        assert!(ladder.pou_xml.contains(&said), "{said} in the documentation");
+    }
+    one_rung_per_moving_transition(small, ladder);
+    exhaustive(small, ladder);
+    let (u, c) = lockstep_with_the_full_supervisor(&full, small, ladder, 2_000);
+    assert!(u > 500 && c > 500, "{u} uncontrollable, {c} controllable");
+}
+
+/// The AGV: 11,349 rungs in full, 3,100 reduced, 750 localized; each
+/// limit takes the first form that fits, and the localized ladder's
+/// enables are the full supervisor's along a random run.
+#[test]
+fn the_agv_ladder_is_reduced_or_localized_as_its_limit_requires() {
+    let path = models().join("agv.plc.toml");
+    let full = project::load(&path).unwrap();
+    let shrink = |s| project::load_shrunk(&path, s);
+    let reduced = ladder::render_fitting(&full, 3_200, shrink).unwrap();
+    let r = reduced.shrunk.as_ref().expect("reduced");
+    assert_eq!(
+        (r.shrink, r.full_rungs, reduced.ladder.rungs.len()),
+        (project::Shrink::Reduce, 11_349, 3_100)
+    );
+    let localized = ladder::render_fitting(&full, 800, shrink).unwrap();
+    let l = localized.shrunk.as_ref().expect("localized");
+    assert_eq!(
+        (l.shrink, localized.ladder.rungs.len()),
+        (project::Shrink::Localize, 750)
+    );
+    assert!(
+        l.summary.contains("runs localized as 10 local controllers"),
+        "{}",
+        l.summary
+    );
+    let (u, c) = lockstep_with_the_full_supervisor(&full, &l.project, &localized.ladder, 3_000);
+    assert!(u > 500 && c > 500, "{u} uncontrollable, {c} controllable");
+}
+
+/// When no form fits, the refusal is the full ladder's, at the line of
+/// its supervisor, with the rungs of each form tried; a project with no
+/// synthesised supervisor tries none.
+#[test]
+fn when_no_form_fits_the_refusal_names_each_form_tried() {
+    let path = models().join("conveyor.plc.toml");
+    let full = project::load(&path).unwrap();
+    let err = ladder::render_fitting(&full, 10, |s| project::load_shrunk(&path, s)).unwrap_err();
+    let (location, message) = err.located().expect("a located error");
+    assert_eq!(location.line, full.supervisors[0].line, "{err}");
+    assert!(
+        message.contains("17 rungs, over the limit of 10")
+            && message.contains("tried reduced (`reduce = true`): 18 rungs")
+            && message.contains("tried localized (`localize = true`): 27 rungs")
+            && message.contains("Structured Text"),
+        "{err}"
+    );
+    let press = load("press.plc.toml");
+    let err = ladder::render_fitting(&press, 5, |_| panic!("nothing to shrink")).unwrap_err();
+    assert!(!err.to_string().contains("tried"), "{err}");
+    // A form that does not load is named with its error.
+    let err = ladder::render_fitting(&full, 10, |s| {
+        Err(des::Error::Incompatible(format!("no {}", s.key())))
+    })
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("tried reduced (`reduce = true`): it does not load (")
+            && err.contains("no localize"),
+        "{err}"
+    );
 }

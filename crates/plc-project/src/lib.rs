@@ -22,10 +22,12 @@ mod locate;
 mod model;
 mod parse;
 pub mod paths;
+mod shrink;
 pub mod sources;
 pub mod validate;
 
 pub use model::*;
+pub use shrink::Shrink;
 
 use des::error::Result;
 use std::path::Path;
@@ -46,7 +48,31 @@ pub fn load(path: &Path) -> Result<Project> {
 /// the file in errors and [`Project::files`], and model paths in the text
 /// are relative to its directory (the file itself need not exist).
 pub fn from_str(text: &str, path: &Path) -> Result<Project> {
-    let raw = parse::parse(text, path)?;
+    build(parse::parse(text, path)?, text, path)
+}
+
+/// Reads the project file at `path` as [`load`] does, with every
+/// supervisor that synthesises one automaton without `reduce` or
+/// `localize` (and not `symbolic`) shrunk the `shrink` way, as if its
+/// `synthesize` said so ([`Shrink`]). `None` when the project has no
+/// such supervisor (loading it would give the project [`load`] gives).
+pub fn load_shrunk(path: &Path, shrink: Shrink) -> Result<Option<Project>> {
+    let text = des::files::read_text(path, PROJECT_FILE)?;
+    from_str_shrunk(&text, path, shrink)
+}
+
+/// [`load_shrunk`] of `text` as the project file at `path` (as
+/// [`from_str`]).
+pub fn from_str_shrunk(text: &str, path: &Path, shrink: Shrink) -> Result<Option<Project>> {
+    let mut raw = parse::parse(text, path)?;
+    if shrink::apply(&mut raw, shrink) == 0 {
+        return Ok(None);
+    }
+    build(raw, text, path).map(Some)
+}
+
+/// Stages 2 and 3 of a parsed project.
+fn build(raw: parse::RawProject, text: &str, path: &Path) -> Result<Project> {
     let file = locate::ProjectFile::new(path, text);
     let sources = sources::load(&raw.supervisor, &raw.net, &file)?;
     validate::validate(raw, sources, &file)

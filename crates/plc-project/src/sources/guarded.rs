@@ -144,6 +144,12 @@ impl Loader<'_> {
                 "`reduce` reduces one supervisor automaton; a symbolic supervisor has components and guards instead",
             ));
         }
+        if let Some(l) = s.localize.as_ref().filter(|l| *l.get_ref()) {
+            return Err(self.error(
+                &l.span(),
+                "`localize` localizes one supervisor automaton; a symbolic supervisor has components and guards instead",
+            ));
+        }
         let super::SynthesisModels {
             plants,
             plant_automata,
