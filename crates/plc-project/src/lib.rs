@@ -3,7 +3,9 @@
 //!
 //! [`load`] reads a project file, [`from_str`] parses one given as text;
 //! both return a validated [`Project`] or the first error, located at its
-//! line and column in the project file. Three stages:
+//! line and column in the project file; [`load_shrunk`] loads one with its
+//! synthesised supervisors reduced or localized ([`Shrink`]). Three
+//! stages:
 //!
 //! 1. parsing: the TOML text into raw declarations that keep their spans;
 //! 2. [`sources`]: the model file of every supervisor read, or the
