@@ -16,7 +16,9 @@
 //! mismatches against host-sim). A form the project loader refuses is
 //! reported with its reason; a model whose supervisors are files with no
 //! plant is reported as such (reduction needs the plant). No budgets are
-//! checked: this is a report, not a CI gate.
+//! checked: this is a report, not a CI gate (41 s with current release
+//! builds, 3 to 4 minutes after a change; `qemu` already holds the AGV's
+//! reduced and localized projects to budgets).
 
 use crate::budgets::{Budgets, ModelBudget};
 use crate::qemu::{self, Figures};
@@ -26,13 +28,14 @@ use std::process::Stdio;
 use toml::{Table, Value};
 
 /// The models measured when none is named: the AGV, the boiler's
-/// monolithic supervisor, the seed projects (synthesised or not) and the
-/// modular boiler.
-const DEFAULT_MODELS: [&str; 8] = [
+/// monolithic supervisor, the seed projects (synthesised or not), the
+/// breakdown cell (partial observation) and the modular boiler.
+const DEFAULT_MODELS: [&str; 9] = [
     "agv",
     "boiler_mono",
     "conveyor",
     "module",
+    "breakdown",
     "press",
     "crane",
     "motivating",
