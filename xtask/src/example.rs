@@ -4,7 +4,9 @@
 //! user to, with every warning an error (`RUSTFLAGS=-D warnings` on top of
 //! the crate's own `#![deny(warnings)]`):
 //!
-//! 1. `cargo fmt --check`: it is what a user copies;
+//! 1. its `rust-toolchain.toml` is the workspace's (a copy of the
+//!    directory builds with the pinned toolchain), and `cargo fmt
+//!    --check`: it is what a user copies;
 //! 2. `cargo run`: the generated program compiles warning-free in a
 //!    foreign crate that uses only some of its items, and the trace the
 //!    run prints is the one the example's README shows;
@@ -38,6 +40,7 @@ pub fn run_task(args: &[String]) -> Result {
         .map_err(|e| format!("{DIR}/README.md: {e}"))?;
     let expected = shown_trace(&readme)?;
 
+    same_toolchain(&dir)?;
     crate::run(crate::cargo().current_dir(&dir).args(["fmt", "--check"]))?;
     let out = output(&mut cargo(&dir, &target, "run"))?;
     print!("{out}");
@@ -62,6 +65,20 @@ pub fn run_task(args: &[String]) -> Result {
         "xtask: {DIR} builds warning-free (host and board) and prints the trace its README shows"
     );
     Ok(())
+}
+
+/// Fails unless the example pins the workspace's toolchain: its
+/// `rust-toolchain.toml` is a copy of the root's.
+fn same_toolchain(dir: &Path) -> Result {
+    let read =
+        |path: &Path| std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()));
+    if read(&root().join("rust-toolchain.toml"))? == read(&dir.join("rust-toolchain.toml"))? {
+        Ok(())
+    } else {
+        Err(format!(
+            "{DIR}/rust-toolchain.toml differs from the workspace's: copy rust-toolchain.toml there"
+        ))
+    }
 }
 
 /// `cargo <command>` in the example's directory (so that its
