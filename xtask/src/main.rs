@@ -13,6 +13,8 @@
 //!   (tables, flash, instructions per scan): a report, no budgets.
 //! - `size [MODEL…]`: flash and static RAM of the board firmware.
 //! - `deps`: no build a new user starts with needs libclang (bindgen).
+//! - `example`: `examples/my-plc/`, a user's own crate using the executor
+//!   and a generated program, built and run warning-free (host and board).
 //! - `layers`: the one-way rules: workspace crates depend only on lower
 //!   stages, and no crate has an import circle between its modules.
 //! - `iec [--all]`: the Structured Text and PLCopen XML exports of every
@@ -33,6 +35,7 @@ mod bench;
 mod browser;
 mod budgets;
 mod deps;
+mod example;
 mod guard_bench;
 mod iec;
 mod layers;
@@ -51,6 +54,7 @@ fn main() -> ExitCode {
         Some("reduction") => reduction::run_task(&args[1..]),
         Some("size") => size::run_task(&args[1..]),
         Some("deps") => deps::run_task(&args[1..]),
+        Some("example") => example::run_task(&args[1..]),
         Some("layers") => layers::run_task(&args[1..]),
         Some("iec") => iec::run_task(&args[1..]),
         Some("matiec") => matiec::run_task(&args[1..]),
@@ -66,6 +70,7 @@ fn main() -> ExitCode {
                  reduction [MODEL…]         full, reduced and localized supervisors in QEMU: flash, instructions per scan\n  \
                  size [MODEL…]              flash and static RAM of the board firmware, budgets\n  \
                  deps                       the README's commands and the firmware build without libclang (cargo tree)\n  \
+                 example                    examples/my-plc (a user's crate) built and run with -D warnings, host and board\n  \
                  layers [--edges]           crates depend on lower stages only; no import circle inside a crate\n  \
                  iec [--all]                ST and PLCopen XML of every seed: blark parse, TC6 schema (--all: the largest ST too)\n  \
                  matiec                     ST and PLCopen XML of every seed compiled by matiec and gcc, run in lockstep with host-sim\n  \
@@ -124,7 +129,8 @@ pub fn run(cmd: &mut Command) -> Result {
     }
 }
 
-fn describe(cmd: &Command) -> String {
+/// `cmd` as a shell line, for echoes and errors.
+pub fn describe(cmd: &Command) -> String {
     let mut s = cmd.get_program().to_string_lossy().into_owned();
     for a in cmd.get_args() {
         s.push(' ');
@@ -257,6 +263,11 @@ fn ci() -> Result {
             features,
         ]))?;
     }
+    // A user's own crate (examples/my-plc): the executor and a generated
+    // program outside the workspace, warning-free under -D warnings (host,
+    // clippy, the board binary), its trace the one its README shows (8 s
+    // once built).
+    example::run_task(&[])?;
     let python = python_with_faudes()?;
     run(cargo().env("PYTHON", &python).args([
         "test",

@@ -86,7 +86,7 @@ pub fn board_module(project: &Project) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "/// Board wiring of `{}` (the project's `[board]` section): which pin of\n/// the {} carries each signal. Plain data; the board firmware\n/// configures the pins from it.\npub mod board {{",
+        "/// Board wiring of `{}` (the project's `[board]` section): which pin of\n/// the {} carries each signal. Plain data; the board firmware\n/// configures the pins from it.\n#[allow(dead_code)]\npub mod board {{",
         doc_text(&project.name),
         doc_text(&board.chip)
     );

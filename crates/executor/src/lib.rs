@@ -156,6 +156,58 @@
 //! assert_eq!(r.outputs, [false]);
 //! ```
 //!
+//! # Use it with a generated program
+//!
+//! A program is not written by hand: the `codegen` crate generates it
+//! from a PLC project file (`*.plc.toml`) in the build script of your
+//! crate. The dependency lines (paths into the repository; outside it,
+//! to your checkout):
+//!
+//! ```toml
+//! [dependencies]
+//! executor = { path = "…/crates/executor" }
+//! # Only for a project with a `[board]` section: the pin types of the
+//! # generated `board` module.
+//! boards = { path = "…/crates/boards" }
+//!
+//! [build-dependencies]
+//! codegen = { path = "…/crates/codegen" }
+//! ```
+//!
+//! `build.rs` writes `OUT_DIR/<name>.rs`, `<name>` being the project
+//! file's name up to its first dot:
+//!
+//! ```ignore
+//! fn main() {
+//!     codegen::build::Build::new("conveyor.plc.toml").generate_or_exit();
+//! }
+//! ```
+//!
+//! and the crate includes it in a module of its own and runs it:
+//!
+//! ```ignore
+//! mod conveyor {
+//!     include!(concat!(env!("OUT_DIR"), "/conveyor.rs"));
+//! }
+//!
+//! let mut plc = executor::Controller::new(&conveyor::PROGRAM, conveyor::Memory::new())
+//!     .expect("the generated Memory is sized for the generated PROGRAM");
+//! // Every `conveyor::CONFIG.scan_period_ms`: sample, scan, write.
+//! let record = plc.scan(now_ms, &raw_inputs);
+//! ```
+//!
+//! The generated module holds `PROGRAM` (a [`Program`]) and its `Memory`
+//! type (a [`memory::StaticMemory`]), `CONFIG` (its [`Config`]),
+//! `IMAGE_CRC` and `CONFIG_CRC`, the names in declaration order as
+//! [`program::Index`] constants with a `COUNT` and `NAMES` (modules
+//! `input`, `output`, `timer`, `event`, `supervisor`; `states` for the
+//! state names of each supervisor), and, for a project with a `[board]`
+//! section, `board` (the pin of each signal). It compiles warning-free
+//! under `#![deny(warnings)]` whichever of these a crate uses.
+//! `examples/my-plc/` in the repository is such a crate, with a PC `main`
+//! (a scripted input sequence, the trace printed) and a Nucleo-F411RE
+//! `main`.
+//!
 //! # Guarantees
 //!
 //! Each call of [`Controller::scan`] with a time `t` (ms, wrapping) and the

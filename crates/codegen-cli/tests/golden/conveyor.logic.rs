@@ -119,6 +119,7 @@ pub mod states {
 }
 
 /// Words of the input image and of every input mask (32 inputs per word).
+#[allow(dead_code)]
 pub const INPUT_WORDS: usize = executor::program::words(input::COUNT);
 
 /// Input filtering and the events each input's edges can raise, by input:
@@ -309,6 +310,7 @@ const STATE_MAP: [StateMapEntry; 0] = [];
 const ALLOWED_INDEX: [u32; 1] = [0x001ac688];
 
 /// The executor's description of the project.
+#[allow(dead_code)]
 pub const CONFIG: Config<'static> = Config {
     name: "conveyor",
     scan_period_ms: 10,
@@ -340,12 +342,15 @@ pub const CONFIG: Config<'static> = Config {
 
 /// CRC of the configuration alone (the program image without tables): how recorded
 /// scenarios name the project they belong to.
+#[allow(dead_code)]
 pub const CONFIG_CRC: u32 = 0x18137833;
 
 /// Words of an event set (32 events per word).
+#[allow(dead_code)]
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
 
 /// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, event sets in `EVENT_WORDS` words, and one event set per supervisor.
+#[allow(dead_code)]
 pub type Memory = executor::memory::StaticMemory<
     INPUT_WORDS,
     { DEBOUNCED.len() },
@@ -360,6 +365,7 @@ pub type Memory = executor::memory::StaticMemory<
 /// Board wiring of `conveyor` (the project's `[board]` section): which pin of
 /// the STM32F411RETx carries each signal. Plain data; the board firmware
 /// configures the pins from it.
+#[allow(dead_code)]
 pub mod board {
     /// The chip the pins belong to, as probe-rs names it.
     pub const CHIP: &str = "STM32F411RETx";
@@ -481,10 +487,12 @@ pub mod logic {
 /// image at start-up, then in the background, 64 bytes per scan: a pass every
 /// 7 scans, a flipped bit found within 13 scans (130 ms at 10 ms a scan). See
 /// `executor::image`.
+#[allow(dead_code)]
 pub const IMAGE_CRC: u32 = 0x18137833;
 
 /// The program's data: the configuration above, and the supervisors as
 /// minimised boolean functions (`executor::compiled`).
+#[allow(dead_code)]
 pub struct Logic;
 impl ProgramData for Logic {
     const CONFIG: Config<'static> = CONFIG;
@@ -499,4 +507,5 @@ impl ProgramData for Logic {
 }
 
 /// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.
+#[allow(dead_code)]
 pub static PROGRAM: Compiled<Logic> = Compiled::new();

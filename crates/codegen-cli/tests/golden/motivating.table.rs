@@ -157,6 +157,7 @@ pub mod states {
 }
 
 /// Words of the input image and of every input mask (32 inputs per word).
+#[allow(dead_code)]
 pub const INPUT_WORDS: usize = executor::program::words(input::COUNT);
 
 /// Input filtering and the events each input's edges can raise, by input:
@@ -453,6 +454,7 @@ const STATE_MAP: [StateMapEntry; 0] = [];
 const ALLOWED_INDEX: [u32; 1] = [0x37fac688];
 
 /// The executor's description of the project.
+#[allow(dead_code)]
 pub const CONFIG: Config<'static> = Config {
     name: "motivating",
     scan_period_ms: 10,
@@ -484,12 +486,15 @@ pub const CONFIG: Config<'static> = Config {
 
 /// CRC of the configuration alone (the program image without tables): how recorded
 /// scenarios name the project they belong to.
+#[allow(dead_code)]
 pub const CONFIG_CRC: u32 = 0x686d5b07;
 
 /// Words of an event set (32 events per word).
+#[allow(dead_code)]
 pub const EVENT_WORDS: usize = executor::program::words(event::COUNT);
 
 /// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, event sets in `EVENT_WORDS` words, and one event set per supervisor.
+#[allow(dead_code)]
 pub type Memory = executor::memory::StaticMemory<
     INPUT_WORDS,
     { DEBOUNCED.len() },
@@ -504,6 +509,7 @@ pub type Memory = executor::memory::StaticMemory<
 /// Board wiring of `motivating` (the project's `[board]` section): which pin of
 /// the STM32F411RETx carries each signal. Plain data; the board firmware
 /// configures the pins from it.
+#[allow(dead_code)]
 pub mod board {
     /// The chip the pins belong to, as probe-rs names it.
     pub const CHIP: &str = "STM32F411RETx";
@@ -625,10 +631,12 @@ const TABLES: [SupervisorTable<'static>; 1] = [
 /// start-up, then in the background, 64 bytes per scan: a pass every 12
 /// scans, a flipped bit found within 23 scans (230 ms at 10 ms a scan). See
 /// `executor::image`.
+#[allow(dead_code)]
 pub const IMAGE_CRC: u32 = 0xa591ce8f;
 
 /// The program's data: the configuration and the tables above, as constants
 /// the compiler can see through (`executor::compiled`).
+#[allow(dead_code)]
 pub struct Tables;
 impl ProgramData for Tables {
     const CONFIG: Config<'static> = CONFIG;
@@ -637,4 +645,5 @@ impl ProgramData for Tables {
 }
 
 /// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.
+#[allow(dead_code)]
 pub static PROGRAM: Compiled<Tables> = Compiled::new();

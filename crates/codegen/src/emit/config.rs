@@ -536,7 +536,7 @@ pub mod places {{"
             .collect();
         let _ = writeln!(
             self.out,
-            "/// Words of the input image and of every input mask (32 inputs per word).\npub const INPUT_WORDS: usize = executor::program::words(input::COUNT);"
+            "/// Words of the input image and of every input mask (32 inputs per word).\n#[allow(dead_code)]\npub const INPUT_WORDS: usize = executor::program::words(input::COUNT);"
         );
         self.pool(
             "INPUTS",
@@ -938,7 +938,7 @@ pub mod places {{"
         };
         let _ = writeln!(
             self.out,
-            "/// The executor's description of the project.\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, rom_test_bytes_per_scan: {}, inputs: &INPUTS, debounced: &DEBOUNCED, debounce_mask: {}, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_masks: &INPUT_MASKS, event_lists: &EVENT_LISTS, event_masks: &EVENT_MASKS, commands: {}, requested: {}, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP, guards: {guards}, allowed_index: {allowed_index} }};",
+            "/// The executor's description of the project.\n#[allow(dead_code)]\npub const CONFIG: Config<'static> = Config {{ name: {:?}, scan_period_ms: {}, max_commands_per_scan: {}, unexpected: UnexpectedPolicy::{policy}, reset: {reset}, overrun_limit: {}, overrun_fault: {}, lost_edge_fault: {}, rom_test_bytes_per_scan: {}, inputs: &INPUTS, debounced: &DEBOUNCED, debounce_mask: {}, outputs: &OUTPUTS, timers: &TIMERS, events: &EVENTS, supervisors: &SUPERVISORS, input_masks: &INPUT_MASKS, event_lists: &EVENT_LISTS, event_masks: &EVENT_MASKS, commands: {}, requested: {}, actions: &ACTIONS, memberships: &MEMBERSHIPS, state_map: &STATE_MAP, guards: {guards}, allowed_index: {allowed_index} }};",
             pools.name,
             pools.scan_period_ms,
             pools.max_commands_per_scan,
@@ -952,12 +952,12 @@ pub mod places {{"
         );
         let _ = writeln!(
             self.out,
-            "/// CRC of the configuration alone (the program image without tables): how recorded\n/// scenarios name the project they belong to.\npub const CONFIG_CRC: u32 = {:#010x};",
+            "/// CRC of the configuration alone (the program image without tables): how recorded\n/// scenarios name the project they belong to.\n#[allow(dead_code)]\npub const CONFIG_CRC: u32 = {:#010x};",
             executor::image::config_crc(&pools.config())
         );
         let _ = writeln!(
             self.out,
-            "/// Words of an event set (32 events per word).\npub const EVENT_WORDS: usize = executor::program::words(event::COUNT);\n/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, event sets in `EVENT_WORDS` words, and one event set per supervisor.\npub type Memory = executor::memory::StaticMemory<INPUT_WORDS, {{ DEBOUNCED.len() }}, {{ output::COUNT }}, {{ timer::COUNT }}, {{ supervisor::COUNT }}, {{ event::COUNT }}, EVENT_WORDS, {{ supervisor::COUNT * EVENT_WORDS }}>;"
+            "/// Words of an event set (32 events per word).\n#[allow(dead_code)]\npub const EVENT_WORDS: usize = executor::program::words(event::COUNT);\n/// Controller memory sized for this project: the input image in `INPUT_WORDS` words, a filter counter per debounced input, the outputs, timers, supervisor states and events, event sets in `EVENT_WORDS` words, and one event set per supervisor.\n#[allow(dead_code)]\npub type Memory = executor::memory::StaticMemory<INPUT_WORDS, {{ DEBOUNCED.len() }}, {{ output::COUNT }}, {{ timer::COUNT }}, {{ supervisor::COUNT }}, {{ event::COUNT }}, EVENT_WORDS, {{ supervisor::COUNT * EVENT_WORDS }}>;"
         );
     }
 }

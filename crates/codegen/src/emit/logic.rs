@@ -435,7 +435,7 @@ impl Emitter<'_> {
         let _ = writeln!(self.out, "}}");
         let _ = writeln!(
             self.out,
-            "{crc_doc}\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program's data: the configuration above, and the supervisors as\n/// minimised boolean functions (`executor::compiled`).\npub struct Logic;\nimpl ProgramData for Logic {{\n    const CONFIG: Config<'static> = CONFIG;\n    const IMAGE_CRC: u32 = IMAGE_CRC;\n    fn next_state(supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Compiled<Logic> = Compiled::new();",
+            "{crc_doc}\n#[allow(dead_code)]\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program's data: the configuration above, and the supervisors as\n/// minimised boolean functions (`executor::compiled`).\n#[allow(dead_code)]\npub struct Logic;\nimpl ProgramData for Logic {{\n    const CONFIG: Config<'static> = CONFIG;\n    const IMAGE_CRC: u32 = IMAGE_CRC;\n    fn next_state(supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\n#[allow(dead_code)]\npub static PROGRAM: Compiled<Logic> = Compiled::new();",
             arms.join("\n")
         );
         stats

@@ -54,7 +54,7 @@ impl Emitter<'_> {
         let _ = writeln!(self.out, "}}");
         let _ = writeln!(
             self.out,
-            "{crc_doc}\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program's data: the configuration above, and the supervisors as\n/// `match` statements (`executor::compiled`).\npub struct Match;\nimpl ProgramData for Match {{\n    const CONFIG: Config<'static> = CONFIG;\n    const IMAGE_CRC: u32 = IMAGE_CRC;\n    fn next_state(supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Compiled<Match> = Compiled::new();",
+            "{crc_doc}\n#[allow(dead_code)]\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program's data: the configuration above, and the supervisors as\n/// `match` statements (`executor::compiled`).\n#[allow(dead_code)]\npub struct Match;\nimpl ProgramData for Match {{\n    const CONFIG: Config<'static> = CONFIG;\n    const IMAGE_CRC: u32 = IMAGE_CRC;\n    fn next_state(supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\n#[allow(dead_code)]\npub static PROGRAM: Compiled<Match> = Compiled::new();",
             arms.join("\n")
         );
         stats

@@ -191,7 +191,7 @@ impl Emitter<'_> {
         }
         let _ = writeln!(
             self.out,
-            "/// One table per supervisor.\nconst TABLES: [SupervisorTable<'static>; {}] = [{}];\n{crc_doc}\npub const IMAGE_CRC: u32 = {:#010x};\n/// The program's data: the configuration and the tables above, as constants\n/// the compiler can see through (`executor::compiled`).\npub struct Tables;\nimpl ProgramData for Tables {{\n    const CONFIG: Config<'static> = CONFIG;\n    const IMAGE_CRC: u32 = IMAGE_CRC;\n    const TABLES: &'static [SupervisorTable<'static>] = &TABLES;\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\npub static PROGRAM: Compiled<Tables> = Compiled::new();",
+            "/// One table per supervisor.\nconst TABLES: [SupervisorTable<'static>; {}] = [{}];\n{crc_doc}\n#[allow(dead_code)]\npub const IMAGE_CRC: u32 = {:#010x};\n/// The program's data: the configuration and the tables above, as constants\n/// the compiler can see through (`executor::compiled`).\n#[allow(dead_code)]\npub struct Tables;\nimpl ProgramData for Tables {{\n    const CONFIG: Config<'static> = CONFIG;\n    const IMAGE_CRC: u32 = IMAGE_CRC;\n    const TABLES: &'static [SupervisorTable<'static>] = &TABLES;\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\n#[allow(dead_code)]\npub static PROGRAM: Compiled<Tables> = Compiled::new();",
             views.len(),
             views.join(", "),
             image.crc
