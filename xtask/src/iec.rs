@@ -48,6 +48,7 @@ pub const MAX_ST_BYTES: u64 = 300_000;
 /// as `<name>.ladder.xml`: those whose supervisors make at most the
 /// default rung limit (docs/ladder.md); the others are refused.
 const LADDER: &[&str] = &[
+    "breakdown",
     "conveyor",
     "crane",
     "hostile",

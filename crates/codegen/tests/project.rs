@@ -1109,3 +1109,12 @@ fn a_net_from_another_editor_needs_its_controllability_in_the_net_entry() {
         "{err}"
     );
 }
+
+#[test]
+fn a_local_controller_named_like_a_plant_component_takes_a_suffix() {
+    let p = load_ok(
+        "[plc]\nname = \"x\"\n[inputs]\ni = {}\n[events]\ngo = { controllable = true }\ndone = { rising = \"i\" }\n[[supervisor]]\nname = \"s\"\nsynthesize = { plants = [\"mini/go.toml\"], specs = [\"mini/go_once.toml\"], localize = true }\n",
+    );
+    let names: Vec<&str> = p.supervisors.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["s.go", "s.go.local"]);
+}

@@ -68,6 +68,8 @@ impl Validator<'_> {
                     };
                     self.claim("supervisor", &name, &name_span)?;
                     let max_logic_effort = self.max_logic_effort(raw.get_ref())?;
+                    let components: Vec<String> =
+                        plant.iter().map(|(a, _)| a.name().to_owned()).collect();
                     for (automaton, origin) in plant {
                         let component = format!("{name}.{}", automaton.name());
                         self.claim("supervisor", &component, &header)?;
@@ -87,7 +89,13 @@ impl Validator<'_> {
                     for (event, loaded) in controllers {
                         let local = match event {
                             Some(event) => {
-                                let local = format!("{name}.{event}");
+                                // A plant component named like the event
+                                // (the boiler's `bms`) keeps `name.bms`.
+                                let local = if components.contains(&event) {
+                                    format!("{name}.{event}.local")
+                                } else {
+                                    format!("{name}.{event}")
+                                };
                                 self.claim("supervisor", &local, &header)?;
                                 local
                             }
