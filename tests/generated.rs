@@ -582,6 +582,31 @@ fn check<P: Program + 'static, M: Memory>(g: Generated<P, M>) {
         }
     }
 
+    // φ rows (what the controller reads after a move) on every
+    // (supervisor, state) and every window of local events: the defined
+    // events of δ, whichever way the backend computes them.
+    for (j, sup) in p.supervisors.iter().enumerate() {
+        let m = sup.local_events.len() as Index;
+        for state in 0..sup.automaton.num_states() as u32 {
+            for from in 0..m {
+                for len in [1u8, 2, 5, 32] {
+                    let expected = (0..u16::from(len)).fold(0u32, |row, k| {
+                        let defined = from
+                            .checked_add(k)
+                            .is_some_and(|e| image.next_state(j as Index, state, e).is_some());
+                        row | u32::from(defined) << k
+                    });
+                    assert_eq!(
+                        g.program.enabled(j as Index, state, from, len),
+                        expected,
+                        "{what}: enabled row of `{}` in state {state} from {from}, {len} events",
+                        sup.name
+                    );
+                }
+            }
+        }
+    }
+
     // Scan by scan against host-sim.
     let mut coverage = Coverage::default();
     for (seed, activity) in RUNS {

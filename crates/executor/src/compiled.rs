@@ -77,6 +77,20 @@ pub trait ProgramData {
             .get(usize::from(supervisor))?
             .next_state(state, local)
     }
+
+    /// Which of the local events `from..from + len` (`len ≤ 32`) are
+    /// defined in `state` ([`Program::enabled`]). The default reads a
+    /// table's row of defined-bits, or asks [`ProgramData::next_state`] for
+    /// each event; the logic backend evaluates its φ functions once.
+    #[inline]
+    fn enabled(supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        match Self::TABLES.get(usize::from(supervisor)) {
+            Some(t) => t.enabled(state, from, len),
+            None => enabled_by_steps(len, |k| {
+                Self::next_state(supervisor, state, from.wrapping_add(k)).is_some()
+            }),
+        }
+    }
 }
 
 /// The [`Program`] of the data `D`: `static PROGRAM: Compiled<D> =
@@ -106,16 +120,10 @@ impl<D: ProgramData> Program for Compiled<D> {
         D::next_state(supervisor, state, local)
     }
 
-    /// A table's row of defined-bits; for supervisors that are code, each
-    /// event asked of [`ProgramData::next_state`].
+    /// [`ProgramData::enabled`].
     #[inline]
     fn enabled(&self, supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
-        match D::TABLES.get(usize::from(supervisor)) {
-            Some(t) => t.enabled(state, from, len),
-            None => enabled_by_steps(len, |k| {
-                D::next_state(supervisor, state, from.wrapping_add(k)).is_some()
-            }),
-        }
+        D::enabled(supervisor, state, from, len)
     }
 
     fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {

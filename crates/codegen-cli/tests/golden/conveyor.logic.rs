@@ -474,6 +474,28 @@ pub mod logic {
             }
         }
 
+        /// `sup_conveyor`: which of the local events `from..from + len` (`len` at most 32)
+        /// are defined in state code `q`: bit `k` for event `from + k` (one row of φ).
+        pub fn sup_conveyor_enabled(q: u32, from: u16, len: u8) -> u32 {
+            let q2 = (q >> 2) & 1 != 0;
+            let q1 = (q >> 1) & 1 != 0;
+            let q0 = q & 1 != 0;
+            let phi: [bool; 5] = [
+                (!q2 & q1 & !q0) | (q2 & !q1 & !q0),
+                !q0 | q2,
+                !q2 & q0,
+                (!q2 & q1 & !q0) | (!q1 & q0),
+                q2 & q1 & !q0,
+            ];
+            let mut row = 0;
+            for k in 0..u16::from(len.min(32)) {
+                if phi.get(usize::from(from.wrapping_add(k))) == Some(&true) {
+                    row |= 1 << k;
+                }
+            }
+            row
+        }
+
         /// `sup_conveyor`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
         pub fn sup_conveyor_step(q: u32, e: u16) -> Option<u32> {
@@ -502,6 +524,15 @@ impl ProgramData for Logic {
         match supervisor {
             supervisor::CONVEYOR => logic::sup_conveyor::sup_conveyor_step(state, local),
             _ => None,
+        }
+    }
+
+    fn enabled(supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        match supervisor {
+            supervisor::CONVEYOR => {
+                logic::sup_conveyor::sup_conveyor_enabled(state, from, len)
+            }
+            _ => 0,
         }
     }
 }

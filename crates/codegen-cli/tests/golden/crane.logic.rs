@@ -736,6 +736,21 @@ pub mod logic {
             }
         }
 
+        /// `sup_sup_crane1`: which of the local events `from..from + len` (`len` at most 32)
+        /// are defined in state code `q`: bit `k` for event `from + k` (one row of φ).
+        pub fn sup_sup_crane1_enabled(q: u32, from: u16, len: u8) -> u32 {
+            let q1 = (q >> 1) & 1 != 0;
+            let q0 = q & 1 != 0;
+            let phi: [bool; 6] = [!q1 & !q0, !q1 & !q0, q0 | q1, q0 | q1, !q0, !q1];
+            let mut row = 0;
+            for k in 0..u16::from(len.min(32)) {
+                if phi.get(usize::from(from.wrapping_add(k))) == Some(&true) {
+                    row |= 1 << k;
+                }
+            }
+            row
+        }
+
         /// `sup_sup_crane1`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
         pub fn sup_sup_crane1_step(q: u32, e: u16) -> Option<u32> {
@@ -797,6 +812,21 @@ pub mod logic {
             }
         }
 
+        /// `sup_sup_section`: which of the local events `from..from + len` (`len` at most 32)
+        /// are defined in state code `q`: bit `k` for event `from + k` (one row of φ).
+        pub fn sup_sup_section_enabled(q: u32, from: u16, len: u8) -> u32 {
+            let q1 = (q >> 1) & 1 != 0;
+            let q0 = q & 1 != 0;
+            let phi: [bool; 4] = [q0, q1, !q1 & !q0, !q1 & !q0];
+            let mut row = 0;
+            for k in 0..u16::from(len.min(32)) {
+                if phi.get(usize::from(from.wrapping_add(k))) == Some(&true) {
+                    row |= 1 << k;
+                }
+            }
+            row
+        }
+
         /// `sup_sup_section`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
         pub fn sup_sup_section_step(q: u32, e: u16) -> Option<u32> {
@@ -834,6 +864,18 @@ impl ProgramData for Logic {
                 logic::sup_sup_section::sup_sup_section_step(state, local)
             }
             _ => None,
+        }
+    }
+
+    fn enabled(supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        match supervisor {
+            supervisor::SUP_CRANE1 => {
+                logic::sup_sup_crane1::sup_sup_crane1_enabled(state, from, len)
+            }
+            supervisor::SUP_SECTION => {
+                logic::sup_sup_section::sup_sup_section_enabled(state, from, len)
+            }
+            _ => 0,
         }
     }
 }

@@ -645,6 +645,30 @@ pub mod logic {
             }
         }
 
+        /// `sup_press`: which of the local events `from..from + len` (`len` at most 32)
+        /// are defined in state code `q`: bit `k` for event `from + k` (one row of φ).
+        pub fn sup_press_enabled(q: u32, from: u16, len: u8) -> u32 {
+            let q2 = (q >> 2) & 1 != 0;
+            let q1 = (q >> 1) & 1 != 0;
+            let q0 = q & 1 != 0;
+            let phi: [bool; 7] = [
+                true,
+                true,
+                true,
+                !q2 & !q1,
+                q2 & q0,
+                q1 & !q0,
+                q1 & q0,
+            ];
+            let mut row = 0;
+            for k in 0..u16::from(len.min(32)) {
+                if phi.get(usize::from(from.wrapping_add(k))) == Some(&true) {
+                    row |= 1 << k;
+                }
+            }
+            row
+        }
+
         /// `sup_press`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
         pub fn sup_press_step(q: u32, e: u16) -> Option<u32> {
@@ -673,6 +697,13 @@ impl ProgramData for Logic {
         match supervisor {
             supervisor::PRESS => logic::sup_press::sup_press_step(state, local),
             _ => None,
+        }
+    }
+
+    fn enabled(supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
+        match supervisor {
+            supervisor::PRESS => logic::sup_press::sup_press_enabled(state, from, len),
+            _ => 0,
         }
     }
 }

@@ -239,6 +239,39 @@ pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
     }
     let _ = writeln!(out, "}}\n");
 
+    // Φ as a row, what the executor reads after every move: every φ
+    // evaluated once on the state bits, not one `_step` per event.
+    let _ = writeln!(
+        out,
+        "/// `{prefix}`: which of the local events `from..from + len` (`len` at most 32)\n\
+         /// are defined in state code `q`: bit `k` for event `from + k` (one row of φ)."
+    );
+    let _ = writeln!(
+        out,
+        "pub fn {prefix}_enabled(q: u32, from: u16, len: u8) -> u32 {{"
+    );
+    if m == 0 {
+        let _ = writeln!(out, "    let _ = (q, from, len);\n    0");
+    } else {
+        bit_lets(&mut out, state_bits_used(logic.defined_covers()));
+        let _ = writeln!(out, "    let phi: [bool; {m}] = [");
+        for phi in logic.defined_covers() {
+            let _ = writeln!(out, "        {},", sum_expr(phi));
+        }
+        let _ = writeln!(out, "    ];");
+        let _ = writeln!(
+            out,
+            "    let mut row = 0;\n    \
+             for k in 0..u16::from(len.min(32)) {{\n        \
+             if phi.get(usize::from(from.wrapping_add(k))) == Some(&true) {{\n            \
+             row |= 1 << k;\n        \
+             }}\n    \
+             }}\n    \
+             row"
+        );
+    }
+    let _ = writeln!(out, "}}\n");
+
     // Both, as the executor wants them.
     let _ = writeln!(
         out,
@@ -389,6 +422,7 @@ impl Emitter<'_> {
     ) -> Vec<SupervisorStats> {
         let mut stats = Vec::new();
         let mut arms = Vec::new();
+        let mut enabled_arms = Vec::new();
         let _ = writeln!(
             self.out,
             "/// The supervisors as CMSSM next-state (`_next`) and enable (`_defined`) functions.\npub mod logic {{"
@@ -419,6 +453,10 @@ impl Emitter<'_> {
                 "{} => logic::{fn_name}::{fn_name}_step(state, local),",
                 self.supervisor(j as ex::Index)
             ));
+            enabled_arms.push(format!(
+                "{} => logic::{fn_name}::{fn_name}_enabled(state, from, len),",
+                self.supervisor(j as ex::Index)
+            ));
             let sizes = l.sizes();
             stats.push(SupervisorStats {
                 name: sup.name.clone(),
@@ -435,8 +473,9 @@ impl Emitter<'_> {
         let _ = writeln!(self.out, "}}");
         let _ = writeln!(
             self.out,
-            "{crc_doc}\n#[allow(dead_code)]\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program's data: the configuration above, and the supervisors as\n/// minimised boolean functions (`executor::compiled`).\n#[allow(dead_code)]\npub struct Logic;\nimpl ProgramData for Logic {{\n    const CONFIG: Config<'static> = CONFIG;\n    const IMAGE_CRC: u32 = IMAGE_CRC;\n    fn next_state(supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\n#[allow(dead_code)]\npub static PROGRAM: Compiled<Logic> = Compiled::new();",
-            arms.join("\n")
+            "{crc_doc}\n#[allow(dead_code)]\npub const IMAGE_CRC: u32 = {crc:#010x};\n/// The program's data: the configuration above, and the supervisors as\n/// minimised boolean functions (`executor::compiled`).\n#[allow(dead_code)]\npub struct Logic;\nimpl ProgramData for Logic {{\n    const CONFIG: Config<'static> = CONFIG;\n    const IMAGE_CRC: u32 = IMAGE_CRC;\n    fn next_state(supervisor: Index, state: u32, local: Index) -> Option<u32> {{\n        match supervisor {{ {} _ => None }}\n    }}\n    fn enabled(supervisor: Index, state: u32, from: Index, len: u8) -> u32 {{\n        match supervisor {{ {} _ => 0 }}\n    }}\n}}\n/// The program: run it with `executor::Controller::new(&PROGRAM, Memory::new())`.\n#[allow(dead_code)]\npub static PROGRAM: Compiled<Logic> = Compiled::new();",
+            arms.join("\n"),
+            enabled_arms.join("\n")
         );
         stats
     }
