@@ -68,9 +68,10 @@ fn code_literal(code: u32, bits: usize) -> String {
 ///
 /// The module holds one constant per local event (`T1_AT13: u16 = 0`, the
 /// `e` the functions take) and the functions `<name>_next(q, e) -> u32`
-/// (`Ω`), `<name>_defined(q, e) -> bool` (`φ`) and `<name>_step(q, e) ->
-/// Option<u32>` (both, as the executor's `Program::next_state`), where `q`
-/// is a state code. Its doc comment gives the state codes, the reset code
+/// (`Ω`), `<name>_defined(q, e) -> bool` (`φ`), `<name>_enabled(q, from,
+/// len) -> u32` (a row of φ, as the executor's `Program::enabled`) and
+/// `<name>_step(q, e) -> Option<u32>` (φ and Ω, as its
+/// `Program::next_state`), where `q` is a state code. Its doc comment gives the state codes, the reset code
 /// and the transitions of the first states. Names are sanitised into
 /// identifiers, or into one-line text in doc comments, so no name can
 /// inject code; the functions use neither `std`, allocation nor `unsafe`.
@@ -663,6 +664,7 @@ mod tests {
                 "BREAK_",
                 "sup_sup__evil_next",
                 "sup_sup__evil_defined",
+                "sup_sup__evil_enabled",
                 "sup_sup__evil_step"
             ]
         );
