@@ -486,12 +486,7 @@ impl Loader<'_> {
                 format!(
                     "localization assumes a supervisor that sees every event, and the plant's \
                      events {} are unobservable: synthesise without `localize`",
-                    synthesis
-                        .unobservable
-                        .iter()
-                        .map(|e| format!("`{e}`"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
+                    quoted_list(&synthesis.unobservable)
                 ),
             ));
         }
@@ -808,6 +803,15 @@ impl Loader<'_> {
         }
         Ok((paths, automata))
     }
+}
+
+/// `names` as `` `a`, `b` `` for messages.
+fn quoted_list(names: &[String]) -> String {
+    names
+        .iter()
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 #[cfg(test)]

@@ -35,7 +35,7 @@
 //! few word operations. Transitions of S the closed loop never takes are
 //! not kept: the plant cannot make them happen.
 
-use super::{compose, language_difference, ComposeOptions, Composition};
+use super::{compose, language_difference, ComposeOptions, Composition, LanguageDifference};
 use crate::automaton::{Automaton, AutomatonBuilder, EventId, StateId};
 use crate::error::{Error, Result};
 use rustc_hash::FxHashMap;
@@ -588,15 +588,7 @@ fn same_closed_loop(
     what: (&str, &str),
     options: ComposeOptions<'_>,
 ) -> Result<()> {
-    let options = ComposeOptions {
-        name_states: false,
-        ..options
-    };
-    let lhs = compose(&[plant, original], Composition::Sync, options)?.automaton;
-    let mut parts: Vec<&Automaton> = vec![plant];
-    parts.extend_from_slice(replacement);
-    let rhs = compose(&parts, Composition::Sync, options)?.automaton;
-    match language_difference(&lhs, &rhs) {
+    match closed_loop_difference(plant, original, replacement, options)? {
         None => Ok(()),
         Some(d) => Err(Error::Incompatible(format!(
             "supervisor {} changed the closed loop of `{}` ({:?} language, string `{}` only {}): a bug, please report it",
@@ -607,6 +599,26 @@ fn same_closed_loop(
             if d.in_first { "with the original" } else { what.1 }
         ))),
     }
+}
+
+/// A shortest string that tells `plant` ‖ `original` from `plant` ‖ the
+/// `replacement` automata (closed or marked language; `in_first` when
+/// only `original` lets the plant do it), `None` when they are equal.
+pub(crate) fn closed_loop_difference(
+    plant: &Automaton,
+    original: &Automaton,
+    replacement: &[&Automaton],
+    options: ComposeOptions<'_>,
+) -> Result<Option<LanguageDifference>> {
+    let options = ComposeOptions {
+        name_states: false,
+        ..options
+    };
+    let lhs = compose(&[plant, original], Composition::Sync, options)?.automaton;
+    let mut parts: Vec<&Automaton> = vec![plant];
+    parts.extend_from_slice(replacement);
+    let rhs = compose(&parts, Composition::Sync, options)?.automaton;
+    Ok(language_difference(&lhs, &rhs))
 }
 
 /// The reduced supervisor: one state per class, in root order.

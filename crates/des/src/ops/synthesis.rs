@@ -17,6 +17,7 @@
 //! [`synthesize`], so a project and the CLI give the same supervisor for
 //! the same files.
 
+use super::partial::observed::unobservable_names;
 use super::partial::{name_after, observable_events, observed_supervisor, sup_con_normal};
 use super::verify::check_controllable_with;
 use super::{compose, minstate, reduce, supcon_with, ComposeOptions, Composition};
@@ -160,7 +161,7 @@ pub fn synthesize(
         return Err(Error::Incompatible(format!(
             "supervisor reduction assumes a supervisor that sees every event, and the plant's \
              events {} are unobservable: synthesise without reduction",
-            quoted(&unobservable)
+            unobservable_names(&plant)
         )));
     }
 
@@ -251,15 +252,6 @@ fn sup_con_normal_of(
         max_states: max,
         message: format!("{name} has not reached its fixpoint after {max} rounds"),
     })
-}
-
-/// `names` as `` `a`, `b` ``.
-fn quoted(names: &[String]) -> String {
-    names
-        .iter()
-        .map(|n| format!("`{n}`"))
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 #[cfg(test)]

@@ -172,11 +172,7 @@ impl Loader<'_> {
                     "symbolic synthesis assumes a supervisor that sees every event, and the \
                      events {} are unobservable: synthesise without `symbolic` (the explicit \
                      supervisor runs projected onto the observable events)",
-                    unobservable
-                        .iter()
-                        .map(|e| format!("`{e}`"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
+                    super::quoted_list(&unobservable)
                 ),
             ));
         }

@@ -52,7 +52,7 @@
 
 mod normal;
 mod observable;
-mod observed;
+pub(crate) mod observed;
 mod supconnorm;
 mod supnorm;
 

@@ -25,9 +25,9 @@
 
 use crate::automaton::{Automaton, EventId, StateId};
 use crate::error::{Error, Result};
-use crate::ops::equivalence::language_difference;
 use crate::ops::projection::project;
-use crate::ops::sync::{compose, ComposeOptions, Composition};
+use crate::ops::reduce::closed_loop_difference;
+use crate::ops::sync::ComposeOptions;
 use rustc_hash::FxHashMap;
 
 /// The observable events of `plant` by name; refused when a controllable
@@ -76,14 +76,8 @@ pub fn check_observed(
     observed: &Automaton,
     options: ComposeOptions<'_>,
 ) -> Result<()> {
-    let options = ComposeOptions {
-        name_states: false,
-        ..options
-    };
     let unseen = unobservable_names(plant);
-    let lhs = compose(&[plant, closed_loop], Composition::Sync, options)?.automaton;
-    let rhs = compose(&[plant, observed], Composition::Sync, options)?.automaton;
-    if let Some(d) = language_difference(&lhs, &rhs) {
+    if let Some(d) = closed_loop_difference(plant, closed_loop, &[observed], options)? {
         let (with, without) = if d.in_first {
             (
                 "the supervisor",
@@ -185,8 +179,8 @@ pub fn name_after(reference: &Automaton, observed: &mut Automaton) {
     observed.set_state_names(names);
 }
 
-/// `plant`'s unobservable events as a list for messages.
-fn unobservable_names(plant: &Automaton) -> String {
+/// `plant`'s unobservable events as a list for messages (`` `a`, `b` ``).
+pub(crate) fn unobservable_names(plant: &Automaton) -> String {
     let names: Vec<String> = plant
         .alphabet()
         .unobservable()
