@@ -29,6 +29,10 @@ pub enum CliError {
     /// without `[board]`): the message says what to do instead.
     #[error("{0}")]
     Usage(String),
+    /// A load over the serial link failed or the PLC refused it: the
+    /// field-update link's error, unchanged.
+    #[error(transparent)]
+    Load(#[from] field_update::host::LinkError),
 }
 
 impl CliError {

@@ -15,6 +15,7 @@ mod gen;
 mod info;
 mod key;
 mod lang;
+mod load;
 mod net_control;
 mod output;
 mod partial;
@@ -145,6 +146,10 @@ enum Command {
     /// A project as PLCopen XML (TC6 v2.01) with ST bodies, for PLC tools
     /// that import it.
     Plcopen(plc::PlcArgs),
+    /// A slot file (`codegen image`) into a running PLC over a serial
+    /// port, checked by the PLC before it runs; without a file, what the
+    /// PLC runs (docs/field-update.md).
+    Load(load::LoadArgs),
 }
 
 /// How a command ended when it did not fail outright.
@@ -188,6 +193,7 @@ fn main() -> ExitCode {
         Command::Petri(command) => petri::run(&command, json, &mut out),
         Command::St(args) => plc::run(&args, plc::Flavour::St, json, &mut out),
         Command::Plcopen(args) => plc::run(&args, plc::Flavour::PlcOpen, json, &mut out),
+        Command::Load(args) => load::run(&args, json, &mut out),
     };
     let code = match &result {
         Ok(Outcome::Holds) => ExitCode::SUCCESS,

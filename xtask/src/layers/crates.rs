@@ -69,6 +69,13 @@ pub(super) const LAYERS: &[Layer] = &[
         dev: &[],
     },
     Layer {
+        name: "field-update",
+        stage: Stage::Core,
+        normal: &[],
+        build: &[],
+        dev: &[],
+    },
+    Layer {
         name: "boards",
         stage: Stage::Core,
         normal: &[],
@@ -117,6 +124,7 @@ pub(super) const LAYERS: &[Layer] = &[
             "codegen",
             "des",
             "des-symbolic",
+            "field-update",
             "iec-export",
             "plc-project",
         ],

@@ -1,0 +1,505 @@
+//! The PC side: slot files, and a load over any byte stream (a serial
+//! port, or a simulated PLC in tests).
+//!
+//! A *slot file* (`codegen image`) is what a slot holds: the header and
+//! the image, every word little-endian, the order in which a Cortex-M
+//! reads them from flash. `probe-rs download --binary-format bin
+//! --base-address <slot>` writes it straight into a slot; [`load`]
+//! sends its image over the protocol, and the PLC writes its own header
+//! (with the next sequence number).
+
+use crate::crc_of_words;
+use crate::frame::{self, FrameError, FrameReader, MAX_FRAME};
+use crate::header::{HeaderFault, SlotHeader, HEADER_WORDS};
+use crate::protocol::{data_requests, Refusal, Request, Response, MAX_DATA};
+use crate::slot::Slot;
+use crc::Crc;
+use std::io::{self, Read, Write};
+use std::vec::Vec;
+
+/// A slot file read back: its header and image.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SlotFile {
+    /// The header, checked.
+    pub header: SlotHeader,
+    /// The image's words.
+    pub image: Vec<u32>,
+}
+
+/// Why bytes are not a slot file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum SlotFileError {
+    /// Not a whole number of words.
+    #[error("{0} bytes are not a whole number of 32-bit words")]
+    Unaligned(usize),
+    /// The header does not check.
+    #[error("no valid slot header: {0:?}")]
+    Header(HeaderFault),
+    /// Words after the image.
+    #[error("{found} words after the header, the header says {expected}")]
+    Length {
+        /// Words the header announces.
+        expected: u32,
+        /// Words the file holds after the header.
+        found: usize,
+    },
+    /// The image's CRC is not the header's.
+    #[error("the image's CRC is {found:#010x}, its header records {recorded:#010x}")]
+    ImageCrc {
+        /// Computed.
+        found: u32,
+        /// Recorded.
+        recorded: u32,
+    },
+}
+
+impl SlotFile {
+    /// A slot file for `image` with `header`'s fields (its length and CRC
+    /// taken from the image).
+    pub fn new(image: Vec<u32>, sequence: u32, version: u32, crc: &Crc<u32>) -> SlotFile {
+        let header = SlotHeader {
+            sequence,
+            version,
+            words: image.len() as u32,
+            image_crc: crc_of_words(crc, &image),
+        };
+        SlotFile { header, image }
+    }
+
+    /// The file's bytes.
+    pub fn to_bytes(&self, crc: &Crc<u32>) -> Vec<u8> {
+        self.header
+            .to_words(crc)
+            .iter()
+            .chain(&self.image)
+            .flat_map(|w| w.to_le_bytes())
+            .collect()
+    }
+
+    /// Reads and checks a slot file: header, length, image CRC.
+    pub fn parse(bytes: &[u8], crc: &Crc<u32>) -> Result<SlotFile, SlotFileError> {
+        if bytes.len() % 4 != 0 {
+            return Err(SlotFileError::Unaligned(bytes.len()));
+        }
+        let words: Vec<u32> = bytes
+            .chunks_exact(4)
+            .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .collect();
+        let header = SlotHeader::read(&words, crc).map_err(SlotFileError::Header)?;
+        let image = words[HEADER_WORDS..].to_vec();
+        if image.len() != header.words as usize {
+            return Err(SlotFileError::Length {
+                expected: header.words,
+                found: image.len(),
+            });
+        }
+        let found = crc_of_words(crc, &image);
+        if found != header.image_crc {
+            return Err(SlotFileError::ImageCrc {
+                found,
+                recorded: header.image_crc,
+            });
+        }
+        Ok(SlotFile { header, image })
+    }
+}
+
+/// What went wrong on the link.
+#[derive(Debug, thiserror::Error)]
+pub enum LinkError {
+    /// Reading or writing the port.
+    #[error("the link: {0}")]
+    Io(#[from] io::Error),
+    /// No intact answer after every retry.
+    #[error("no intact answer to {request} after {tries} tries (last: {last:?})")]
+    NoAnswer {
+        /// The request, by name.
+        request: &'static str,
+        /// Tries made.
+        tries: u32,
+        /// The last frame error, if a frame came.
+        last: Option<FrameError>,
+    },
+    /// The PLC refused a request.
+    #[error("the PLC refused {request}: {why:?}")]
+    Refused {
+        /// The request, by name.
+        request: &'static str,
+        /// Its reason.
+        why: Refusal,
+    },
+    /// An answer that does not fit the request.
+    #[error("unexpected answer to {request}: {answer}")]
+    Unexpected {
+        /// The request, by name.
+        request: &'static str,
+        /// The answer, debug-printed.
+        answer: String,
+    },
+}
+
+/// One end of a link to a PLC: requests out, answers in.
+pub struct Link<'c, T> {
+    io: T,
+    crc: &'c Crc<u32>,
+    reader: FrameReader<MAX_FRAME>,
+    body: Vec<u8>,
+    /// Tries per request before [`LinkError::NoAnswer`].
+    pub tries: u32,
+}
+
+fn name_of(request: &Request<'_>) -> &'static str {
+    match request {
+        Request::Status => "Status",
+        Request::Begin { .. } => "Begin",
+        Request::Data { .. } => "Data",
+        Request::Commit => "Commit",
+        Request::Abort => "Abort",
+    }
+}
+
+impl<'c, T: Read + Write> Link<'c, T> {
+    /// A link over `io` (a port with a read timeout: a timeout counts as
+    /// a lost answer and the request is sent again).
+    pub fn new(io: T, crc: &'c Crc<u32>) -> Link<'c, T> {
+        Link {
+            io,
+            crc,
+            reader: FrameReader::new(),
+            body: Vec::new(),
+            tries: 3,
+        }
+    }
+
+    /// Sends `request` and returns the PLC's answer, sending it again
+    /// after a timeout or a damaged answer.
+    pub fn request(&mut self, request: &Request<'_>) -> Result<Response<'_>, LinkError> {
+        let mut out = [0u8; MAX_FRAME];
+        let no_answer = |tries, last| LinkError::NoAnswer {
+            request: name_of(request),
+            tries,
+            last,
+        };
+        let bytes =
+            frame::encode(request, self.crc, &mut out).map_err(|e| no_answer(0, Some(e)))?;
+        let mut last = None;
+        for _ in 0..self.tries {
+            self.io.write_all(bytes)?;
+            self.io.flush()?;
+            match self.read_frame() {
+                Ok(Ok(())) => {
+                    if frame::message::<Response<'_>>(&self.body).is_ok() {
+                        return frame::message(&self.body).map_err(|e| no_answer(0, Some(e)));
+                    }
+                    last = Some(FrameError::Message);
+                }
+                Ok(Err(e)) => last = Some(e),
+                Err(e) if is_timeout(&e) => {}
+                Err(e) => return Err(e.into()),
+            }
+        }
+        Err(no_answer(self.tries, last))
+    }
+
+    /// Reads bytes until a frame ends; its message bytes go to
+    /// `self.body`.
+    fn read_frame(&mut self) -> io::Result<Result<(), FrameError>> {
+        let mut byte = [0u8; 1];
+        loop {
+            if self.io.read(&mut byte)? == 0 {
+                return Err(io::ErrorKind::UnexpectedEof.into());
+            }
+            if let Some(frame) = self.reader.push(byte[0]) {
+                let crc = self.crc;
+                return Ok(frame.and_then(|f| frame::unframe(f, crc)).map(|body| {
+                    self.body.clear();
+                    self.body.extend_from_slice(body);
+                }));
+            }
+        }
+    }
+}
+
+fn is_timeout(e: &io::Error) -> bool {
+    matches!(
+        e.kind(),
+        io::ErrorKind::TimedOut | io::ErrorKind::WouldBlock
+    )
+}
+
+/// A finished load: where the image went.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Loaded {
+    /// The slot written.
+    pub slot: Slot,
+    /// Its sequence number.
+    pub sequence: u32,
+}
+
+/// Loads `file`'s image into the PLC at the other end of `link`:
+/// `Begin`, every `Data`, `Commit`. `progress(sent, total)` is called
+/// after each chunk, in bytes.
+pub fn load<T: Read + Write>(
+    link: &mut Link<'_, T>,
+    file: &SlotFile,
+    mut progress: impl FnMut(u32, u32),
+) -> Result<Loaded, LinkError> {
+    let bytes: Vec<u8> = file.image.iter().flat_map(|w| w.to_le_bytes()).collect();
+    let total = bytes.len() as u32;
+    let begin = Request::Begin {
+        words: file.header.words,
+        image_crc: file.header.image_crc,
+        version: file.header.version,
+    };
+    expect_next(link, &begin, 0)?;
+    let chunks: Vec<Request<'_>> = data_requests(&bytes).collect();
+    let mut k = 0;
+    while let Some(request) = chunks.get(k) {
+        let Request::Data {
+            offset,
+            bytes: chunk,
+        } = *request
+        else {
+            unreachable!("data_requests gives Data")
+        };
+        let next = offset + chunk.len() as u32;
+        match link.request(request)? {
+            Response::Next { offset: expected } if expected == next => k += 1,
+            // The PLC expects an earlier chunk again (one of ours was lost).
+            Response::Next { offset: expected }
+                if expected < next && expected as usize % MAX_DATA == 0 =>
+            {
+                k = expected as usize / MAX_DATA;
+            }
+            Response::Refused(why) => {
+                return Err(LinkError::Refused {
+                    request: "Data",
+                    why,
+                })
+            }
+            other => {
+                return Err(LinkError::Unexpected {
+                    request: "Data",
+                    answer: format!("{other:?}"),
+                })
+            }
+        }
+        progress(next.min(total), total);
+    }
+    match link.request(&Request::Commit)? {
+        Response::Switched { slot, sequence } => Ok(Loaded { slot, sequence }),
+        Response::Refused(why) => Err(LinkError::Refused {
+            request: "Commit",
+            why,
+        }),
+        other => Err(LinkError::Unexpected {
+            request: "Commit",
+            answer: format!("{other:?}"),
+        }),
+    }
+}
+
+fn expect_next<T: Read + Write>(
+    link: &mut Link<'_, T>,
+    request: &Request<'_>,
+    offset: u32,
+) -> Result<(), LinkError> {
+    match link.request(request)? {
+        Response::Next { offset: o } if o == offset => Ok(()),
+        Response::Refused(why) => Err(LinkError::Refused {
+            request: name_of(request),
+            why,
+        }),
+        other => Err(LinkError::Unexpected {
+            request: name_of(request),
+            answer: format!("{other:?}"),
+        }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::loader::{Endpoint, Loader, Running};
+    use crate::slot::{choose, Check, RamSlots, SlotStore};
+    use std::collections::VecDeque;
+
+    static CRC: Crc<u32> = Crc::<u32>::new(&crate::CRC_ALGORITHM);
+
+    struct AnyImage;
+    impl Check for AnyImage {
+        fn check(&mut self, image: &[u32]) -> Result<(), u16> {
+            if image.first() == Some(&0) {
+                Err(9)
+            } else {
+                Ok(())
+            }
+        }
+    }
+
+    /// A PLC at the other end of a byte stream: an endpoint over RAM
+    /// slots, losing every `lose`-th answer.
+    struct SimulatedPlc {
+        a: Vec<u32>,
+        b: Vec<u32>,
+        endpoint: Endpoint<'static>,
+        out: VecDeque<u8>,
+        answers: usize,
+        lose: Option<usize>,
+    }
+
+    impl SimulatedPlc {
+        fn new(lose: Option<usize>) -> SimulatedPlc {
+            SimulatedPlc {
+                a: vec![u32::MAX; 512],
+                b: vec![u32::MAX; 512],
+                endpoint: Endpoint::new(Loader::new(&CRC, None)),
+                out: VecDeque::new(),
+                answers: 0,
+                lose,
+            }
+        }
+    }
+
+    impl Write for SimulatedPlc {
+        fn write(&mut self, bytes: &[u8]) -> io::Result<usize> {
+            let running = Running {
+                name: "sim",
+                image_crc: 0,
+            };
+            for &byte in bytes {
+                let mut slots = RamSlots::new(&mut self.a, &mut self.b);
+                let mut answer = self
+                    .endpoint
+                    .receive(byte, &mut slots, running)
+                    .map(<[u8]>::to_vec);
+                while self.endpoint.loader().is_checking() && answer.is_none() {
+                    answer = self
+                        .endpoint
+                        .poll(&mut slots, &mut AnyImage, 7)
+                        .map(|(_, frame)| frame.to_vec());
+                }
+                if let Some(frame) = answer {
+                    self.answers += 1;
+                    if self.lose.is_none_or(|n| self.answers % n != 0) {
+                        self.out.extend(frame);
+                    }
+                }
+            }
+            Ok(bytes.len())
+        }
+
+        fn flush(&mut self) -> io::Result<()> {
+            Ok(())
+        }
+    }
+
+    impl Read for SimulatedPlc {
+        fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+            match self.out.pop_front() {
+                Some(byte) if !buf.is_empty() => {
+                    buf[0] = byte;
+                    Ok(1)
+                }
+                _ => Err(io::ErrorKind::TimedOut.into()),
+            }
+        }
+    }
+
+    fn file(len: u32, first: u32) -> SlotFile {
+        let image = (0..len).map(|k| first.wrapping_add(k * 77)).collect();
+        SlotFile::new(image, 1, crate::header::version(1, 2, 3), &CRC)
+    }
+
+    #[test]
+    fn a_slot_file_round_trips_and_refuses_damage() {
+        let f = file(300, 5);
+        let bytes = f.to_bytes(&CRC);
+        assert_eq!(bytes.len(), (HEADER_WORDS + 300) * 4);
+        assert_eq!(SlotFile::parse(&bytes, &CRC), Ok(f));
+        assert_eq!(
+            SlotFile::parse(&bytes[..9], &CRC),
+            Err(SlotFileError::Unaligned(9))
+        );
+        let mut damaged = bytes.clone();
+        damaged[HEADER_WORDS * 4 + 17] ^= 4;
+        assert!(matches!(
+            SlotFile::parse(&damaged, &CRC),
+            Err(SlotFileError::ImageCrc { .. })
+        ));
+        assert_eq!(
+            SlotFile::parse(&bytes[..bytes.len() - 4], &CRC),
+            Err(SlotFileError::Header(HeaderFault::Length(300)))
+        );
+        let mut longer = bytes.clone();
+        longer.extend([0; 4]);
+        assert_eq!(
+            SlotFile::parse(&longer, &CRC),
+            Err(SlotFileError::Length {
+                expected: 300,
+                found: 301
+            })
+        );
+    }
+
+    #[test]
+    fn a_load_over_a_lossy_link_lands_in_the_slot() {
+        for lose in [None, Some(3), Some(5)] {
+            let mut plc = SimulatedPlc::new(lose);
+            let f = file(300, 5);
+            let mut seen = Vec::new();
+            let loaded = {
+                let mut link = Link::new(&mut plc, &CRC);
+                load(&mut link, &f, |sent, total| seen.push((sent, total))).expect("loads")
+            };
+            assert_eq!(
+                loaded,
+                Loaded {
+                    slot: Slot::A,
+                    sequence: 1
+                },
+                "lose {lose:?}"
+            );
+            assert_eq!(seen.last(), Some(&(1200, 1200)));
+            let slots = RamSlots::new(&mut plc.a, &mut plc.b);
+            let running = choose(&slots, &CRC, &mut AnyImage)
+                .running
+                .expect("A is valid");
+            assert_eq!(running.header.version, f.header.version);
+            assert_eq!(
+                &slots.contents(Slot::A)[HEADER_WORDS..HEADER_WORDS + 300],
+                &f.image[..]
+            );
+        }
+    }
+
+    #[test]
+    fn a_refused_image_is_reported_with_its_reason() {
+        let mut plc = SimulatedPlc::new(None);
+        let f = file(10, 0);
+        let mut link = Link::new(&mut plc, &CRC);
+        let err = load(&mut link, &f, |_, _| {}).expect_err("refused");
+        assert!(
+            matches!(
+                err,
+                LinkError::Refused {
+                    request: "Commit",
+                    why: Refusal::Rejected(crate::slot::Rejected::Structure(9))
+                }
+            ),
+            "{err}"
+        );
+        let too_big = file(600, 1);
+        let err = load(&mut link, &too_big, |_, _| {}).expect_err("refused");
+        assert!(
+            matches!(
+                err,
+                LinkError::Refused {
+                    request: "Begin",
+                    why: Refusal::TooLarge { .. }
+                }
+            ),
+            "{err}"
+        );
+    }
+}

@@ -1,0 +1,132 @@
+//! The messages of the serial link. The PC sends one [`Request`] and
+//! waits for its [`Response`] before it sends the next.
+//!
+//! A load is `Begin`, `Data` from offset 0 in order (each answered by
+//! `Next` with the offset the PLC expects next: a lost or repeated chunk
+//! is sent again from there), then `Commit`, answered by `Switched` once
+//! the image is checked and its header written, or `Refused`. `Abort`
+//! drops a load; `Status` may come at any time.
+
+use crate::slot::{Rejected, Slot};
+use serde::{Deserialize, Serialize};
+
+/// Most image bytes in one `Data` request: a multiple of 4 and of the
+/// 256-byte flash page of the boards.
+pub const MAX_DATA: usize = 256;
+
+/// What the PC asks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Request<'a> {
+    /// What runs, and how far a load has come.
+    Status,
+    /// Load an image of `words` words into the slot that does not run
+    /// (erasing it): its CRC and version as the slot header will record
+    /// them.
+    Begin {
+        /// Words of the image.
+        words: u32,
+        /// The image CRC the generator recorded.
+        image_crc: u32,
+        /// The program's version ([`crate::header::version`]).
+        version: u32,
+    },
+    /// Image bytes (words little-endian) from byte `offset`, at most
+    /// [`MAX_DATA`], a whole number of words.
+    Data {
+        /// Where the bytes go in the image, in bytes.
+        offset: u32,
+        /// The bytes.
+        #[serde(borrow)]
+        bytes: &'a [u8],
+    },
+    /// Check the image received and run it.
+    Commit,
+    /// Drop the load; the slot keeps no valid header.
+    Abort,
+}
+
+/// What the PLC answers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Response<'a> {
+    /// The answer to `Status`.
+    Status(#[serde(borrow)] Status<'a>),
+    /// Send the bytes from `offset` (the whole image is in when it is the
+    /// image's length in bytes).
+    Next {
+        /// The byte offset expected next.
+        offset: u32,
+    },
+    /// The image is checked, its header written: it runs from the next
+    /// scan on.
+    Switched {
+        /// The slot it is in.
+        slot: Slot,
+        /// Its sequence number.
+        sequence: u32,
+    },
+    /// The request is refused; what runs is unchanged.
+    Refused(Refusal),
+}
+
+/// What runs and what is being loaded.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Status<'a> {
+    /// The running project's name.
+    #[serde(borrow)]
+    pub name: &'a str,
+    /// The running program's slot, `None` for the built-in program.
+    pub slot: Option<Slot>,
+    /// The running program's version (0 for the built-in program).
+    pub version: u32,
+    /// The running program's image CRC.
+    pub image_crc: u32,
+    /// The byte offset the load in progress expects next.
+    pub loading: Option<u32>,
+}
+
+/// Why a request was refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Refusal {
+    /// `Data`, `Commit` or `Abort` without a `Begin`.
+    NotLoading,
+    /// The image does not fit a slot.
+    TooLarge {
+        /// Words of the image.
+        words: u32,
+        /// Words a slot holds for an image.
+        capacity: u32,
+    },
+    /// An empty image.
+    Empty,
+    /// `Data` at another offset than the one expected, or not a whole
+    /// number of words, or more than [`MAX_DATA`] bytes, or past the end.
+    Offset {
+        /// The byte offset expected.
+        expected: u32,
+    },
+    /// `Commit` before every byte arrived.
+    Incomplete {
+        /// The byte offset expected next.
+        expected: u32,
+    },
+    /// The image was checked and refused.
+    Rejected(Rejected),
+    /// The flash controller failed to erase or program the slot.
+    Flash,
+    /// A frame that was not a request (reported, then ignored).
+    Frame,
+}
+
+/// The `Data` requests that carry `image` (its words as little-endian
+/// bytes), [`MAX_DATA`] bytes each but the last: what a PC sends after
+/// `Begin`.
+pub fn data_requests(image: &[u8]) -> impl Iterator<Item = Request<'_>> {
+    image
+        .chunks(MAX_DATA)
+        .enumerate()
+        .map(|(k, bytes)| Request::Data {
+            offset: (k * MAX_DATA) as u32,
+            bytes,
+        })
+}
