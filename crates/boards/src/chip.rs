@@ -8,13 +8,17 @@ use core::fmt;
 /// ports, the packages its part names select, the pins the firmware keeps
 /// for itself, its edge-interrupt rule and its watchdog.
 ///
-/// [`STM32F411`](crate::STM32F411) is the one there is; another MCU is
-/// another `const Chip` added to [`CHIPS`](crate::CHIPS).
+/// [`STM32F411`](crate::STM32F411) and [`RP2040`](crate::RP2040) are
+/// the ones there are; another MCU is another `const Chip` added to
+/// [`CHIPS`](crate::CHIPS) (and a board module in the firmware,
+/// docs/board.md).
 #[derive(Debug, PartialEq, Eq)]
 pub struct Chip {
     /// The line's name, which every part name of it starts with
     /// (case-insensitive), such as `STM32F411`.
     pub name: &'static str,
+    /// How its pins are named: `PC13` (ports) or `GP25` (one bank).
+    pub naming: PinNaming,
     /// The GPIO ports, in letter order.
     pub ports: &'static [Port],
     /// How many pins a full port has (numbers `0..port_width`).
@@ -28,8 +32,22 @@ pub struct Chip {
     /// How many EXTI lines (edge interrupts) there are; see
     /// [`Chip::exti_line`].
     pub exti_lines: u8,
+    /// What an edge interrupt line is called, before its number
+    /// ([`Chip::exti_line`]): `EXTI` (`EXTI13`) on an STM32,
+    /// `GPIO` (`GPIO25`, one edge interrupt per pin) on the RP2040.
+    pub edge_line: &'static str,
     /// The independent watchdog.
     pub watchdog: Watchdog,
+}
+
+/// How a chip's pins are named.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PinNaming {
+    /// `P<port><number>`, such as `PA0` or `PC13` (STM32).
+    Ports,
+    /// `GP<number>`, such as `GP0` or `GP25`: one bank of numbered pins,
+    /// held as port [`PinId::BANK`] (RP2040).
+    Bank,
 }
 
 /// A GPIO port.
@@ -131,7 +149,10 @@ impl Chip {
             chip: self,
             kind,
         };
-        let pin: PinId = name.parse().map_err(|_| error(PinErrorKind::Shape))?;
+        let pin = match self.naming {
+            PinNaming::Ports => name.parse().map_err(|_| error(PinErrorKind::Shape))?,
+            PinNaming::Bank => PinId::parse_bank(name).ok_or(error(PinErrorKind::Shape))?,
+        };
         let Some(port) = self.port(pin.port) else {
             return Err(error(PinErrorKind::NoPort(pin.port)));
         };
@@ -223,6 +244,20 @@ impl fmt::Display for PinError<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let (name, chip) = (self.name, self.chip);
         let last = chip.port_width.saturating_sub(1);
+        if chip.naming == PinNaming::Bank {
+            let pins = chip.ports.first().map_or(0, |p| p.pins);
+            let last = pins.saturating_sub(1);
+            return match self.kind {
+                PinErrorKind::Shape | PinErrorKind::NoPort(_) => write!(
+                    f,
+                    "`{name}` is not a pin name of the {}: expected `GP<number>` such as `GP0` or `GP15` (GP0–GP{last})",
+                    chip.name
+                ),
+                PinErrorKind::PastPortWidth | PinErrorKind::ShortPort(..) => {
+                    write!(f, "`{name}`: the {} has GP0–GP{last}", chip.name)
+                }
+            };
+        }
         match self.kind {
             PinErrorKind::Shape => write!(
                 f,

@@ -30,6 +30,8 @@ pub struct PinNote {
     pub pins: &'static [PinId],
     /// Whether it matters only for an output on the pin.
     pub outputs_only: bool,
+    /// Whether it matters only for an input on the pin.
+    pub inputs_only: bool,
     /// What, as the end of a sentence that starts with the pin's name.
     pub text: &'static str,
 }
@@ -53,7 +55,14 @@ impl DevBoard {
     pub fn note(&self, pin: PinId, output: bool) -> Option<&'static str> {
         self.notes
             .iter()
-            .find(|n| n.pins.contains(&pin) && (output || !n.outputs_only))
+            .find(|n| {
+                n.pins.contains(&pin)
+                    && if output {
+                        !n.inputs_only
+                    } else {
+                        !n.outputs_only
+                    }
+            })
             .map(|n| n.text)
     }
 

@@ -3,7 +3,8 @@
 //!
 //! - pins by name ([`PinId`], `PC13`), the bias resistor of an input
 //!   ([`Pull`]) and a signal's pin in a generated pin map ([`SignalPin`]);
-//! - each supported chip ([`Chip`], [`CHIPS`]: today the [`STM32F411`]):
+//! - each supported chip ([`Chip`], [`CHIPS`]: the [`STM32F411`] and the
+//!   [`RP2040`]):
 //!   its GPIO ports, which pins each package bonds out ([`Package`]), the
 //!   pins the firmware keeps for itself ([`Reserved`]: SWD, the clock
 //!   input), the EXTI rule ([`Chip::exti_line`]: line *n* listens to pin
@@ -11,7 +12,7 @@
 //!   scan period, and from it the longest scan period a board project may
 //!   have, [`MAX_BOARD_SCAN_PERIOD_MS`]);
 //! - development boards ([`DevBoard`], [`DEV_BOARDS`]: the
-//!   [`NUCLEO_F411RE`]): the pins they wire to something by default and
+//!   [`NUCLEO_F411RE`] and the Raspberry Pi [`PICO`]): the pins they wire to something by default and
 //!   where pins are on their headers.
 //!
 //! Project validation (`plc-project`) checks a `[board]` section against
@@ -43,27 +44,32 @@ extern crate std;
 mod chip;
 mod dev_board;
 mod nucleo_f411re;
+mod pico;
 mod pin;
+mod rp2040;
 mod stm32f411;
 
-pub use chip::{Chip, Package, PinError, PinErrorKind, Port, Reserved, Watchdog};
+pub use chip::{Chip, Package, PinError, PinErrorKind, PinNaming, Port, Reserved, Watchdog};
 pub use dev_board::{DevBoard, PinNote};
 pub use nucleo_f411re::NUCLEO_F411RE;
+pub use pico::PICO;
 pub use pin::{NotAPinName, PinId, Pull, SignalPin};
+pub use rp2040::RP2040;
 pub use stm32f411::STM32F411;
 
 /// Every chip the board firmware is written for.
-pub const CHIPS: &[&Chip] = &[&STM32F411];
+pub const CHIPS: &[&Chip] = &[&STM32F411, &RP2040];
 
 /// Every development board whose default wiring is known.
-pub const DEV_BOARDS: &[&DevBoard] = &[&NUCLEO_F411RE];
+pub const DEV_BOARDS: &[&DevBoard] = &[&NUCLEO_F411RE, &PICO];
 
 /// The chip (part name, as probe-rs names it) when a project names none:
 /// the Nucleo-F411RE's.
 pub const DEFAULT_CHIP: &str = NUCLEO_F411RE.part;
 
-/// Longest scan period a board project may have (ms): the STM32F411's
-/// independent watchdog waits 4 periods for a scan to complete and cannot
+/// Longest scan period a Nucleo-F411RE project may have (ms; each chip's
+/// is its [`Watchdog::max_scan_period_ms`], the RP2040's 2000 ms): the
+/// STM32F411's independent watchdog waits 4 periods for a scan to complete and cannot
 /// wait longer than 32.7 s ([`Watchdog::max_scan_period_ms`]).
 pub const MAX_BOARD_SCAN_PERIOD_MS: u32 = STM32F411.watchdog.max_scan_period_ms();
 
@@ -194,6 +200,40 @@ mod tests {
             Some("Arduino D13, user LED LD2")
         );
         assert_eq!(b.place(PinId::new('A', 11)), None);
+    }
+
+    #[test]
+    fn the_rp2040_names_its_pins_gp0_to_gp29() {
+        let chip = chip_of("rp2040").unwrap();
+        assert_eq!(chip, &RP2040);
+        assert_eq!(chip.pin("gp28"), Ok(PinId::gp(28)));
+        assert_eq!(chip.pin("GP28").unwrap().to_string(), "GP28");
+        let error = |name: &str| chip.pin(name).unwrap_err().to_string();
+        assert_eq!(
+            error("PA0"),
+            "`PA0` is not a pin name of the RP2040: expected `GP<number>` such as `GP0` or `GP15` (GP0–GP29)"
+        );
+        assert_eq!(error("GP30"), "`GP30`: the RP2040 has GP0–GP29");
+        assert!(STM32F411.pin("GP3").is_err());
+        for n in [23, 24, 29] {
+            let why = chip.reserved(PinId::gp(n)).unwrap();
+            assert!(why.starts_with(&std::format!("GP{n} ")), "{why}");
+        }
+        assert_eq!(chip.reserved(PinId::gp(25)), None);
+        assert_eq!(chip.package("RP2040"), None);
+        assert_eq!(dev_board_of("RP2040"), Some(&PICO));
+        assert_eq!(PICO.place(PinId::gp(22)), Some("pin 29"));
+        assert!(PICO.note(PinId::gp(25), false).is_some());
+        assert_eq!(PICO.note(PinId::gp(25), true), None);
+    }
+
+    #[test]
+    fn the_rp2040_watchdog_allows_scans_up_to_two_seconds() {
+        let w = &RP2040.watchdog;
+        assert_eq!(w.max_scan_period_ms(), 2000);
+        assert!(w.timeout_ms(2000) <= w.max_timeout_ms);
+        // 0xffffff / 2 µs, what rp2040-hal's Watchdog::start accepts.
+        assert_eq!(w.max_timeout_ms, 0xff_ffff / 2 / 1000);
     }
 
     #[test]

@@ -21,16 +21,19 @@ pub const NUCLEO_F411RE: DevBoard = DevBoard {
         PinNote {
             pins: &[p('A', 2), p('A', 3)],
             outputs_only: false,
+            inputs_only: false,
             text: "carries USART2 to the ST-LINK virtual COM port on a Nucleo-F411RE and reaches the headers only after changing solder bridges (UM1724)",
         },
         PinNote {
             pins: &[p('C', 14), p('C', 15)],
             outputs_only: false,
+            inputs_only: false,
             text: "is wired to the 32.768 kHz crystal X2 on a Nucleo-F411RE and is not on the headers by default (UM1724)",
         },
         PinNote {
             pins: &[p('C', 13)],
             outputs_only: true,
+            inputs_only: false,
             text: "is the user button B1 on a Nucleo-F411RE: pressing it shorts the output to ground",
         },
     ],

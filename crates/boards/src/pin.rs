@@ -20,16 +20,48 @@ pub struct PinId {
 }
 
 impl PinId {
+    /// The port of a chip whose pins are one numbered bank
+    /// ([`PinNaming::Bank`](crate::PinNaming::Bank), the RP2040's `GP25`):
+    /// not a letter, so no STM32 port can be taken for it.
+    pub const BANK: char = '#';
+
     /// Port `port`, pin `number`.
     pub const fn new(port: char, number: u8) -> PinId {
         PinId { port, number }
     }
+
+    /// Pin `number` of a numbered bank ([`PinId::BANK`]): `GP<number>`.
+    pub const fn gp(number: u8) -> PinId {
+        PinId {
+            port: PinId::BANK,
+            number,
+        }
+    }
+
+    /// Parses `GP<number>` (one or two decimal digits, case-insensitive,
+    /// surrounding white space ignored) as a pin of a numbered bank.
+    pub fn parse_bank(s: &str) -> Option<PinId> {
+        let s = s.trim();
+        let digits = s
+            .get(..2)
+            .filter(|p| p.eq_ignore_ascii_case("GP"))
+            .and(s.get(2..))?;
+        if digits.is_empty() || digits.len() > 2 || !digits.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        Some(PinId::gp(digits.parse().ok()?))
+    }
 }
 
 impl fmt::Display for PinId {
-    /// `P<port><number>`, such as `PC13`.
+    /// `P<port><number>`, such as `PC13`; `GP<number>` for a pin of a
+    /// numbered bank ([`PinId::BANK`]), such as `GP25`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "P{}{}", self.port, self.number)
+        if self.port == PinId::BANK {
+            write!(f, "GP{}", self.number)
+        } else {
+            write!(f, "P{}{}", self.port, self.number)
+        }
     }
 }
 
@@ -120,6 +152,11 @@ mod tests {
         assert_eq!(PinId::new('C', 13).to_string(), "PC13");
         for text in ["", "P", "PA", "A0", "PA001", "PAx", "PA-1", "PA 1", "QA0"] {
             assert_eq!(text.parse::<PinId>(), Err(NotAPinName), "{text:?}");
+        }
+        assert_eq!(PinId::parse_bank(" gp25"), Some(PinId::gp(25)));
+        assert_eq!(PinId::gp(7).to_string(), "GP7");
+        for text in ["", "GP", "G25", "GP123", "GPx", "PA0", "GP 1", "GPIO2"] {
+            assert_eq!(PinId::parse_bank(text), None, "{text:?}");
         }
     }
 

@@ -1,7 +1,7 @@
 //! The STM32F411 (RM0383, DS10314): the chip of the Nucleo-F411RE and of
 //! the "Black Pill" boards.
 
-use crate::chip::{Chip, Package, Port, Reserved, Watchdog};
+use crate::chip::{Chip, Package, PinNaming, Port, Reserved, Watchdog};
 use crate::pin::PinId;
 
 /// Every pin of a 16-pin port.
@@ -12,6 +12,7 @@ const ALL: u16 = 0xffff;
 /// pins, has them all); SWD and the clock input are the firmware's.
 pub const STM32F411: Chip = Chip {
     name: "STM32F411",
+    naming: PinNaming::Ports,
     ports: &[
         Port { letter: 'A', pins: 16 },
         Port { letter: 'B', pins: 16 },
@@ -57,6 +58,7 @@ pub const STM32F411: Chip = Chip {
         },
     ],
     exti_lines: 16,
+    edge_line: "EXTI",
     // The IWDG runs on the 32 kHz LSI; with prescaler 256 and its 12-bit
     // reload it counts at most 32 767 ms (the HAL refuses 32 768 ms and
     // more).

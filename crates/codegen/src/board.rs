@@ -64,10 +64,11 @@ fn level_words(active_low: bool) -> &'static str {
 fn latch_words(project: &Project, mcu: &Chip, pin: &InputPin) -> String {
     let line = mcu.exti_line(pin.pin);
     match pin.edge_latch {
-        EdgeLatch::Latched => format!("edge-latched on EXTI{line}"),
+        EdgeLatch::Latched => format!("edge-latched on {}{line}", mcu.edge_line),
         EdgeLatch::Debounced => "not edge-latched: debounced".to_owned(),
         EdgeLatch::LineTaken(owner) => format!(
-            "not edge-latched: EXTI{line} belongs to `{}`",
+            "not edge-latched: {}{line} belongs to `{}`",
+            mcu.edge_line,
             doc_text(&project.inputs[owner].name)
         ),
     }

@@ -161,7 +161,7 @@ const ERRORS: &[(&str, &str)] = &[
     ),
     (
         "[board]\nchip = \"STM32F103C8\" # <-\n",
-        "chip `STM32F103C8` is not supported: the board firmware is written for the STM32F411 (probe-rs part names that start so, such as `STM32F411RETx`, the Nucleo-F411RE's)",
+        "chip `STM32F103C8` is not supported: the board firmware is written for the STM32F411 and the RP2040 (probe-rs part names that start so, such as `STM32F411RETx`, the Nucleo-F411RE's; `RP2040`, the Raspberry Pi Pico's)",
     ),
 ];
 

@@ -18,17 +18,20 @@
 //! `boards`, one `boards::Chip` per supported chip); this module applies
 //! it to the section:
 //!
-//! - `chip` must name a supported chip (`boards::chip_of`: an STM32F411,
-//!   the firmware's HAL); its package letter (`R`: 64 pins, `C`: 48 pins)
-//!   limits the pins that exist (`boards::Package`).
+//! - `chip` must name a supported chip (`boards::chip_of`: an STM32F411
+//!   or the RP2040, the chips the firmware has a board module for); an
+//!   STM32F411's package letter (`R`: 64 pins, `C`: 48 pins) limits the
+//!   pins that exist (`boards::Package`).
 //! - Every key names a declared input (under `inputs`) or output (under
 //!   `outputs`); a pin is `P<port><n>`, ports A–E and H, pins 0–15 (port H:
-//!   PH0 and PH1), case-insensitive (`boards::Chip::pin`). PA13/PA14 (SWD,
-//!   which flashes the board and carries the log) and PH0 (the HSE clock
-//!   input) are refused (`boards::Chip::reserved`).
+//!   PH0 and PH1), case-insensitive (`boards::Chip::pin`); on the RP2040
+//!   `GP<n>`, GP0–GP29. PA13/PA14 (SWD, which flashes the board and
+//!   carries the log) and PH0 (the HSE clock input) are refused, and on
+//!   the RP2040 the Pico's GP23, GP24 and GP29 (`boards::Chip::reserved`).
 //! - No pin carries two signals; `pull` is `up`, `down` or `none`.
-//! - `scan_period_ms` is at most [`MAX_BOARD_SCAN_PERIOD_MS`] (the
-//!   watchdog waits 4 periods and at most 32.7 s:
+//! - `scan_period_ms` is at most the chip's limit (the watchdog waits 4
+//!   periods: [`MAX_BOARD_SCAN_PERIOD_MS`] on the STM32F411, whose
+//!   watchdog waits at most 32.7 s; 2000 ms on the RP2040, 8.3 s:
 //!   `boards::Watchdog::max_scan_period_ms`).
 //! - Warnings: an input without a pin (the firmware reads 0), an output
 //!   without a pin (computed, not driven), Nucleo-F411RE pins that are
@@ -341,14 +344,17 @@ impl Validator<'_> {
 /// ([`boards::CHIPS`]) and, as examples, the part of each development board
 /// ([`boards::DEV_BOARDS`]).
 fn unsupported_chip(chip: &str) -> String {
-    let lines: Vec<String> = boards::CHIPS.iter().map(|c| c.name.to_owned()).collect();
+    let names: Vec<&str> = boards::CHIPS.iter().map(|c| c.name).collect();
+    let lines = match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} and the {last}", rest.join(", the ")),
+        _ => names.join(""),
+    };
     let examples: Vec<String> = boards::DEV_BOARDS
         .iter()
         .map(|b| format!("`{}`, the {}'s", b.part, b.name))
         .collect();
     format!(
-        "chip `{chip}` is not supported: the board firmware is written for the {} (probe-rs part names that start so, such as {})",
-        lines.join(", the "),
+        "chip `{chip}` is not supported: the board firmware is written for the {lines} (probe-rs part names that start so, such as {})",
         examples.join("; ")
     )
 }
