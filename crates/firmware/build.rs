@@ -10,7 +10,8 @@
 //!   benchmark (Rust source); `cargo xtask guard-bench` writes and sets it.
 //!
 //! The program goes to `OUT_DIR/program.rs`. The memory layout (the
-//! board's or QEMU's, from `layout/`) is copied to `OUT_DIR/plc-layout.x`,
+//! board's, `stm32f411re.x` or with feature `pico` `rp2040.x`, or QEMU's,
+//! from `layout/`) is copied to `OUT_DIR/plc-layout.x`,
 //! which the workspace root's `memory.x` includes.
 //!
 //! Feature `board` (the default): the board binary links defmt's linker
@@ -88,8 +89,11 @@ fn main() {
     }
 
     // The root memory.x (found first by the linker) includes plc-layout.x.
+    let pico = std::env::var_os("CARGO_FEATURE_PICO").is_some();
     let layout = manifest.join(if qemu || guard_bench {
         "layout/mps2-an386.x"
+    } else if pico {
+        "layout/rp2040.x"
     } else {
         "layout/stm32f411re.x"
     });

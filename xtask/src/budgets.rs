@@ -57,6 +57,15 @@ pub struct ModelBudget {
     pub board_flash: Option<u64>,
     /// Static RAM of the board firmware.
     pub board_ram: Option<u64>,
+    /// The model wired to a Raspberry Pi Pico (a project file with `chip
+    /// = "RP2040"`): `cargo xtask size` also builds the RP2040 firmware
+    /// (feature `pico`, thumbv6m-none-eabi) for it.
+    pub pico_project: Option<String>,
+    /// Flash of the RP2040 firmware (the 256-byte second-stage bootloader
+    /// included).
+    pub pico_flash: Option<u64>,
+    /// Static RAM of the RP2040 firmware.
+    pub pico_ram: Option<u64>,
 }
 
 fn yes() -> bool {
@@ -108,6 +117,9 @@ impl ModelBudget {
             qemu_ram: None,
             board_flash: None,
             board_ram: None,
+            pico_project: None,
+            pico_flash: None,
+            pico_ram: None,
         }
     }
 
@@ -125,11 +137,26 @@ impl ModelBudget {
         .collect()
     }
 
-    /// Violations of the board budgets.
-    pub fn check_board(&self, model: &str, flash: u64, ram: u64) -> Vec<String> {
+    /// Violations of the board budgets (`pico`: the RP2040 firmware's).
+    pub fn check_board(&self, model: &str, pico: bool, flash: u64, ram: u64) -> Vec<String> {
+        let (what_flash, budget_flash, what_ram, budget_ram) = if pico {
+            (
+                "pico flash",
+                self.pico_flash,
+                "pico static RAM",
+                self.pico_ram,
+            )
+        } else {
+            (
+                "board flash",
+                self.board_flash,
+                "board static RAM",
+                self.board_ram,
+            )
+        };
         [
-            over(model, "board flash", flash, self.board_flash),
-            over(model, "board static RAM", ram, self.board_ram),
+            over(model, what_flash, flash, budget_flash),
+            over(model, what_ram, ram, budget_ram),
         ]
         .into_iter()
         .flatten()

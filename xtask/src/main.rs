@@ -302,8 +302,9 @@ fn ci() -> Result {
     // the tests above just built (a few seconds once Chromium is there).
     browser::run_task(&["--no-build".into()])?;
     // The firmware: QEMU replay of every model against host-sim (zero
-    // mismatches, instruction budgets), then the board build's sizes, then
-    // clippy on both firmware builds for the target.
+    // mismatches, instruction budgets), then the board builds' sizes
+    // (Nucleo-F411RE and Raspberry Pi Pico), then clippy on the firmware
+    // builds for their targets.
     qemu::run_task(&[])?;
     // The guard forms on the target: node tables and sums of products
     // must agree on every evaluation (15 s once built).
@@ -320,6 +321,11 @@ fn ci() -> Result {
         "-D",
         "warnings",
     ]))?;
+    // The Raspberry Pi Pico's firmware (RP2040, thumbv6m), on its press.
+    run(size::Firmware::PICO
+        .cargo("clippy")
+        .args(["--", "-D", "warnings"])
+        .env("PLC_PROJECT", "models/press_pico.plc.toml"))?;
     run(cargo()
         .args([
             "clippy",

@@ -1,5 +1,8 @@
 //! `cargo xtask size`: flash and static RAM of the board firmware for
-//! every model of `budgets.toml`, checked against the board budgets.
+//! every model of `budgets.toml`, checked against the board budgets: the
+//! Nucleo-F411RE build (STM32F411, `thumbv7em-none-eabihf`) of every model
+//! with a board, and the Raspberry Pi Pico build (RP2040, feature `pico`,
+//! `thumbv6m-none-eabi`) of every model with a `pico_project`.
 
 use crate::budgets::Budgets;
 use crate::{cargo, root, run, Result};
@@ -58,6 +61,63 @@ pub fn llvm_size(elf: &Path) -> Result<(u64, u64)> {
     Ok((text + data, data + bss))
 }
 
+/// One board firmware build: its name in the table, the cargo features
+/// and the target.
+pub struct Firmware {
+    /// The board's name in the size table.
+    pub board: &'static str,
+    /// `--features` (with `--no-default-features`).
+    pub features: &'static str,
+    /// The target triple.
+    pub target: &'static str,
+}
+
+impl Firmware {
+    /// The Nucleo-F411RE (STM32F411, the default feature).
+    pub const NUCLEO: Firmware = Firmware {
+        board: "nucleo-f411re",
+        features: "nucleo-f411re",
+        target: "thumbv7em-none-eabihf",
+    };
+    /// The Raspberry Pi Pico (RP2040).
+    pub const PICO: Firmware = Firmware {
+        board: "pico",
+        features: "pico",
+        target: "thumbv6m-none-eabi",
+    };
+
+    /// `cargo` with the firmware's package, features and target after
+    /// `verb` (`build`, `clippy`), in release mode.
+    pub fn cargo(&self, verb: &str) -> Command {
+        let mut cmd = cargo();
+        cmd.args([
+            verb,
+            "--release",
+            "-p",
+            "firmware",
+            "--no-default-features",
+            "--features",
+            self.features,
+            "--target",
+            self.target,
+        ]);
+        cmd
+    }
+
+    /// Builds the board binary of `project` (table backend): the board's
+    /// name, whether it is the Pico, and the ELF's flash and static RAM.
+    fn build(&self, project: &str) -> Result<(&'static str, bool, u64, u64)> {
+        run(self
+            .cargo("build")
+            .args(["--bin", "firmware"])
+            .env("PLC_PROJECT", project)
+            .env("PLC_BACKEND", "table"))?;
+        let elf = crate::target_dir().join(format!("{}/release/firmware", self.target));
+        let (flash, ram) = llvm_size(&elf)?;
+        Ok((self.board, self.features == "pico", flash, ram))
+    }
+}
+
 pub fn run_task(args: &[String]) -> Result {
     let budgets = Budgets::load()?;
     let mut failures = Vec::new();
@@ -66,35 +126,31 @@ pub fn run_task(args: &[String]) -> Result {
         if !args.is_empty() && !args.iter().any(|a| a == name || *a == model.project) {
             continue;
         }
-        if !model.board {
-            continue;
+        let mut builds = Vec::new();
+        if model.board {
+            builds.push(Firmware::NUCLEO.build(&model.project)?);
         }
-        run(cargo()
-            .args([
-                "build",
-                "--release",
-                "-p",
-                "firmware",
-                "--bin",
-                "firmware",
-                "--target",
-                "thumbv7em-none-eabihf",
-            ])
-            .env("PLC_PROJECT", &model.project)
-            .env("PLC_BACKEND", "table"))?;
-        let elf = crate::target_dir().join("thumbv7em-none-eabihf/release/firmware");
-        let (flash, ram) = llvm_size(&elf)?;
-        failures.extend(model.check_board(name, flash, ram));
-        rows.push((name.clone(), flash, ram, model.board_flash, model.board_ram));
+        if let Some(project) = &model.pico_project {
+            builds.push(Firmware::PICO.build(project)?);
+        }
+        for (board, pico, flash, ram) in builds {
+            failures.extend(model.check_board(name, pico, flash, ram));
+            let (bf, br) = if pico {
+                (model.pico_flash, model.pico_ram)
+            } else {
+                (model.board_flash, model.board_ram)
+            };
+            rows.push((name.clone(), board, flash, ram, bf, br));
+        }
     }
     println!(
-        "\n{:<12} {:>10} {:>10} {:>12} {:>12}",
-        "model", "flash", "ram", "flash budget", "ram budget"
+        "\n{:<14} {:<14} {:>10} {:>10} {:>12} {:>12}",
+        "model", "board", "flash", "ram", "flash budget", "ram budget"
     );
     let show = |v: Option<u64>| v.map_or("-".to_owned(), |v| v.to_string());
-    for (name, flash, ram, bf, br) in rows {
+    for (name, board, flash, ram, bf, br) in rows {
         println!(
-            "{name:<12} {flash:>10} {ram:>10} {:>12} {:>12}",
+            "{name:<14} {board:<14} {flash:>10} {ram:>10} {:>12} {:>12}",
             show(bf),
             show(br)
         );

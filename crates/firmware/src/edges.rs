@@ -54,7 +54,8 @@ impl<const N: usize> ChangeCounts<N> {
     }
 }
 
-/// How many EXTI lines the chip has (`MCU.exti_lines`, 16); line *n*
+/// How many edge lines the chip has (`MCU.exti_lines`: 16 EXTI lines on
+/// the STM32F411, 30 on the RP2040, one per GPIO); line *n*
 /// listens to pin *n* of one port (`boards::Chip::exti_line`).
 const LINES: usize = crate::MCU.exti_lines as usize;
 
@@ -75,7 +76,7 @@ impl LineMap {
         let mut i = 0;
         while i < lines.len() {
             if let Some(line) = lines[i] {
-                assert!((line as usize) < LINES, "EXTI lines are 0 to 15");
+                assert!((line as usize) < LINES, "a line past the chip's edge lines");
                 assert!(
                     inputs[line as usize].is_none(),
                     "two inputs latched on one EXTI line"
@@ -171,7 +172,7 @@ mod tests {
     }
 
     #[test]
-    #[should_panic(expected = "EXTI lines are 0 to 15")]
+    #[should_panic(expected = "a line past the chip's edge lines")]
     fn lines_stop_at_15() {
         let _ = LineMap::new(&[Some(16)]);
     }

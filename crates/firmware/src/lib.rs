@@ -25,10 +25,16 @@ pub mod edges;
 pub mod icount;
 pub mod levels;
 
-/// The chip the board firmware is written for (its HAL is the
-/// STM32F411's): the pins it keeps for itself, its EXTI lines, its
-/// watchdog.
+/// The chip the board firmware is built for (feature `pico`: the RP2040;
+/// otherwise the STM32F411, the default board's): the pins it keeps for
+/// itself, its edge interrupt lines, its watchdog.
+#[cfg(not(feature = "pico"))]
 pub const MCU: &boards::Chip = &boards::STM32F411;
+/// The chip the board firmware is built for (feature `pico`: the RP2040;
+/// otherwise the STM32F411, the default board's): the pins it keeps for
+/// itself, its edge interrupt lines, its watchdog.
+#[cfg(feature = "pico")]
+pub const MCU: &boards::Chip = &boards::RP2040;
 
 /// The generated program: `PROGRAM`, `Memory`, `CONFIG`, the name
 /// modules (`input`, `output`, `event`, `supervisor`, `states`) and, for a

@@ -7,8 +7,7 @@
 //! Only what changes is logged per scan, so a quiet plant costs nothing
 //! and the log stays readable.
 
-use crate::board::clocks::Source;
-use crate::board::watchdog::ResetCause;
+use crate::scan::{ResetCause, Startup};
 use executor::memory::Memory;
 use executor::pacing::ScanStart;
 use executor::program::Index;
@@ -21,18 +20,18 @@ fn event_name(e: Index) -> &'static str {
 }
 
 /// The start-up line.
-pub fn startup(reset: ResetCause, source: Source, sysclk_hz: u32, watchdog_ms: u32) {
+pub fn startup(startup: &Startup, watchdog_ms: u32) {
     defmt::info!(
-        "PLC `{=str}` on {=str}: reset cause {}, {=u32} Hz from {}, scan every {=u32} ms, watchdog {=u32} ms",
+        "PLC `{=str}` on {=str}: reset cause {}, {=u32} Hz from {=str}, scan every {=u32} ms, watchdog {=u32} ms",
         CONFIG.name,
         firmware::program::board::CHIP,
-        reset,
-        sysclk_hz,
-        source,
+        startup.reset,
+        startup.sysclk_hz,
+        startup.clock_source,
         CONFIG.scan_period_ms,
         watchdog_ms
     );
-    if reset == ResetCause::Watchdog {
+    if startup.reset == ResetCause::Watchdog {
         defmt::warn!("the watchdog reset the board: a scan did not complete in time");
     }
     defmt::info!(
@@ -117,36 +116,43 @@ fn entered(record: &ScanRecord<'_>, fault: Fault) {
     }
 }
 
-/// Scan durations since the last status line, in core cycles.
+/// Scan durations since the last status line, in board timer ticks
+/// (`Board::timer`), in 32-bit arithmetic: a 64-bit division would link
+/// about 900 bytes of `u64_div_rem` on the Cortex-M. A 10 s window holds
+/// at most 10^9 ticks of scans at 100 MHz (the sum saturates at 4.3·10^9).
 #[derive(Debug, Default)]
 pub struct ScanTimes {
     scans: u32,
-    total: u64,
+    total: u32,
     max: u32,
 }
 
 impl ScanTimes {
-    /// One scan of `cycles`.
-    pub fn add(&mut self, cycles: u32) {
-        self.scans += 1;
-        self.total += u64::from(cycles);
-        self.max = self.max.max(cycles);
+    /// One scan of `ticks`.
+    pub fn add(&mut self, ticks: u32) {
+        self.scans = self.scans.saturating_add(1);
+        self.total = self.total.saturating_add(ticks);
+        self.max = self.max.max(ticks);
     }
 }
 
-/// The status line; starts a new scan-time window.
-pub fn status<P: Program, M: Memory>(controller: &Controller<P, M>, times: &mut ScanTimes) {
-    let cycles_per_us = crate::board::clocks::SYSCLK_HZ / 1_000_000;
-    let mean = times.total / u64::from(times.scans.max(1));
+/// The status line (`ticks_per_us`: the board timer's rate); starts a new
+/// scan-time window.
+pub fn status<P: Program, M: Memory>(
+    controller: &Controller<P, M>,
+    times: &mut ScanTimes,
+    ticks_per_us: u32,
+) {
+    let mean = times.total / times.scans.max(1);
     defmt::info!(
-        "status: {=u32} scans, fault {}, {}, states {=[?]}, outputs {=[?]}, scan time mean {=u64} us max {=u32} us",
+        "status: {=u32} scans, fault {}, {}, states {=[?]}, outputs {=[?]}, scan time mean {=u32} us max {=u32} us",
         controller.next_scan(),
         controller.fault(),
         controller.counters(),
         controller.states(),
         controller.outputs(),
-        mean / u64::from(cycles_per_us),
-        times.max / cycles_per_us
+        mean / ticks_per_us,
+        times.max / ticks_per_us
     );
     *times = ScanTimes::default();
 }

@@ -14,12 +14,22 @@ pub const SYSCLK_HZ: u32 = 100_000_000;
 const HSE_HZ: u32 = 8_000_000;
 
 /// Where the PLL's input comes from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, defmt::Format)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Source {
     /// The 8 MHz ST-LINK clock on PH0 (HSE bypass).
     Hse,
     /// The internal 16 MHz RC oscillator.
     Hsi,
+}
+
+impl Source {
+    /// Its name in the start-up line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Source::Hse => "Hse",
+            Source::Hsi => "Hsi",
+        }
+    }
 }
 
 /// Whether an external clock drives PH0: HSE in bypass mode becomes ready

@@ -1,6 +1,6 @@
 //! GPIO: the pins of the generated pin map (`program::board`), configured
-//! once and kept as type-erased HAL pins indexed like the input and output
-//! images.
+//! once and kept as type-erased HAL pins (embedded-hal 1.0 pins) in the
+//! scan loop's [`Pins`], indexed like the input and output images.
 //!
 //! Every pin of every port goes through [`Io::claim`]; which input or
 //! output (if any) it carries is looked up at compile time (`Slot`), so an
@@ -10,13 +10,13 @@
 //! refuses them too, and a const assertion below makes a hand-edited pin
 //! map fail to build.
 
-use firmware::levels;
+use crate::scan::{idle_state, Pins};
+use embedded_hal::digital::PinState;
 use firmware::program::board::{self, INPUT_PINS, OUTPUT_PINS};
-use firmware::program::{input, output, INPUT_WORDS};
 use firmware::MCU;
 use stm32f4xx_hal::gpio::{
     self, gpioa, gpiob, gpioc, gpiod, gpioe, gpioh, Edge, ErasedPin, ExtiPin, Input, Output,
-    PinMode, PinState, PushPull,
+    PinMode, PushPull,
 };
 use stm32f4xx_hal::pac::EXTI;
 use stm32f4xx_hal::syscfg::SysCfg;
@@ -109,14 +109,6 @@ fn hal_pull(pull: board::Pull) -> gpio::Pull {
     }
 }
 
-fn pin_state(high: bool) -> PinState {
-    if high {
-        PinState::High
-    } else {
-        PinState::Low
-    }
-}
-
 /// The GPIO ports, split by the HAL (which enables their clocks).
 pub struct Ports {
     /// Port A.
@@ -141,20 +133,14 @@ macro_rules! claim_pins {
 }
 
 /// The configured pins: one slot per input and per output.
-pub struct Io {
-    inputs: [Option<ErasedPin<Input>>; input::COUNT],
-    outputs: [Option<ErasedPin<Output<PushPull>>>; output::COUNT],
-}
+pub type Io = Pins<ErasedPin<Input>, ErasedPin<Output<PushPull>>>;
 
-impl Io {
-    /// Configures the pins of the pin map: inputs with their pull
-    /// resistor, outputs push-pull at the level of signal 0 (the output
-    /// image before the first scan).
-    pub fn new(ports: Ports) -> Io {
-        let mut io = Io {
-            inputs: [const { None }; input::COUNT],
-            outputs: [const { None }; output::COUNT],
-        };
+/// Configures the pins of the pin map: inputs with their pull resistor,
+/// outputs push-pull at the level of signal 0 (the output image before
+/// the first scan).
+pub fn configure(ports: Ports) -> Io {
+    let mut io = Io::default();
+    {
         let Ports { a, b, c, d, e, h } = ports;
         // PA13/PA14 (SWD, `MCU.reserved`) are not offered.
         claim_pins!(
@@ -196,10 +182,17 @@ impl Io {
         );
         // PH0 (HSE input, `MCU.reserved`) is not offered.
         claim_pins!(io, h, [ph1]);
-        io
     }
+    io
+}
 
+/// Claims pins for [`configure`].
+trait Claim {
     /// Configures `pin` for the signal it carries, if any.
+    fn claim<const P: char, const N: u8, MODE: PinMode>(&mut self, pin: gpio::Pin<P, N, MODE>);
+}
+
+impl Claim for Io {
     fn claim<const P: char, const N: u8, MODE: PinMode>(&mut self, pin: gpio::Pin<P, N, MODE>) {
         if let Some(i) = Slot::<P, N>::INPUT {
             if let Some(spec) = INPUT_PINS[i] {
@@ -207,46 +200,26 @@ impl Io {
             }
         } else if let Some(o) = Slot::<P, N>::OUTPUT {
             if let Some(spec) = OUTPUT_PINS[o] {
-                let idle = pin_state(levels::pin_high(false, spec.active_low));
+                let idle = match idle_state(&spec) {
+                    PinState::High => gpio::PinState::High,
+                    PinState::Low => gpio::PinState::Low,
+                };
                 self.outputs[o] = Some(Output::<PushPull>::new(pin, idle).erase());
             }
         }
     }
+}
 
-    /// Makes every edge-latched input (`board::EDGE_LATCHED`) interrupt on
-    /// both edges of its EXTI line; the caller unmasks the lines in the
-    /// NVIC.
-    pub fn latch_edges(&mut self, syscfg: &mut SysCfg, exti: &mut EXTI) {
-        for (pin, latched) in self.inputs.iter_mut().zip(board::EDGE_LATCHED) {
-            if let (Some(pin), true) = (pin, latched) {
-                pin.make_interrupt_source(syscfg);
-                pin.trigger_on_edge(exti, Edge::RisingFalling);
-                pin.enable_interrupt(exti);
-                pin.clear_interrupt_pending_bit();
-            }
-        }
-    }
-
-    /// The raw input image, packed as the controller takes it (input `i`
-    /// at bit `i % 32` of word `i / 32`): each wired input's signal
-    /// (active-low pins inverted), 0 for inputs without a pin.
-    pub fn read(&self) -> [u32; INPUT_WORDS] {
-        let mut raw = [0u32; INPUT_WORDS];
-        for (i, (pin, spec)) in self.inputs.iter().zip(&INPUT_PINS).enumerate() {
-            if let (Some(pin), Some(spec)) = (pin, spec) {
-                let on = levels::signal(pin.is_high(), spec.active_low);
-                raw[i / 32] |= u32::from(on) << (i % 32);
-            }
-        }
-        raw
-    }
-
-    /// Drives every wired output to the level of its signal in `image`.
-    pub fn write(&mut self, image: &[bool]) {
-        for ((pin, spec), &value) in self.outputs.iter_mut().zip(&OUTPUT_PINS).zip(image) {
-            if let (Some(pin), Some(spec)) = (pin, spec) {
-                pin.set_state(pin_state(levels::pin_high(value, spec.active_low)));
-            }
+/// Makes every edge-latched input (`board::EDGE_LATCHED`) interrupt on
+/// both edges of its EXTI line; the caller unmasks the lines in the
+/// NVIC.
+pub fn latch_edges(io: &mut Io, syscfg: &mut SysCfg, exti: &mut EXTI) {
+    for (pin, latched) in io.inputs.iter_mut().zip(board::EDGE_LATCHED) {
+        if let (Some(pin), true) = (pin, latched) {
+            pin.make_interrupt_source(syscfg);
+            pin.trigger_on_edge(exti, Edge::RisingFalling);
+            pin.enable_interrupt(exti);
+            pin.clear_interrupt_pending_bit();
         }
     }
 }

@@ -11,6 +11,7 @@
 //! can then go unreported, never be reported falsely.
 
 use super::pins::Io;
+use crate::scan::Changes;
 use core::cell::{Cell, RefCell};
 use cortex_m::peripheral::NVIC;
 use critical_section::{CriticalSection, Mutex};
@@ -19,9 +20,6 @@ use firmware::program::board::{EDGE_LATCHED, INPUT_PINS};
 use firmware::program::{input, INPUT_WORDS};
 use stm32f4xx_hal::interrupt;
 use stm32f4xx_hal::pac::{Interrupt, EXTI};
-
-/// Changes per input since the last sample.
-pub type Changes = ChangeCounts<{ input::COUNT }>;
 
 /// The EXTI line of each edge-latched input (`MCU.exti_line`: its number).
 const fn latched_lines() -> [Option<u8>; input::COUNT] {
@@ -62,7 +60,7 @@ fn interrupts(mask: u32) -> impl Iterator<Item = Interrupt> {
     .map(|(_, irq)| irq)
 }
 
-/// Hands the EXTI (configured by [`Io::latch_edges`]) to the handlers and
+/// Hands the EXTI (configured by [`super::pins::latch_edges`]) to the handlers and
 /// unmasks the interrupts of the lines in use.
 pub fn start(exti: EXTI) {
     critical_section::with(|cs| {
@@ -109,7 +107,7 @@ fn service(cs: CriticalSection<'_>, mask: u32) {
 
 /// The raw input image and the changes since the previous sample, taken
 /// together.
-pub fn sample(io: &Io) -> ([u32; INPUT_WORDS], Changes) {
+pub fn sample(io: &mut Io) -> ([u32; INPUT_WORDS], Changes) {
     critical_section::with(|cs| {
         service(cs, LINES.mask());
         let raw = io.read();

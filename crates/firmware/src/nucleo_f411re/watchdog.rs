@@ -2,6 +2,7 @@
 //! loop feeds it once per completed scan; a loop that stops scanning
 //! resets the chip, and the next start-up logs why it reset.
 
+use crate::scan::ResetCause;
 use stm32f4xx_hal::pac::{DBGMCU, IWDG, RCC};
 use stm32f4xx_hal::prelude::*;
 use stm32f4xx_hal::watchdog::IndependentWatchdog;
@@ -16,23 +17,6 @@ pub fn start(iwdg: IWDG, dbgmcu: &DBGMCU, timeout_ms: u32) -> IndependentWatchdo
     watchdog.stop_on_debug(dbgmcu, true);
     watchdog.start(timeout_ms.millis());
     watchdog
-}
-
-/// Why the chip started.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, defmt::Format)]
-pub enum ResetCause {
-    /// The independent watchdog expired: the scan loop stopped.
-    Watchdog,
-    /// The window watchdog (not used by this firmware).
-    WindowWatchdog,
-    /// Software reset (a probe's `reset`, or a panic under probe-rs).
-    Software,
-    /// Low-power management reset.
-    LowPower,
-    /// Power-on or brown-out.
-    PowerOn,
-    /// The reset pin (the Nucleo's black button B2).
-    Pin,
 }
 
 /// Reads why the chip reset and clears the flags for the next time.

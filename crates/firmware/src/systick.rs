@@ -1,6 +1,7 @@
-//! The millisecond clock: SysTick interrupts at 1 kHz and counts into a
-//! `u32` (wrapping after 49.7 days, which the executor handles) shared
-//! through a critical section. It also stamps every defmt log line.
+//! The millisecond clock of every board: SysTick (in every Cortex-M core)
+//! interrupts at 1 kHz and counts into a `u32` (wrapping after 49.7 days,
+//! which the executor handles) shared through a critical section. It also
+//! stamps every defmt log line.
 
 use core::cell::Cell;
 use cortex_m::peripheral::syst::SystClkSource;
