@@ -38,6 +38,8 @@ mod pico;
 #[cfg(all(target_os = "none", feature = "pico", not(feature = "nucleo-f411re")))]
 use pico as board;
 #[cfg(target_os = "none")]
+mod panic;
+#[cfg(target_os = "none")]
 mod report;
 #[cfg(target_os = "none")]
 mod scan;
@@ -48,7 +50,6 @@ mod systick;
 #[cortex_m_rt::entry]
 fn main() -> ! {
     use defmt_rtt as _;
-    use panic_probe as _;
 
     let (board, startup) = board::init();
     scan::run(board, startup)

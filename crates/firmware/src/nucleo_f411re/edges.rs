@@ -12,7 +12,7 @@
 
 use super::pins::Io;
 use crate::scan::Changes;
-use core::cell::{Cell, RefCell};
+use core::cell::Cell;
 use cortex_m::peripheral::NVIC;
 use critical_section::{CriticalSection, Mutex};
 use firmware::edges::{ChangeCounts, LineMap};
@@ -41,9 +41,6 @@ const LINES: LineMap = LineMap::new(&latched_lines());
 /// Change counts, written by the EXTI handlers, taken by [`sample`].
 static CHANGES: Mutex<Cell<Changes>> = Mutex::new(Cell::new(ChangeCounts::new()));
 
-/// The EXTI peripheral, owned by the handlers once [`start`] ran.
-static EXTI_PERIPHERAL: Mutex<RefCell<Option<EXTI>>> = Mutex::new(RefCell::new(None));
-
 /// The NVIC interrupts of the lines in use.
 fn interrupts(mask: u32) -> impl Iterator<Item = Interrupt> {
     [
@@ -60,12 +57,13 @@ fn interrupts(mask: u32) -> impl Iterator<Item = Interrupt> {
     .map(|(_, irq)| irq)
 }
 
-/// Hands the EXTI (configured by [`super::pins::latch_edges`]) to the handlers and
-/// unmasks the interrupts of the lines in use.
-pub fn start(exti: EXTI) {
-    critical_section::with(|cs| {
-        EXTI_PERIPHERAL.borrow_ref_mut(cs).replace(exti);
-    });
+/// Hands the EXTI (configured by [`super::pins::latch_edges`]) to the
+/// handlers and unmasks the interrupts of the lines in use. The handlers
+/// reach its pending register through its address ([`pending_register`]):
+/// the peripheral is consumed here, so nothing else can touch it, and no
+/// `RefCell` (whose borrow panics link `core::fmt`'s padding code, 1.3 KB)
+/// guards it.
+pub fn start(_exti: EXTI) {
     for irq in interrupts(LINES.mask()) {
         NVIC::unpend(irq);
         // SAFETY: the handlers below only touch state behind
@@ -78,13 +76,21 @@ pub fn start(exti: EXTI) {
     }
 }
 
+/// The EXTI's registers, which [`start`] consumed.
+fn pending_register() -> &'static stm32f4xx_hal::pac::exti::RegisterBlock {
+    // SAFETY: `start` consumed the only `EXTI` value; from then on only
+    // `service`, inside a critical section, reads and clears (write 1)
+    // its pending bits of the latched lines.
+    #[allow(unsafe_code)]
+    unsafe {
+        &*EXTI::ptr()
+    }
+}
+
 /// Clears the pending changes of the lines in `mask` and counts them for
 /// their inputs.
 fn service(cs: CriticalSection<'_>, mask: u32) {
-    let exti = EXTI_PERIPHERAL.borrow_ref(cs);
-    let Some(exti) = exti.as_ref() else {
-        return;
-    };
+    let exti = pending_register();
     let pending = exti.pr().read().bits() & mask & 0xffff;
     if pending == 0 {
         return;

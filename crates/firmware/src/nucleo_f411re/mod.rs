@@ -1,7 +1,8 @@
 //! Board support for the STM32F411 (Nucleo-F411RE), stm32f4xx-hal: what
 //! the scan loop (`crate::scan`) needs and nothing else. No control logic.
 //!
-//! - [`clocks`]: 100 MHz from the ST-LINK's 8 MHz clock or the HSI;
+//! - [`clocks`]: a fixed 100 MHz from the ST-LINK's 8 MHz clock or the
+//!   HSI;
 //! - [`pins`]: GPIO from the generated pin map (`program::board`);
 //! - [`edges`]: EXTI change counting for lost-edge detection (the edge
 //!   latch);
@@ -38,7 +39,7 @@ pub fn init() -> (Nucleo, Startup) {
         defmt::panic!("peripherals taken twice");
     };
     let reset = watchdog::last_reset(&dp.RCC);
-    let (mut rcc, source) = clocks::init(dp.RCC);
+    let (mut rcc, source) = clocks::init(dp.RCC, &dp.PWR, &dp.FLASH);
     clocks::keep_debug_in_sleep(&dp.DBGMCU, &mut rcc);
 
     let mut syscfg = dp.SYSCFG.constrain(&mut rcc);
@@ -57,7 +58,7 @@ pub fn init() -> (Nucleo, Startup) {
     // Scan times for the status line, from the cycle counter.
     cp.DCB.enable_trace();
     cp.DWT.enable_cycle_counter();
-    let sysclk_hz = rcc.clocks.sysclk().raw();
+    let sysclk_hz = clocks::SYSCLK_HZ;
     systick::start(cp.SYST, sysclk_hz);
 
     let board = Nucleo {
