@@ -24,12 +24,14 @@
 //! including fault mode and its safe outputs.
 
 use crate::report;
+use core::cell::Cell;
+use critical_section::Mutex;
 use embedded_hal::digital::{InputPin, OutputPin, PinState};
 use executor::pacing::Pacer;
 use executor::Controller;
-use firmware::edges::ChangeCounts;
+use firmware::edges::{ChangeCounts, LineMap};
 use firmware::levels;
-use firmware::program::board::{SignalPin, INPUT_PINS, OUTPUT_PINS};
+use firmware::program::board::{SignalPin, EDGE_LATCHED, INPUT_PINS, OUTPUT_PINS};
 use firmware::program::{self, input, output, CONFIG, INPUT_WORDS};
 use firmware::MCU;
 
@@ -68,6 +70,28 @@ const _: () = assert!(
 
 /// Changes per input since the last sample (edge latch).
 pub type Changes = ChangeCounts<{ input::COUNT }>;
+
+/// The edge line of each edge-latched input (`MCU.exti_line`: its pin
+/// number; an EXTI line on the STM32F411, a GPIO on the RP2040).
+const fn latched_lines() -> [Option<u8>; input::COUNT] {
+    let mut lines = [None; input::COUNT];
+    let mut i = 0;
+    while i < input::COUNT {
+        if let (Some(pin), true) = (INPUT_PINS[i], EDGE_LATCHED[i]) {
+            lines[i] = Some(MCU.exti_line(pin.pin));
+        }
+        i += 1;
+    }
+    lines
+}
+
+/// Which input each edge line counts for, for a board's edge latch (fails
+/// to build when two latched inputs share a line).
+pub const LINES: LineMap = LineMap::new(&latched_lines());
+
+/// Change counts, written by a board's edge interrupts, taken by its
+/// `Board::sample` in the critical section that reads the pins.
+pub static CHANGES: Mutex<Cell<Changes>> = Mutex::new(Cell::new(ChangeCounts::new()));
 
 /// Why the chip started.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, defmt::Format)]

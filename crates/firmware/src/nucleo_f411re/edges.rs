@@ -11,35 +11,12 @@
 //! can then go unreported, never be reported falsely.
 
 use super::pins::Io;
-use crate::scan::Changes;
-use core::cell::Cell;
+use crate::scan::{Changes, CHANGES, LINES};
 use cortex_m::peripheral::NVIC;
-use critical_section::{CriticalSection, Mutex};
-use firmware::edges::{ChangeCounts, LineMap};
-use firmware::program::board::{EDGE_LATCHED, INPUT_PINS};
-use firmware::program::{input, INPUT_WORDS};
+use critical_section::CriticalSection;
+use firmware::program::INPUT_WORDS;
 use stm32f4xx_hal::interrupt;
 use stm32f4xx_hal::pac::{Interrupt, EXTI};
-
-/// The EXTI line of each edge-latched input (`MCU.exti_line`: its number).
-const fn latched_lines() -> [Option<u8>; input::COUNT] {
-    let mut lines = [None; input::COUNT];
-    let mut i = 0;
-    while i < input::COUNT {
-        if let (Some(pin), true) = (INPUT_PINS[i], EDGE_LATCHED[i]) {
-            lines[i] = Some(firmware::MCU.exti_line(pin.pin));
-        }
-        i += 1;
-    }
-    lines
-}
-
-/// Which input each EXTI line counts for (fails to build when two
-/// latched inputs share a line).
-const LINES: LineMap = LineMap::new(&latched_lines());
-
-/// Change counts, written by the EXTI handlers, taken by [`sample`].
-static CHANGES: Mutex<Cell<Changes>> = Mutex::new(Cell::new(ChangeCounts::new()));
 
 /// The NVIC interrupts of the lines in use.
 fn interrupts(mask: u32) -> impl Iterator<Item = Interrupt> {

@@ -12,31 +12,13 @@
 //! unreported, never be reported falsely.
 
 use super::pins::Io;
-use crate::scan::Changes;
-use core::cell::Cell;
+use crate::scan::{Changes, CHANGES, LINES};
 use cortex_m::peripheral::NVIC;
-use critical_section::{CriticalSection, Mutex};
-use firmware::edges::{ChangeCounts, LineMap};
-use firmware::program::board::{EDGE_LATCHED, INPUT_PINS};
-use firmware::program::{input, INPUT_WORDS};
+use critical_section::CriticalSection;
+use firmware::program::board::EDGE_LATCHED;
+use firmware::program::INPUT_WORDS;
 use rp2040_hal::gpio::Interrupt as Edge;
 use rp2040_hal::pac::{self, interrupt, Interrupt};
-
-/// The GPIO of each edge-latched input (`MCU.exti_line`: its number).
-const fn latched_lines() -> [Option<u8>; input::COUNT] {
-    let mut lines = [None; input::COUNT];
-    let mut i = 0;
-    while i < input::COUNT {
-        if let (Some(pin), true) = (INPUT_PINS[i], EDGE_LATCHED[i]) {
-            lines[i] = Some(firmware::MCU.exti_line(pin.pin));
-        }
-        i += 1;
-    }
-    lines
-}
-
-/// Which input each GPIO's edges count for.
-const LINES: LineMap = LineMap::new(&latched_lines());
 
 /// The edge bits (EDGE_LOW, EDGE_HIGH: bits 2 and 3 of each GPIO's
 /// nibble) of the latched GPIOs in INTR0–INTR3 (8 GPIOs each).
@@ -52,9 +34,6 @@ const EDGE_BITS: [u32; 4] = {
     }
     bits
 };
-
-/// Change counts, written by the interrupt, taken by [`sample`].
-static CHANGES: Mutex<Cell<Changes>> = Mutex::new(Cell::new(ChangeCounts::new()));
 
 /// Enables both edge interrupts of every edge-latched input and unmasks
 /// the bank's interrupt.
