@@ -189,6 +189,7 @@ fn a_table_word_flipped_while_running_is_found_by_the_background_pass() {
 fn rewritten(corrupt: impl FnOnce(&mut TableImage)) -> TableImage {
     let mut image = press();
     corrupt(&mut image);
+    image.pools.refresh();
     image.crc = image.computed_crc();
     image
 }
@@ -282,6 +283,7 @@ fn mixers_rewritten(corrupt: impl FnOnce(&mut TableImage)) -> TableImage {
     let mut image = TableImage::new(&model("petri/mixers.plc.toml")).unwrap();
     assert_eq!(validate(&image), Ok(()), "the intact net image");
     corrupt(&mut image);
+    image.pools.refresh();
     image.crc = image.computed_crc();
     image
 }

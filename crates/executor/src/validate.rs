@@ -17,7 +17,8 @@ use core::fmt;
 use crate::bits;
 use crate::pacing::SCAN_PERIOD_MS;
 use crate::program::{
-    words, Action, Config, EventSpec, Index, Program, Span, SupervisorSpec, Trigger,
+    words, Action, Config, EventSpec, GuardNode, Index, Membership, Program, Span, StateBit,
+    StateMapEntry, SupervisorSpec, Trigger,
 };
 use crate::table::{bit, read_bits, Rows, SupervisorTable};
 
@@ -263,7 +264,7 @@ pub fn validate<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
 /// passes [`validate`].
 pub fn validate_allowed_sets<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
     let c = program.config();
-    for (j, spec) in c.supervisors.iter().enumerate() {
+    for (j, spec) in c.supervisor_specs().enumerate() {
         if spec.allowed.is_stored() {
             allowed_sets_of(program, &c, j)?;
         }
@@ -277,7 +278,7 @@ fn allowed_sets_of<P: Program + ?Sized>(
     c: &Config<'_>,
     j: usize,
 ) -> Result<(), Invalid> {
-    let spec = &c.supervisors[j];
+    let spec = &c.supervisor(j);
     let part = Part::Supervisor(j);
     let w = words(c.events.len());
     let outside = spec.outside.of(c.event_masks);
@@ -297,7 +298,7 @@ fn allowed_sets_of<P: Program + ?Sized>(
         for (chunk, local) in alphabet.chunks(32).enumerate() {
             let row = program.enabled(j as Index, state, (chunk * 32) as Index, local.len() as u8);
             for (k, &e) in local.iter().enumerate() {
-                if bits::contains(set, usize::from(e)) != (row >> k & 1 == 1) {
+                if bits::contains(set, e as usize) != (row >> k & 1 == 1) {
                     return wrong;
                 }
             }
@@ -326,37 +327,43 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
         in_range(Part::Reset, r.into(), inputs)?;
     }
     for (k, &i) in c.debounced.iter().enumerate() {
-        in_range(Part::Debounced(k), i.into(), inputs)?;
+        in_range(Part::Debounced(k), i as usize, inputs)?;
     }
     mask(Part::DebounceMask, c.debounce_mask, c)?;
-    for (i, spec) in c.inputs.iter().enumerate() {
+    for (i, spec) in c.input_specs().enumerate() {
         event_list(Part::Input(i), spec.raises, c)?;
     }
-    for (o, spec) in c.outputs.iter().enumerate() {
+    for (o, spec) in c.output_specs().enumerate() {
         pool(Part::Output(o), spec.state_map, c.state_map)?;
     }
-    for (t, spec) in c.timers.iter().enumerate() {
+    for (t, spec) in c.timer_specs().enumerate() {
         if !crate::timers::PRESET_MS.contains(&spec.preset_ms) {
             return fail(Part::Timer(t), Flaw::Preset);
         }
         event_list(Part::Timer(t), spec.raises, c)?;
     }
-    for (k, action) in c.actions.iter().enumerate() {
-        match *action {
+    for (k, action) in c.actions.iter().map(|&a| Action::from_word(a)).enumerate() {
+        match action {
             Action::Set(o) | Action::Clear(o) => in_range(Part::Action(k), o.into(), outputs)?,
             Action::Start(t) | Action::Reset(t) => in_range(Part::Action(k), t.into(), timers)?,
         }
     }
-    for (k, m) in c.memberships.iter().enumerate() {
+    for (k, &m) in c.memberships.iter().enumerate() {
+        let m = Membership::from_word(m);
         let part = Part::Membership(k);
         in_range(part, m.supervisor.into(), supervisors)?;
-        let alphabet = c.supervisors[usize::from(m.supervisor)].alphabet;
+        let alphabet = c.supervisor(usize::from(m.supervisor)).alphabet;
         in_range(part, m.local.into(), alphabet.len.into())?;
     }
-    for (k, entry) in c.state_map.iter().enumerate() {
+    for (k, entry) in c
+        .state_map
+        .iter()
+        .map(StateMapEntry::from_words)
+        .enumerate()
+    {
         let part = Part::StateMap(k);
         in_range(part, entry.supervisor.into(), supervisors)?;
-        let states = c.supervisors[usize::from(entry.supervisor)].states;
+        let states = c.supervisor(usize::from(entry.supervisor)).states;
         if entry.state >= states {
             return fail(part, out_of_range(entry.state, states));
         }
@@ -364,7 +371,7 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
             return fail(part, Flaw::StateMask);
         }
     }
-    for (e, spec) in c.events.iter().enumerate() {
+    for (e, spec) in c.event_specs().enumerate() {
         let part = Part::Event(e);
         match spec.trigger {
             Trigger::Rising(m) | Trigger::Falling(m) => mask(part, m, c)?,
@@ -379,7 +386,7 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
         pool(part, spec.actions, c.actions)?;
         pool(part, spec.members, c.memberships)?;
     }
-    for (j, spec) in c.supervisors.iter().enumerate() {
+    for (j, spec) in c.supervisor_specs().enumerate() {
         let part = Part::Supervisor(j);
         if spec.initial >= spec.states {
             return fail(part, out_of_range(spec.initial, spec.states));
@@ -387,38 +394,38 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
         let alphabet = event_list(part, spec.alphabet, c)?;
         let outside = event_set(part, spec.outside, c)?;
         for (local, &e) in alphabet.iter().enumerate() {
-            let mut theirs = members(&c.events[usize::from(e)], c).filter(|m| m.0 == j);
+            let mut theirs = members(&c.event(e as usize), c).filter(|m| m.0 == j);
             match (theirs.next(), theirs.next()) {
                 (Some((_, l)), None) if l == local => {}
                 _ => return fail(part, Flaw::Membership),
             }
         }
-        for (e, event) in c.events.iter().enumerate() {
-            let member = members(event, c).any(|m| m.0 == j);
+        for (e, event) in c.event_specs().enumerate() {
+            let member = members(&event, c).any(|m| m.0 == j);
             if member == bits::contains(outside, e) {
                 return fail(part, Flaw::Outside);
             }
         }
-        allowed_index(part, spec, c)?;
+        allowed_index(part, &spec, c)?;
     }
     // Spans checked above: now whether each membership is its alphabet's.
-    for (e, spec) in c.events.iter().enumerate() {
-        for (j, local) in members(spec, c) {
-            let alphabet = c.supervisors[j].alphabet.of(c.event_lists);
-            if alphabet.get(local).map(|&x| usize::from(x)) != Some(e) {
+    for (e, spec) in c.event_specs().enumerate() {
+        for (j, local) in members(&spec, c) {
+            let alphabet = c.supervisor(j).alphabet.of(c.event_lists);
+            if alphabet.get(local).map(|&x| x as usize) != Some(e) {
                 return fail(Part::Event(e), Flaw::Membership);
             }
         }
     }
     let commands = event_set(Part::Commands, c.commands, c)?;
     let requested = event_list(Part::Requested, c.requested, c)?;
-    for (e, spec) in c.events.iter().enumerate() {
+    for (e, spec) in c.event_specs().enumerate() {
         let command = spec.is_controllable();
         let listed = bits::contains(commands, e);
         if listed != (command && spec.request.is_none()) {
             return fail(Part::Commands, Flaw::Commands);
         }
-        let listed = requested.iter().filter(|&&x| usize::from(x) == e).count();
+        let listed = requested.iter().filter(|&&x| x as usize == e).count();
         if listed != usize::from(command && spec.request.is_some()) {
             return fail(Part::Requested, Flaw::Commands);
         }
@@ -433,17 +440,17 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
 /// of range ([`crate::guards`]).
 fn validate_guards(c: &Config<'_>) -> Result<(), Invalid> {
     let guards = &c.guards;
-    for (k, b) in guards.bits.iter().enumerate() {
+    for (k, b) in guards.bits.iter().map(StateBit::from_words).enumerate() {
         in_range(Part::StateBit(k), b.component.into(), c.supervisors.len())?;
         if b.shift >= 32 {
             return fail(Part::StateBit(k), Flaw::Shift);
         }
     }
     let mut previous: Option<Index> = None;
-    for (k, guard) in guards.events.iter().enumerate() {
+    for (k, guard) in guards.guards().enumerate() {
         let part = Part::Guard(k);
         in_range(part, guard.event.into(), c.events.len())?;
-        let command = c.events[usize::from(guard.event)].is_controllable();
+        let command = c.event(usize::from(guard.event)).is_controllable();
         if !command || previous.is_some_and(|p| p >= guard.event) {
             return fail(part, Flaw::Guarded);
         }
@@ -453,7 +460,7 @@ fn validate_guards(c: &Config<'_>) -> Result<(), Invalid> {
         if usize::from(guard.root) >= nodes.len() + 2 {
             return bad(usize::from(guard.root));
         }
-        for (i, node) in nodes.iter().enumerate() {
+        for (i, node) in nodes.iter().map(GuardNode::from_words).enumerate() {
             let at = i + 2;
             if usize::from(node.low) >= at
                 || usize::from(node.high) >= at
@@ -471,7 +478,7 @@ fn validate_guards(c: &Config<'_>) -> Result<(), Invalid> {
 #[inline(never)]
 fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Result<(), Invalid> {
     let part = Part::Table(j);
-    let spec = &c.supervisors[j];
+    let spec = &c.supervisor(j);
     if table.events != spec.alphabet.len {
         return fail(part, Flaw::TableEvents);
     }
@@ -580,9 +587,7 @@ fn validate_net(
 /// checked against the pool by the caller, the supervisors by the pool's
 /// check.
 fn members<'c>(event: &EventSpec, c: &Config<'c>) -> impl Iterator<Item = (usize, usize)> + 'c {
-    let span = event.members;
-    span.of(c.memberships)
-        .iter()
+    c.members_of(event.members)
         .map(|m| (usize::from(m.supervisor), usize::from(m.local)))
 }
 
@@ -654,10 +659,10 @@ fn pool<T>(part: Part, span: Span, pool: &[T]) -> Result<&[T], Invalid> {
 }
 
 /// A list of events in `event_lists`, every one in range.
-fn event_list<'c>(part: Part, span: Span, c: &Config<'c>) -> Result<&'c [Index], Invalid> {
+fn event_list<'c>(part: Part, span: Span, c: &Config<'c>) -> Result<&'c [u32], Invalid> {
     let list = pool(part, span, c.event_lists)?;
     for &e in list {
-        in_range(part, e.into(), c.events.len())?;
+        in_range(part, e as usize, c.events.len())?;
     }
     Ok(list)
 }
