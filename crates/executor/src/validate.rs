@@ -6,11 +6,20 @@
 //! with a CRC computed to match. [`validate`] proves what the scan relies
 //! on to index without a check: every index is in range, every span lies
 //! inside its pool and has the length its kind needs, sets have no bits
-//! past their last member, alphabets and memberships agree, and every table
-//! decodes to states of its supervisor. That stored allowed sets are
-//! their supervisors' is [`validate_allowed_sets`], checked at generation. A controller whose image fails it
-//! starts in fault mode (`Corrupt`) and no reset can leave it. Host tools
-//! call [`validate`] themselves to print where an image is wrong.
+//! past their last member, every table has the sizes of its supervisor.
+//! A controller whose image fails it starts in fault mode (`Corrupt`) and
+//! no reset can leave it; it is what an image loaded as words
+//! ([`crate::parse`]) needs, and it is kept small for the target.
+//!
+//! What a generator proves of its own output is [`validate_generated`],
+//! run at generation and by host tools, not by the controller: that the
+//! memberships and the alphabets agree, that each `outside` set and the
+//! command sets are the ones the events give, that every defined table
+//! entry is a state of its supervisor (the scan checks each state it
+//! moves to as well, so a flipped table word is a `Corrupt` fault, never
+//! a state out of range) and that stored allowed sets are their
+//! supervisors' ([`validate_allowed_sets`]). Host tools call both to print
+//! where an image is wrong.
 
 use core::fmt;
 
@@ -225,9 +234,9 @@ impl fmt::Display for Invalid {
     }
 }
 
-/// Checks the whole structure of `program`'s image (see the module docs).
-/// Linear in the image, apart from the memberships (events × supervisors
-/// having them) and a decode of every defined table entry.
+/// Checks the structure of `program`'s image that the scan relies on (see
+/// the module docs). Linear in the configuration; a table costs a count
+/// of its defined-bits.
 pub fn validate<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
     // Opaque to the optimiser: a generated configuration is a constant,
     // and folding it into the check would unroll every loop over its pools
@@ -251,6 +260,23 @@ pub fn validate<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
         }
     }
     Ok(())
+}
+
+/// Everything a generator proves of its image: [`validate`], then the
+/// agreement of memberships, alphabets, `outside` sets and command sets,
+/// every defined table entry a state of its supervisor (and a sparse
+/// table's row starts), and [`validate_allowed_sets`]. Run at generation
+/// and by host tools; the controller runs [`validate`] alone.
+pub fn validate_generated<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
+    validate(program)?;
+    let c = program.config();
+    agreement(&c)?;
+    for j in 0..c.supervisors.len() {
+        if let Some(table) = Index::try_from(j).ok().and_then(|j| program.table(j)) {
+            table_entries(&c, j, &table)?;
+        }
+    }
+    validate_allowed_sets(program)
 }
 
 /// Whether every stored allowed set of `program` is its supervisor's: in
@@ -391,8 +417,26 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
         if spec.initial >= spec.states {
             return fail(part, out_of_range(spec.initial, spec.states));
         }
-        let alphabet = event_list(part, spec.alphabet, c)?;
-        let outside = event_set(part, spec.outside, c)?;
+        event_list(part, spec.alphabet, c)?;
+        event_set(part, spec.outside, c)?;
+        allowed_index(part, &spec, c)?;
+    }
+    event_set(Part::Commands, c.commands, c)?;
+    event_list(Part::Requested, c.requested, c)?;
+    validate_guards(c)
+}
+
+/// The agreement [`validate_generated`] adds to [`validate_config`]: each
+/// alphabet entry with exactly one membership, its own; each membership
+/// its alphabet's; each `outside` set the events outside the alphabet;
+/// the command sets exactly the controllable events without and with a
+/// request input. Assumes a configuration that passes
+/// [`validate_config`].
+fn agreement(c: &Config<'_>) -> Result<(), Invalid> {
+    for (j, spec) in c.supervisor_specs().enumerate() {
+        let part = Part::Supervisor(j);
+        let alphabet = spec.alphabet.of(c.event_lists);
+        let outside = spec.outside.of(c.event_masks);
         for (local, &e) in alphabet.iter().enumerate() {
             let mut theirs = members(&c.event(e as usize), c).filter(|m| m.0 == j);
             match (theirs.next(), theirs.next()) {
@@ -406,9 +450,7 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
                 return fail(part, Flaw::Outside);
             }
         }
-        allowed_index(part, &spec, c)?;
     }
-    // Spans checked above: now whether each membership is its alphabet's.
     for (e, spec) in c.event_specs().enumerate() {
         for (j, local) in members(&spec, c) {
             let alphabet = c.supervisor(j).alphabet.of(c.event_lists);
@@ -417,8 +459,8 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
             }
         }
     }
-    let commands = event_set(Part::Commands, c.commands, c)?;
-    let requested = event_list(Part::Requested, c.requested, c)?;
+    let commands = c.commands.of(c.event_masks);
+    let requested = c.requested.of(c.event_lists);
     for (e, spec) in c.event_specs().enumerate() {
         let command = spec.is_controllable();
         let listed = bits::contains(commands, e);
@@ -430,7 +472,7 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
             return fail(Part::Requested, Flaw::Commands);
         }
     }
-    validate_guards(c)
+    Ok(())
 }
 
 /// The guards: each on a command, in increasing event order, its nodes
@@ -495,11 +537,7 @@ fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Resu
     if bits_of(table.defined) < pairs {
         return fail(part, Flaw::TableLength);
     }
-    // `pairs` fits in the defined words, so in a usize.
-    let pairs = pairs as usize;
-    let defined = (0..pairs).filter(|&p| bit(table.defined, p)).count() as u64;
-    let (entries, sparse) = match table.rows {
-        Rows::Dense | Rows::Net { .. } => (pairs as u64, None),
+    let entries = match table.rows {
         Rows::Sparse {
             row_starts,
             start_bits,
@@ -509,15 +547,37 @@ fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Resu
             {
                 return fail(part, Flaw::TableLength);
             }
-            (defined, Some((row_starts, start_bits)))
+            // `pairs` fits in the defined words, so in a usize.
+            (0..pairs as usize)
+                .filter(|&p| bit(table.defined, p))
+                .count() as u64
         }
+        _ => pairs,
     };
     if bits_of(table.targets) < entries * u64::from(width) {
         return fail(part, Flaw::TableLength);
     }
-    // Every defined pair's target, in the layout's entry order: pair order
-    // when dense, the count of defined pairs before it when sparse.
-    let m = m as usize;
+    Ok(())
+}
+
+/// Every defined pair's target of table `j` a state of supervisor `j`, in
+/// the layout's entry order (pair order when dense, the count of defined
+/// pairs before it when sparse), and a sparse table's row starts those
+/// counts. Assumes a table that passes [`validate_table`].
+fn table_entries(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Result<(), Invalid> {
+    let part = Part::Table(j);
+    let spec = &c.supervisor(j);
+    let sparse = match table.rows {
+        Rows::Net { .. } => return Ok(()),
+        Rows::Dense => None,
+        Rows::Sparse {
+            row_starts,
+            start_bits,
+        } => Some((row_starts, start_bits)),
+    };
+    let width = table.state_bits;
+    let m = usize::from(table.events);
+    let pairs = spec.states as usize * m;
     let mut before = 0usize;
     for pair in 0..pairs {
         let state = (pair / m) as u32;
