@@ -304,43 +304,40 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
     /// Word `k` of the header run.
     fn header_word(&self, k: usize) -> u32 {
         let c = &self.config;
-        let lengths = [
-            c.inputs.len(),
-            c.debounced.len(),
-            c.outputs.len(),
-            c.timers.len(),
-            c.events.len(),
-            c.supervisors.len(),
-            c.input_masks.len(),
-            c.event_lists.len(),
-            c.event_masks.len(),
-            c.actions.len(),
-            c.memberships.len(),
-            c.state_map.len(),
-            c.guards.events.len(),
-            c.guards.bits.len(),
-            c.guards.nodes.len(),
-            c.allowed_index.len(),
-        ];
-        match k {
-            0 => c.name.len() as u32,
-            1 => c.scan_period_ms,
+        (match k {
+            0 => c.name.len(),
+            1 => return c.scan_period_ms,
             2 => c.max_commands_per_scan.into(),
             3 => match c.unexpected {
                 UnexpectedPolicy::Fault => 0,
                 UnexpectedPolicy::Ignore => 1,
             },
-            4 => c.reset.map_or(u32::MAX, u32::from),
+            4 => return c.reset.map_or(u32::MAX, u32::from),
             5 => c.overrun_limit.into(),
             6 => c.overrun_fault.into(),
             7 => c.lost_edge_fault.into(),
             8 => c.rom_test_bytes_per_scan.into(),
-            9 => c.debounce_mask.to_word(),
-            10 => c.commands.to_word(),
-            11 => c.requested.to_word(),
-            12..=27 => lengths[k - 12] as u32,
-            _ => self.tables() as u32,
-        }
+            9 => return c.debounce_mask.to_word(),
+            10 => return c.commands.to_word(),
+            11 => return c.requested.to_word(),
+            12 => c.inputs.len(),
+            13 => c.debounced.len(),
+            14 => c.outputs.len(),
+            15 => c.timers.len(),
+            16 => c.events.len(),
+            17 => c.supervisors.len(),
+            18 => c.input_masks.len(),
+            19 => c.event_lists.len(),
+            20 => c.event_masks.len(),
+            21 => c.actions.len(),
+            22 => c.memberships.len(),
+            23 => c.state_map.len(),
+            24 => c.guards.events.len(),
+            25 => c.guards.bits.len(),
+            26 => c.guards.nodes.len(),
+            27 => c.allowed_index.len(),
+            _ => self.tables(),
+        }) as u32
     }
 }
 

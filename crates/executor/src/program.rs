@@ -427,8 +427,9 @@ impl EventSpec {
     }
 
     /// The event of a record (a trigger kind above 3 reads as 3, a
-    /// request that is no [`Index`] as none).
-    #[inline]
+    /// request that is no [`Index`] as none). Always inline: the scan
+    /// reads one or two fields of it, a load and a shift each.
+    #[inline(always)]
     pub const fn from_words(w: &[u32; 7]) -> EventSpec {
         EventSpec {
             trigger: Trigger::from_words(w[0], w[1]),
@@ -448,7 +449,7 @@ record!(EventSpec, 7);
 
 impl Trigger {
     /// The trigger of an event record's first two words.
-    #[inline]
+    #[inline(always)]
     pub const fn from_words(kind: u32, binding: u32) -> Trigger {
         match kind {
             0 => Trigger::Command,
@@ -553,8 +554,8 @@ impl SupervisorSpec {
         ]
     }
 
-    /// The supervisor of a record.
-    #[inline]
+    /// The supervisor of a record (always inline, as an event's).
+    #[inline(always)]
     pub const fn from_words(w: &[u32; 6]) -> SupervisorSpec {
         SupervisorSpec {
             states: w[0],
