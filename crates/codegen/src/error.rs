@@ -128,14 +128,15 @@ pub enum Error {
         /// The parser's complaint.
         source: syn::Error,
     },
-    /// A stored allowed set is not its supervisor's
-    /// ([`executor::validate::validate_allowed_sets`]): a bug in the
-    /// lowering, never the project's fault.
+    /// The image fails what generation proves of it
+    /// ([`executor::validate::validate_generated`]: its structure, the
+    /// agreement of its pools, its table entries, its stored allowed
+    /// sets): a bug in the lowering, never the project's fault.
     #[error(
         "{}: internal error: {invalid}; please report it with the project file",
         project.display()
     )]
-    AllowedSets {
+    GeneratedImage {
         /// The project file.
         project: std::path::PathBuf,
         /// Where and what.

@@ -118,10 +118,10 @@ fn lowering_keeps_the_declared_timing_as_the_iec_exporter_reads_it() {
         let lowered = Lowered::new(&project, Backend::Table, &()).unwrap();
         let config = lowered.config();
         assert_eq!(config.scan_period_ms, project.scan_period_ms, "{name}");
-        let debounce: Vec<u8> = config.inputs.iter().map(|i| i.debounce_scans).collect();
+        let debounce: Vec<u8> = config.input_specs().map(|i| i.debounce_scans).collect();
         let declared: Vec<u8> = project.inputs.iter().map(|i| i.debounce_scans).collect();
         assert_eq!(debounce, declared, "{name}: debounce scans");
-        let presets: Vec<u32> = config.timers.iter().map(|t| t.preset_ms).collect();
+        let presets: Vec<u32> = config.timer_specs().map(|t| t.preset_ms).collect();
         let declared: Vec<u32> = project.timers.iter().map(|t| t.preset_ms).collect();
         assert_eq!(presets, declared, "{name}: timer presets");
         timed += presets.len() + debounce.iter().filter(|&&d| d >= 2).count();

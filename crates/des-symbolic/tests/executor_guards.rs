@@ -40,18 +40,21 @@ fn the_executor_evaluates_guard_tables_as_the_bdds_do() {
     for f in instances {
         let s = synthesize(&f.plants, &f.specs).unwrap();
         let file = GuardFile::new(&f.name, &s, &f.plants, &f.specs);
-        let bits = state_bits(&file);
-        let tables: Vec<(String, u16, Vec<GuardNode>)> = file
+        let bits: Vec<[u32; 1]> = state_bits(&file).iter().map(StateBit::to_words).collect();
+        let tables: Vec<(String, u16, Vec<[u32; 2]>)> = file
             .guards
             .iter()
             .map(|g| {
                 let nodes = g
                     .nodes
                     .iter()
-                    .map(|&[bit, low, high]| GuardNode {
-                        bit: bit as u16,
-                        low: low as u16,
-                        high: high as u16,
+                    .map(|&[bit, low, high]| {
+                        GuardNode {
+                            bit: bit as u16,
+                            low: low as u16,
+                            high: high as u16,
+                        }
+                        .to_words()
                     })
                     .collect();
                 (g.event.clone(), g.root as u16, nodes)

@@ -4,7 +4,9 @@ use crate::bits;
 use crate::inputs;
 use crate::memory::{Memory, Ram};
 use crate::pacing::{Pacer, ScanStart};
-use crate::program::{Action, Config, EventSpec, Index, Program, Trigger, UnexpectedPolicy};
+use crate::program::{
+    Action, Config, EventSpec, Index, InputSpec, Program, SupervisorSpec, Trigger, UnexpectedPolicy,
+};
 use crate::record::{Counters, Fault, ScanRecord};
 use crate::rom_test::{ImageTest, RomTest};
 use crate::timers::{due, earliest};
@@ -269,7 +271,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
                 .memory
                 .states()
                 .get(j)
-                .is_some_and(|&x| x >= spec.states),
+                .is_some_and(|&x| x >= SupervisorSpec::from_words(spec).states),
             None => false,
         };
         self.range_check = if j + 1 < config.supervisors.len() {
@@ -320,25 +322,25 @@ impl<P: Program, M: Memory> Controller<P, M> {
                     let Some(input) = config.inputs.get(i) else {
                         continue;
                     };
-                    for &e in input.raises.of(config.event_lists) {
-                        if edge_occurred(config, &ram, usize::from(e)) {
-                            bits::insert(ram.occurred, usize::from(e));
+                    let raises = InputSpec::from_words(input).raises;
+                    for &e in raises.of(config.event_lists) {
+                        let e = e as usize;
+                        if edge_occurred(config, &ram, e) {
+                            bits::insert(ram.occurred, e);
                         }
                     }
                 }
             }
         }
         if timer_due {
-            for (t, timer) in config.timers.iter().enumerate() {
+            for (t, timer) in config.timer_specs().enumerate() {
                 if ram.timer_running[t] && due(ram.timer_deadline[t], now_ms) {
                     ram.timer_running[t] = false;
                     for &e in timer.raises.of(config.event_lists) {
-                        let e = usize::from(e);
-                        if config
-                            .events
-                            .get(e)
-                            .is_some_and(|spec| conditions_hold(config, &ram, spec))
-                        {
+                        let e = e as usize;
+                        if config.events.get(e).is_some_and(|spec| {
+                            conditions_hold(config, &ram, &EventSpec::from_words(spec))
+                        }) {
                             bits::insert(ram.occurred, e);
                         }
                     }
@@ -454,11 +456,11 @@ impl<P: Program, M: Memory> Controller<P, M> {
 /// their initial level, and the enabled sets of the initial states.
 fn initialise<P: Program, M: Memory>(program: &P, config: &Config<'_>, memory: &mut M) {
     let ram = &mut memory.ram();
-    for (x, spec) in ram.states.iter_mut().zip(config.supervisors) {
+    for (x, spec) in ram.states.iter_mut().zip(config.supervisor_specs()) {
         *x = spec.initial;
     }
     ram.timer_running.fill(false);
-    for (level, spec) in ram.latched.iter_mut().zip(config.outputs) {
+    for (level, spec) in ram.latched.iter_mut().zip(config.output_specs()) {
         *level = spec.initial;
     }
     for j in 0..config.supervisors.len() {
@@ -484,7 +486,7 @@ fn refresh_allowed<P: Program>(
     state: u32,
     allowed: &mut [u32],
 ) {
-    let spec = &config.supervisors[j];
+    let spec = &config.supervisor(j);
     if let Some(k) = config.stored_set(spec, state) {
         return copy_set(config, k, allowed);
     }
@@ -499,7 +501,7 @@ fn refresh_allowed<P: Program>(
             let k = row.trailing_zeros() as usize;
             row &= row - 1;
             if let Some(&e) = events.get(k) {
-                bits::insert(allowed, usize::from(e));
+                bits::insert(allowed, e as usize);
             }
         }
     }
@@ -576,10 +578,10 @@ fn and_rows(allowed: &[u32], feasible: &mut [u32]) {
 #[inline]
 fn unguarded(config: &Config<'_>, states: &[u32], k: usize, mut candidates: u32) -> u32 {
     let guards = &config.guards;
-    for guard in guards.events {
+    for guard in guards.guards() {
         let e = usize::from(guard.event);
         let bit = 1u32 << (e % 32);
-        if e / 32 == k && candidates & bit != 0 && !guards.holds(guard, states) {
+        if e / 32 == k && candidates & bit != 0 && !guards.holds(&guard, states) {
             candidates &= !bit;
         }
     }
@@ -597,9 +599,10 @@ fn commands_word(config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
         .copied()
         .unwrap_or(0);
     for &e in config.requested.of(config.event_lists) {
-        let e = usize::from(e);
+        let e = e as usize;
         if e / 32 == k
-            && config.events[e]
+            && config
+                .event(e)
                 .request
                 .is_some_and(|r| inputs::input_on(usize::from(r), ram))
         {
@@ -665,6 +668,7 @@ fn edge_occurred(config: &Config<'_>, ram: &Ram<'_>, e: usize) -> bool {
     let Some(spec) = config.events.get(e) else {
         return false;
     };
+    let spec = &EventSpec::from_words(spec);
     let edge = match spec.trigger {
         Trigger::Rising(mask) => inputs::rising(mask.of(config.input_masks), ram),
         Trigger::Falling(mask) => inputs::falling(mask.of(config.input_masks), ram),
@@ -695,21 +699,22 @@ fn execute<P: Program, M: Memory>(
     now: u32,
 ) -> Option<bool> {
     let ram = &mut memory.ram();
-    let spec = &config.events[e];
+    let spec = &config.event(e);
     let mut moved = false;
-    for m in spec.members.of(config.memberships) {
+    for m in config.members_of(spec.members) {
         let j = m.supervisor as usize;
-        if ram.states[j] >= config.supervisors[j].states {
+        let sup = &config.supervisor(j);
+        if ram.states[j] >= sup.states {
             return None;
         }
         let next = program.next_state(m.supervisor, ram.states[j], m.local)?;
         // Validated tables hold states in range; a word flipped since
         // is caught here before the state is stored.
-        if next >= config.supervisors[j].states {
+        if next >= sup.states {
             return None;
         }
         if next != ram.states[j] {
-            let spec = &config.supervisors[j];
+            let spec = sup;
             let ew = ram.feasible.len();
             let allowed = allowed_of(ram.allowed, ew, j);
             match (
@@ -734,14 +739,14 @@ fn execute<P: Program, M: Memory>(
         refresh_feasible(ram);
     }
     let mut timers = false;
-    for action in spec.actions.of(config.actions) {
-        match *action {
+    for action in config.actions_of(spec.actions) {
+        match action {
             Action::Set(o) => ram.latched[o as usize] = true,
             Action::Clear(o) => ram.latched[o as usize] = false,
             Action::Start(t) => {
                 let t = t as usize;
                 ram.timer_running[t] = true;
-                ram.timer_deadline[t] = now.wrapping_add(config.timers[t].preset_ms);
+                ram.timer_deadline[t] = now.wrapping_add(config.timer(t).preset_ms);
                 timers = true;
             }
             Action::Reset(t) => {
@@ -757,11 +762,11 @@ fn execute<P: Program, M: Memory>(
 /// Action-driven levels, and for Moore outputs the OR over their state map.
 fn write_outputs<M: Memory>(config: &Config<'_>, memory: &mut M) {
     let ram = memory.ram();
-    for (o, spec) in config.outputs.iter().enumerate() {
+    for (o, spec) in config.output_specs().enumerate() {
         ram.outputs[o] = if spec.state_map.is_empty() {
             ram.latched[o]
         } else {
-            spec.state_map.of(config.state_map).iter().any(|entry| {
+            config.state_map_of(spec.state_map).any(|entry| {
                 ram.states
                     .get(entry.supervisor as usize)
                     .is_some_and(|&x| entry.holds(x))
@@ -772,7 +777,7 @@ fn write_outputs<M: Memory>(config: &Config<'_>, memory: &mut M) {
 
 fn write_safe_outputs<M: Memory>(config: &Config<'_>, memory: &mut M) {
     let ram = memory.ram();
-    for (level, spec) in ram.outputs.iter_mut().zip(config.outputs) {
+    for (level, spec) in ram.outputs.iter_mut().zip(config.output_specs()) {
         *level = spec.safe;
     }
 }

@@ -29,8 +29,8 @@ pub use crate::program::{GuardNode, GuardSpec, Guards, StateBit};
 pub struct GuardTable<'a> {
     /// The root: 0 false, 1 true, `k ≥ 2` the node `nodes[k − 2]`.
     pub root: u16,
-    /// The decision nodes, children first.
-    pub nodes: &'a [GuardNode],
+    /// The decision nodes, children first ([`GuardNode`] records).
+    pub nodes: &'a [[u32; 2]],
 }
 
 impl<'a> Guards<'a> {
@@ -54,11 +54,11 @@ impl GuardTable<'_> {
     /// The guard's value in the component states `states`, whose bits are
     /// found through `bits`; `None` for a malformed table or a bit source
     /// past `states`.
-    pub fn eval(&self, bits: &[StateBit], states: &[u32]) -> Option<bool> {
+    pub fn eval(&self, bits: &[[u32; 1]], states: &[u32]) -> Option<bool> {
         let mut at = self.root;
         while at >= 2 {
-            let node = self.nodes.get(usize::from(at) - 2)?;
-            let source = bits.get(usize::from(node.bit))?;
+            let node = GuardNode::from_words(self.nodes.get(usize::from(at) - 2)?);
+            let source = StateBit::from_words(bits.get(usize::from(node.bit))?);
             let state = states.get(usize::from(source.component))?;
             let next = if state.checked_shr(source.shift.into())? & 1 == 1 {
                 node.high
@@ -78,6 +78,7 @@ impl GuardTable<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::program::leak::records;
 
     /// Two one-bit components `a`, `b`: bit 0 is `a`, bit 1 is `b`.
     const BITS: [StateBit; 2] = [
@@ -115,14 +116,14 @@ mod tests {
     fn a_table_computes_its_function_bit_by_bit() {
         let xor = GuardTable {
             root: 4,
-            nodes: &XOR,
+            nodes: records(&XOR),
         };
         for (a, b) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
-            assert_eq!(xor.eval(&BITS, &[a, b]), Some(a != b), "{a} {b}");
+            assert_eq!(xor.eval(records(&BITS), &[a, b]), Some(a != b), "{a} {b}");
         }
         let constant = |root| GuardTable { root, nodes: &[] };
-        assert_eq!(constant(0).eval(&BITS, &[1, 1]), Some(false));
-        assert_eq!(constant(1).eval(&BITS, &[0, 0]), Some(true));
+        assert_eq!(constant(0).eval(records(&BITS), &[1, 1]), Some(false));
+        assert_eq!(constant(1).eval(records(&BITS), &[0, 0]), Some(true));
     }
 
     #[test]
@@ -153,9 +154,10 @@ mod tests {
         ];
         let only_2 = GuardTable {
             root: 3,
-            nodes: &nodes,
+            nodes: records(&nodes),
         };
-        let allowed: [bool; 4] = core::array::from_fn(|s| only_2.eval(&bits, &[s as u32]).unwrap());
+        let allowed: [bool; 4] =
+            core::array::from_fn(|s| only_2.eval(records(&bits), &[s as u32]).unwrap());
         assert_eq!(allowed, [false, false, true, false]);
     }
 
@@ -170,18 +172,18 @@ mod tests {
         assert_eq!(
             GuardTable {
                 root: 2,
-                nodes: &up
+                nodes: records(&up)
             }
-            .eval(&BITS, &[0, 0]),
+            .eval(records(&BITS), &[0, 0]),
             None
         );
         // Past the end of the table, of the bit sources, of the states.
         assert_eq!(
             GuardTable {
                 root: 3,
-                nodes: &up
+                nodes: records(&up)
             }
-            .eval(&BITS, &[0, 0]),
+            .eval(records(&BITS), &[0, 0]),
             None
         );
         let far_bit = [GuardNode {
@@ -192,17 +194,17 @@ mod tests {
         assert_eq!(
             GuardTable {
                 root: 2,
-                nodes: &far_bit
+                nodes: records(&far_bit)
             }
-            .eval(&BITS, &[0, 0]),
+            .eval(records(&BITS), &[0, 0]),
             None
         );
         assert_eq!(
             GuardTable {
                 root: 4,
-                nodes: &XOR
+                nodes: records(&XOR)
             }
-            .eval(&BITS, &[0]),
+            .eval(records(&BITS), &[0]),
             None
         );
     }

@@ -9,12 +9,17 @@
 //!
 //! # The stream
 //!
-//! The image is a sequence of *runs* of words. Scalars are one word each
-//! (zero-extended; `None` is `0xFFFF_FFFF`); a [`Span`] is one word,
-//! `start | len << 16`; a record is a fixed number of words, so word `k` of
-//! a run can be computed without reading the words before it (the
-//! background test resumes in the middle of a run: [`crate::Controller`],
-//! `docs/semantics.md`, "Image check").
+//! The image is a sequence of *runs* of words. The configuration's pools
+//! are stored as words already ([`Config`]: a record of a fixed number of
+//! words per item, `[[u32; N]]`, or one word per item), so every run but
+//! three is fed as stored: the background test needs no encoder, and
+//! resumes at any word of a run (run, word, CRC: [`crate::Controller`],
+//! `docs/semantics.md`, "Image check"). The three computed runs are the
+//! header (from [`Config`]'s scalars and its pools' lengths), the name
+//! (from its `&str`) and each table's header. In the header, scalars are
+//! one word each (zero-extended; `None` is `0xFFFF_FFFF`); a [`Span`]
+//! is one word, `start | len << 16` ([`Span::to_word`]). Each kind's
+//! `to_words` writes its record, `from_words` reads it.
 //!
 //! | run | words per item | content |
 //! |---|---|---|
@@ -55,16 +60,14 @@
 //!
 //! # Cost
 //!
-//! Measured in QEMU (Cortex-M4, `cargo xtask qemu`): a table word costs 4
-//! instructions per byte (the monolithic boiler's whole image, 125,156
-//! bytes, 508,000 instructions), a configuration record up to three times
-//! that (it is encoded as it is read); a background share adds about 110
-//! instructions per scan to that.
+//! Measured in QEMU (Cortex-M4, `cargo xtask qemu`): a word costs 4
+//! instructions per byte, a configuration record's as a table's (the
+//! monolithic boiler's whole image, 125,156 bytes, 508,000 instructions);
+//! a background share adds about 110 instructions per scan to that.
 
-use crate::program::{
-    Action, Config, EventSpec, GuardNode, GuardSpec, Index, InputSpec, Membership, OutputSpec,
-    Program, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
-};
+#[cfg(doc)]
+use crate::program::Span;
+use crate::program::{Config, Index, Program, UnexpectedPolicy};
 use crate::table::{Rows, SupervisorTable, TableProgram};
 use crc::{Crc, CRC_32_MPEG_2};
 
@@ -89,13 +92,9 @@ const CONFIG_RUNS: usize = 18;
 /// Runs per table: header, `defined`, `targets`, `row_starts`.
 const TABLE_RUNS: usize = 4;
 /// Words of the header run.
-const HEADER_WORDS: usize = 29;
-/// Words of an event's record.
-const EVENT_WORDS: usize = 7;
-/// Words of a supervisor's record.
-const SUPERVISOR_WORDS: usize = 6;
+pub(crate) const HEADER_WORDS: usize = 29;
 /// Words of a table's header run.
-const TABLE_HEADER_WORDS: usize = 7;
+pub(crate) const TABLE_HEADER_WORDS: usize = 7;
 
 /// Where a check of the stream stands: the next word to feed and the CRC of
 /// the words before it.
@@ -148,6 +147,30 @@ pub fn bytes<P: Program + ?Sized>(program: &P) -> usize {
         r += 1;
     }
     4 * words
+}
+
+/// Calls `f` with every word of `program`'s image, in order: the image as
+/// one run of words, which [`crate::parse::Blob::parse`] reads back.
+pub fn for_each_word<P: Program + ?Sized>(program: &P, mut f: impl FnMut(u32)) {
+    let stream = Stream::of(program);
+    let mut r = 0;
+    while let Some(run) = stream.run(r) {
+        match run {
+            Run::Words(words) => words.iter().for_each(|&w| f(w)),
+            Run::TableHeader(header) => header.iter().for_each(|&w| f(w)),
+            Run::Header => (0..HEADER_WORDS).for_each(|k| f(stream.header_word(k))),
+            Run::Name(bytes) => (0..run.len()).for_each(|k| f(name_word(bytes, k))),
+        }
+        r += 1;
+    }
+}
+
+/// `program`'s image as one vector of words (hosts writing an image file).
+#[cfg(feature = "alloc")]
+pub fn words<P: Program + ?Sized>(program: &P) -> alloc::vec::Vec<u32> {
+    let mut words = alloc::vec::Vec::new();
+    for_each_word(program, |w| words.push(w));
+    words
 }
 
 /// The CRC of a configuration alone: the image of a program without
@@ -228,266 +251,151 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
         self.program.table(Index::try_from(t).ok()?)
     }
 
-    /// Run `r` of the stream, `None` past the last.
+    /// Run `r` of the stream, `None` past the last. Every run but the
+    /// header, the name and a table's header is words as stored.
     fn run(&self, r: usize) -> Option<Run<'a>> {
         let c = &self.config;
-        Some(match r {
-            0 => Run::Header,
-            1 => Run::Name(c.name.as_bytes()),
-            2 => Run::Inputs(c.inputs),
-            3 => Run::Indices(c.debounced),
-            4 => Run::Outputs(c.outputs),
-            5 => Run::Timers(c.timers),
-            6 => Run::Events(c.events),
-            7 => Run::Supervisors(c.supervisors),
-            8 => Run::Stored(c.input_masks),
-            9 => Run::Indices(c.event_lists),
-            10 => Run::Stored(c.event_masks),
-            11 => Run::Actions(c.actions),
-            12 => Run::Memberships(c.memberships),
-            13 => Run::StateMap(c.state_map),
-            14 => Run::Guards(c.guards.events),
-            15 => Run::StateBits(c.guards.bits),
-            16 => Run::GuardNodes(c.guards.nodes),
-            17 => Run::Stored(c.allowed_index),
+        Some(Run::Words(match r {
+            0 => return Some(Run::Header),
+            1 => return Some(Run::Name(c.name.as_bytes())),
+            2 => c.inputs.as_flattened(),
+            3 => c.debounced,
+            4 => c.outputs.as_flattened(),
+            5 => c.timers.as_flattened(),
+            6 => c.events.as_flattened(),
+            7 => c.supervisors.as_flattened(),
+            8 => c.input_masks,
+            9 => c.event_lists,
+            10 => c.event_masks,
+            11 => c.actions,
+            12 => c.memberships,
+            13 => c.state_map.as_flattened(),
+            14 => c.guards.events.as_flattened(),
+            15 => c.guards.bits.as_flattened(),
+            16 => c.guards.nodes.as_flattened(),
+            17 => c.allowed_index,
             _ => {
                 let r = r - CONFIG_RUNS;
                 let table = self.table(r / TABLE_RUNS)?;
                 match r % TABLE_RUNS {
-                    0 => Run::TableHeader(table),
-                    1 => Run::Stored(table.defined),
-                    2 => Run::Stored(table.targets),
-                    _ => Run::Stored(match table.rows {
+                    0 => return Some(Run::TableHeader(table_header(&table))),
+                    1 => table.defined,
+                    2 => table.targets,
+                    _ => match table.rows {
                         Rows::Dense => &[],
                         Rows::Sparse { row_starts, .. } => row_starts,
                         Rows::Net { fields } => fields,
-                    }),
+                    },
                 }
             }
-        })
+        }))
     }
 
-    /// Feeds words `from..to` of `run`. Stored words go as they are; the
-    /// other runs are encoded a record (an item's few words) at a time, so
-    /// a share that starts or ends inside a record encodes it once.
+    /// Feeds words `from..to` of `run`.
     fn feed(&self, run: &Run<'_>, from: usize, to: usize, feeder: &mut Feeder) {
         match *run {
-            Run::Stored(words) => feeder.push(&words[from..to]),
+            Run::Words(words) => feeder.push(&words[from..to]),
+            Run::TableHeader(ref header) => feeder.push(&header[from..to]),
             Run::Header => (from..to).for_each(|k| feeder.push(&[self.header_word(k)])),
-            Run::Name(bytes) => feed_records(bytes.chunks(4), from, to, feeder, |chunk| {
-                let mut word = [0u8; 4];
-                word[..chunk.len()].copy_from_slice(chunk);
-                [u32::from_le_bytes(word)]
-            }),
-            Run::Inputs(inputs) => feed_records(inputs, from, to, feeder, |i| {
-                [i.debounce_scans.into(), span(i.raises)]
-            }),
-            Run::Indices(indices) => feed_records(indices, from, to, feeder, |&i| [i.into()]),
-            Run::Outputs(outputs) => feed_records(outputs, from, to, feeder, |o| {
-                let levels = u32::from(o.safe) | u32::from(o.initial) << 1;
-                [levels, span(o.state_map)]
-            }),
-            Run::Timers(timers) => {
-                feed_records(timers, from, to, feeder, |t| [t.preset_ms, span(t.raises)])
-            }
-            Run::Events(events) => feed_records(events, from, to, feeder, |e| {
-                let (kind, binding) = match e.trigger {
-                    Trigger::Command => (0, 0),
-                    Trigger::Rising(mask) => (1, span(mask)),
-                    Trigger::Falling(mask) => (2, span(mask)),
-                    Trigger::Expired(timer) => (3, timer.into()),
-                };
-                [
-                    kind,
-                    binding,
-                    span(e.when),
-                    span(e.unless),
-                    e.request.map_or(u32::MAX, u32::from),
-                    span(e.actions),
-                    span(e.members),
-                ]
-            }),
-            Run::Supervisors(supervisors) => feed_records(supervisors, from, to, feeder, |s| {
-                [
-                    s.states,
-                    s.initial,
-                    span(s.alphabet),
-                    span(s.outside),
-                    span(s.allowed.index),
-                    s.allowed.bits.into(),
-                ]
-            }),
-            Run::Actions(actions) => feed_records(actions, from, to, feeder, |a| {
-                [match *a {
-                    Action::Set(o) => u32::from(o),
-                    Action::Clear(o) => 1 << 16 | u32::from(o),
-                    Action::Start(t) => 2 << 16 | u32::from(t),
-                    Action::Reset(t) => 3 << 16 | u32::from(t),
-                }]
-            }),
-            Run::Memberships(members) => feed_records(members, from, to, feeder, |m| {
-                [u32::from(m.supervisor) | u32::from(m.local) << 16]
-            }),
-            Run::StateMap(entries) => feed_records(entries, from, to, feeder, |e| {
-                [e.supervisor.into(), e.state, e.mask]
-            }),
-            Run::Guards(guards) => feed_records(guards, from, to, feeder, |g| {
-                [g.event.into(), g.root.into(), span(g.nodes)]
-            }),
-            Run::StateBits(bits) => feed_records(bits, from, to, feeder, |b| {
-                [u32::from(b.component) | u32::from(b.shift) << 16]
-            }),
-            Run::GuardNodes(nodes) => feed_records(nodes, from, to, feeder, |n| {
-                [u32::from(n.bit) | u32::from(n.low) << 16, n.high.into()]
-            }),
-            Run::TableHeader(ref t) => {
-                let (layout, start_bits, row_starts) = match t.rows {
-                    Rows::Dense => (0, 0, 0),
-                    Rows::Net { fields } => (2, 0, fields.len()),
-                    Rows::Sparse {
-                        row_starts,
-                        start_bits,
-                    } => (1, start_bits, row_starts.len()),
-                };
-                let header = [
-                    t.events.into(),
-                    t.state_bits.into(),
-                    layout,
-                    start_bits.into(),
-                    t.defined.len() as u32,
-                    t.targets.len() as u32,
-                    row_starts as u32,
-                ];
-                feeder.push(&header[from..to]);
-            }
+            Run::Name(bytes) => (from..to).for_each(|k| feeder.push(&[name_word(bytes, k)])),
         }
     }
 
     /// Word `k` of the header run.
     fn header_word(&self, k: usize) -> u32 {
         let c = &self.config;
-        match k {
-            0 => c.name.len() as u32,
-            1 => c.scan_period_ms,
+        (match k {
+            0 => c.name.len(),
+            1 => return c.scan_period_ms,
             2 => c.max_commands_per_scan.into(),
             3 => match c.unexpected {
                 UnexpectedPolicy::Fault => 0,
                 UnexpectedPolicy::Ignore => 1,
             },
-            4 => c.reset.map_or(u32::MAX, u32::from),
+            4 => return c.reset.map_or(u32::MAX, u32::from),
             5 => c.overrun_limit.into(),
             6 => c.overrun_fault.into(),
             7 => c.lost_edge_fault.into(),
             8 => c.rom_test_bytes_per_scan.into(),
-            9 => span(c.debounce_mask),
-            10 => span(c.commands),
-            11 => span(c.requested),
-            12 => c.inputs.len() as u32,
-            13 => c.debounced.len() as u32,
-            14 => c.outputs.len() as u32,
-            15 => c.timers.len() as u32,
-            16 => c.events.len() as u32,
-            17 => c.supervisors.len() as u32,
-            18 => c.input_masks.len() as u32,
-            19 => c.event_lists.len() as u32,
-            20 => c.event_masks.len() as u32,
-            21 => c.actions.len() as u32,
-            22 => c.memberships.len() as u32,
-            23 => c.state_map.len() as u32,
-            24 => c.guards.events.len() as u32,
-            25 => c.guards.bits.len() as u32,
-            26 => c.guards.nodes.len() as u32,
-            27 => c.allowed_index.len() as u32,
-            _ => self.tables() as u32,
-        }
+            9 => return c.debounce_mask.to_word(),
+            10 => return c.commands.to_word(),
+            11 => return c.requested.to_word(),
+            12 => c.inputs.len(),
+            13 => c.debounced.len(),
+            14 => c.outputs.len(),
+            15 => c.timers.len(),
+            16 => c.events.len(),
+            17 => c.supervisors.len(),
+            18 => c.input_masks.len(),
+            19 => c.event_lists.len(),
+            20 => c.event_masks.len(),
+            21 => c.actions.len(),
+            22 => c.memberships.len(),
+            23 => c.state_map.len(),
+            24 => c.guards.events.len(),
+            25 => c.guards.bits.len(),
+            26 => c.guards.nodes.len(),
+            27 => c.allowed_index.len(),
+            _ => self.tables(),
+        }) as u32
     }
+}
+
+/// Word `k` of the name run: bytes `4k..4k + 4`, the first least
+/// significant, zeros past the end.
+fn name_word(bytes: &[u8], k: usize) -> u32 {
+    let mut word = [0u8; 4];
+    let chunk = bytes.get(4 * k..).unwrap_or(&[]);
+    let n = chunk.len().min(4);
+    word[..n].copy_from_slice(&chunk[..n]);
+    u32::from_le_bytes(word)
+}
+
+/// A table's header run: events, state bits, layout (0 dense, 1 sparse,
+/// 2 net), row-start bits, and the word counts of `defined`, `targets` and
+/// `row_starts` (`fields`).
+fn table_header(t: &SupervisorTable<'_>) -> [u32; TABLE_HEADER_WORDS] {
+    let (layout, start_bits, row_starts) = match t.rows {
+        Rows::Dense => (0, 0, 0),
+        Rows::Net { fields } => (2, 0, fields.len()),
+        Rows::Sparse {
+            row_starts,
+            start_bits,
+        } => (1, start_bits, row_starts.len()),
+    };
+    [
+        t.events.into(),
+        t.state_bits.into(),
+        layout,
+        start_bits.into(),
+        t.defined.len() as u32,
+        t.targets.len() as u32,
+        row_starts as u32,
+    ]
 }
 
 /// One run of the stream.
 #[derive(Debug, Clone, Copy)]
 enum Run<'a> {
-    /// Words fed as stored (masks, table parts).
-    Stored(&'a [u32]),
+    /// Words fed as stored (every pool, table parts).
+    Words(&'a [u32]),
     /// The configuration's scalars and lengths.
     Header,
     /// The project name.
     Name(&'a [u8]),
-    /// Inputs.
-    Inputs(&'a [InputSpec]),
-    /// Outputs.
-    Outputs(&'a [OutputSpec]),
-    /// Timers.
-    Timers(&'a [TimerSpec]),
-    /// Events.
-    Events(&'a [EventSpec]),
-    /// Supervisors.
-    Supervisors(&'a [SupervisorSpec]),
-    /// A pool of indices (debounced inputs, event lists).
-    Indices(&'a [Index]),
-    /// The pool of actions.
-    Actions(&'a [Action]),
-    /// The pool of memberships.
-    Memberships(&'a [Membership]),
-    /// The pool of state-map entries.
-    StateMap(&'a [StateMapEntry]),
-    /// The guarded events.
-    Guards(&'a [GuardSpec]),
-    /// The pool of state bits guards read.
-    StateBits(&'a [StateBit]),
-    /// The pool of guard nodes.
-    GuardNodes(&'a [GuardNode]),
     /// A table's sizes and layout.
-    TableHeader(SupervisorTable<'a>),
+    TableHeader([u32; TABLE_HEADER_WORDS]),
 }
 
 impl Run<'_> {
     /// Its length in words.
     fn len(&self) -> usize {
         match *self {
-            Run::Stored(words) => words.len(),
+            Run::Words(words) => words.len(),
             Run::Header => HEADER_WORDS,
             Run::Name(bytes) => bytes.len().div_ceil(4),
-            Run::Inputs(x) => 2 * x.len(),
-            Run::Outputs(x) => 2 * x.len(),
-            Run::Timers(x) => 2 * x.len(),
-            Run::Events(x) => EVENT_WORDS * x.len(),
-            Run::Supervisors(x) => SUPERVISOR_WORDS * x.len(),
-            Run::Indices(x) => x.len(),
-            Run::Actions(x) => x.len(),
-            Run::Memberships(x) => x.len(),
-            Run::StateMap(x) => 3 * x.len(),
-            Run::Guards(x) => 3 * x.len(),
-            Run::StateBits(x) => x.len(),
-            Run::GuardNodes(x) => 2 * x.len(),
             Run::TableHeader(_) => TABLE_HEADER_WORDS,
         }
-    }
-}
-
-/// The word of a span.
-fn span(s: Span) -> u32 {
-    u32::from(s.start) | u32::from(s.len) << 16
-}
-
-/// Feeds words `from..to` of a run of `N`-word records, each encoded by
-/// `encode`.
-#[inline]
-fn feed_records<T, const N: usize>(
-    items: impl IntoIterator<Item = T>,
-    from: usize,
-    to: usize,
-    feeder: &mut Feeder,
-    encode: impl Fn(T) -> [u32; N],
-) {
-    let first = from / N;
-    for (k, item) in items.into_iter().enumerate().skip(first) {
-        let start = k * N;
-        if start >= to {
-            break;
-        }
-        let record = encode(item);
-        let words = &record[from.max(start) - start..N.min(to - start)];
-        feeder.push(words);
     }
 }
 

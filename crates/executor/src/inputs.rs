@@ -8,7 +8,7 @@
 
 use crate::bits;
 use crate::memory::Ram;
-use crate::program::Config;
+use crate::program::{Config, InputSpec};
 
 /// Packs one value per input into `words` (inputs past `raw`'s end read
 /// as 0; values past `inputs` are ignored).
@@ -91,7 +91,7 @@ pub(crate) fn sample(
 fn debounce(config: &Config<'_>, ram: &mut Ram<'_>) -> bool {
     let mut counting = false;
     for (count, &i) in ram.debounce.iter_mut().zip(config.debounced) {
-        let (k, bit) = (usize::from(i) / 32, 1u32 << (i % 32));
+        let (k, bit) = (i as usize / 32, 1u32 << (i % 32));
         let (Some(raw), Some(filtered)) = (ram.raw.get(k), ram.filtered.get_mut(k)) else {
             continue;
         };
@@ -102,8 +102,8 @@ fn debounce(config: &Config<'_>, ram: &mut Ram<'_>) -> bool {
         *count = count.saturating_add(1);
         let scans = config
             .inputs
-            .get(usize::from(i))
-            .map_or(0, |s| s.debounce_scans);
+            .get(i as usize)
+            .map_or(0, |s| InputSpec::from_words(s).debounce_scans);
         if *count >= scans {
             *filtered ^= bit;
             *count = 0;

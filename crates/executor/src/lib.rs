@@ -47,10 +47,11 @@
 //!     lost_edge_fault: false,
 //!     rom_test_bytes_per_scan: 64,
 //!     // The button's edges can raise `pressed` (event_lists[0..1]).
-//!     inputs: &[InputSpec { debounce_scans: 0, raises: Span::new(0, 1) }],
+//!     // Records are words, written with each kind's `to_words`.
+//!     inputs: &[InputSpec { debounce_scans: 0, raises: Span::new(0, 1) }.to_words()],
 //!     debounced: &[],
 //!     debounce_mask: Span::EMPTY,
-//!     outputs: &[OutputSpec { safe: false, initial: false, state_map: Span::EMPTY }],
+//!     outputs: &[OutputSpec { safe: false, initial: false, state_map: Span::EMPTY }.to_words()],
 //!     timers: &[],
 //!     events: &[
 //!         EventSpec {
@@ -60,7 +61,8 @@
 //!             request: None,
 //!             actions: Span::EMPTY,
 //!             members: Span::new(0, 1), // memberships[0..1]
-//!         },
+//!         }
+//!         .to_words(),
 //!         EventSpec {
 //!             trigger: Trigger::Command,
 //!             when: Span::EMPTY,
@@ -68,7 +70,8 @@
 //!             request: None,
 //!             actions: Span::new(0, 1), // actions[0..1]
 //!             members: Span::new(1, 1), // memberships[1..2]
-//!         },
+//!         }
+//!         .to_words(),
 //!     ],
 //!     // Its alphabet in local order is event_lists[1..3]; no event is
 //!     // outside it.
@@ -80,18 +83,19 @@
 //!         // Computed from `next_state` as it moves (a generator may store
 //!         // them: `AllowedSets`).
 //!         allowed: AllowedSets::COMPUTED,
-//!     }],
+//!     }
+//!     .to_words()],
 //!     // One word per mask (32 inputs per word): the button alone.
 //!     input_masks: &[mask_word(0, &[START_PB])],
-//!     event_lists: &[PRESSED, PRESSED, RUN],
+//!     event_lists: &[PRESSED as u32, PRESSED as u32, RUN as u32],
 //!     // One word per set (32 events per word): the commands.
 //!     event_masks: &[mask_word(0, &[RUN])],
 //!     commands: Span::new(0, 1),
 //!     requested: Span::EMPTY,
-//!     actions: &[Action::Set(MOTOR)],
+//!     actions: &[Action::Set(MOTOR).to_word()],
 //!     memberships: &[
-//!         Membership { supervisor: 0, local: 0 },
-//!         Membership { supervisor: 0, local: 1 },
+//!         Membership { supervisor: 0, local: 0 }.to_word(),
+//!         Membership { supervisor: 0, local: 1 }.to_word(),
 //!     ],
 //!     state_map: &[],
 //!     guards: Guards::NONE,
@@ -308,6 +312,7 @@ pub mod image;
 mod inputs;
 pub mod memory;
 pub mod pacing;
+pub mod parse;
 pub mod program;
 mod record;
 #[cfg(feature = "replay")]

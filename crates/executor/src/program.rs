@@ -82,6 +82,103 @@ impl Span {
     pub const fn is_empty(self) -> bool {
         self.len == 0
     }
+
+    /// Its word in the image: `start | len << 16`.
+    pub const fn to_word(self) -> u32 {
+        self.start as u32 | (self.len as u32) << 16
+    }
+
+    /// The span of a word written by [`Span::to_word`].
+    #[inline]
+    pub const fn from_word(word: u32) -> Span {
+        Span {
+            start: word as u16,
+            len: (word >> 16) as u16,
+        }
+    }
+}
+
+/// A value stored in the image as a record of `N` words (the encoding of
+/// each kind: [`crate::image`]). [`Record::from_words`] reads any words
+/// without panicking, and ignores bits no field uses; the values it reads
+/// are what the structure check ([`crate::validate::validate`]) checks.
+pub trait Record<const N: usize>: Sized {
+    /// The record's words.
+    fn to_words(&self) -> [u32; N];
+    /// The value of a record's words.
+    fn from_words(words: &[u32; N]) -> Self;
+}
+
+/// Implements [`Record`] by the type's own `const fn`s, which generated
+/// code calls in constants.
+macro_rules! record {
+    ($ty:ty, $n:literal) => {
+        impl $ty {
+            /// The records of `items`, in order: how generated code
+            /// writes a pool of them (`const` items, so the typed values
+            /// are not in the image, only their words).
+            pub const fn records<const K: usize>(items: &[$ty; K]) -> [[u32; $n]; K] {
+                let mut out = [[0; $n]; K];
+                let mut k = 0;
+                while k < K {
+                    out[k] = items[k].to_words();
+                    k += 1;
+                }
+                out
+            }
+        }
+
+        impl Record<$n> for $ty {
+            #[inline]
+            fn to_words(&self) -> [u32; $n] {
+                <$ty>::to_words(self)
+            }
+            #[inline]
+            fn from_words(words: &[u32; $n]) -> Self {
+                <$ty>::from_words(words)
+            }
+        }
+    };
+}
+
+/// Indices as words, in order: how generated code writes the event
+/// lists and the debounced inputs.
+pub const fn indices<const K: usize>(items: &[Index; K]) -> [u32; K] {
+    let mut out = [0; K];
+    let mut k = 0;
+    while k < K {
+        out[k] = items[k] as u32;
+        k += 1;
+    }
+    out
+}
+
+/// Implements `words` for a kind whose record is one word, the pool
+/// holding plain words.
+macro_rules! one_word {
+    ($ty:ty) => {
+        impl $ty {
+            /// The words of `items`, in order: how generated code writes
+            /// a pool of them.
+            pub const fn words<const K: usize>(items: &[$ty; K]) -> [u32; K] {
+                let mut out = [0; K];
+                let mut k = 0;
+                while k < K {
+                    out[k] = items[k].to_word();
+                    k += 1;
+                }
+                out
+            }
+        }
+    };
+}
+one_word!(Action);
+one_word!(Membership);
+
+/// The records of `items`, in a vector (hosts building images).
+#[cfg(feature = "alloc")]
+pub fn encode<T: Record<N>, const N: usize>(items: &[T]) -> alloc::vec::Vec<[u32; N]> {
+    items.iter().map(Record::to_words).collect()
 }
 
 /// An input signal.
@@ -98,6 +195,23 @@ pub struct InputSpec {
     pub raises: Span,
 }
 
+impl InputSpec {
+    /// Its record: `debounce_scans`; `raises`.
+    pub const fn to_words(&self) -> [u32; 2] {
+        [self.debounce_scans as u32, self.raises.to_word()]
+    }
+
+    /// The input of a record.
+    #[inline]
+    pub const fn from_words(w: &[u32; 2]) -> InputSpec {
+        InputSpec {
+            debounce_scans: w[0] as u8,
+            raises: Span::from_word(w[1]),
+        }
+    }
+}
+record!(InputSpec, 2);
+
 /// An output signal.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct OutputSpec {
@@ -110,6 +224,27 @@ pub struct OutputSpec {
     pub state_map: Span,
 }
 
+impl OutputSpec {
+    /// Its record: `safe | initial << 1`; `state_map`.
+    pub const fn to_words(&self) -> [u32; 2] {
+        [
+            self.safe as u32 | (self.initial as u32) << 1,
+            self.state_map.to_word(),
+        ]
+    }
+
+    /// The output of a record.
+    #[inline]
+    pub const fn from_words(w: &[u32; 2]) -> OutputSpec {
+        OutputSpec {
+            safe: w[0] & 1 != 0,
+            initial: w[0] & 2 != 0,
+            state_map: Span::from_word(w[1]),
+        }
+    }
+}
+record!(OutputSpec, 2);
+
 /// A timer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TimerSpec {
@@ -119,6 +254,23 @@ pub struct TimerSpec {
     /// [`Config::event_lists`]).
     pub raises: Span,
 }
+
+impl TimerSpec {
+    /// Its record: `preset_ms`; `raises`.
+    pub const fn to_words(&self) -> [u32; 2] {
+        [self.preset_ms, self.raises.to_word()]
+    }
+
+    /// The timer of a record.
+    #[inline]
+    pub const fn from_words(w: &[u32; 2]) -> TimerSpec {
+        TimerSpec {
+            preset_ms: w[0],
+            raises: Span::from_word(w[1]),
+        }
+    }
+}
+record!(TimerSpec, 2);
 
 /// What makes an uncontrollable event occur.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -148,6 +300,44 @@ pub enum Action {
     Reset(Index),
 }
 
+impl Action {
+    /// Its word: kind (0 set, 1 clear, 2 start, 3 reset) `<< 16 |` its
+    /// output or timer.
+    pub const fn to_word(&self) -> u32 {
+        let (kind, index) = match *self {
+            Action::Set(o) => (0, o),
+            Action::Clear(o) => (1, o),
+            Action::Start(t) => (2, t),
+            Action::Reset(t) => (3, t),
+        };
+        kind << 16 | index as u32
+    }
+
+    /// The action of a word (kinds above 3 read as 3).
+    #[inline]
+    pub const fn from_word(word: u32) -> Action {
+        let index = word as u16;
+        match word >> 16 {
+            0 => Action::Set(index),
+            1 => Action::Clear(index),
+            2 => Action::Start(index),
+            _ => Action::Reset(index),
+        }
+    }
+
+    /// [`Action::to_word`] as a record.
+    pub const fn to_words(&self) -> [u32; 1] {
+        [self.to_word()]
+    }
+
+    /// [`Action::from_word`] of a record.
+    #[inline]
+    pub const fn from_words(w: &[u32; 1]) -> Action {
+        Action::from_word(w[0])
+    }
+}
+record!(Action, 1);
+
 /// A supervisor that has an event in its alphabet, with the event's local
 /// index there.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -157,6 +347,34 @@ pub struct Membership {
     /// The event's index in that supervisor's local alphabet.
     pub local: Index,
 }
+
+impl Membership {
+    /// Its word: `supervisor | local << 16`.
+    pub const fn to_word(&self) -> u32 {
+        self.supervisor as u32 | (self.local as u32) << 16
+    }
+
+    /// The membership of a word.
+    #[inline]
+    pub const fn from_word(word: u32) -> Membership {
+        Membership {
+            supervisor: word as u16,
+            local: (word >> 16) as u16,
+        }
+    }
+
+    /// [`Membership::to_word`] as a record.
+    pub const fn to_words(&self) -> [u32; 1] {
+        [self.to_word()]
+    }
+
+    /// [`Membership::from_word`] of a record.
+    #[inline]
+    pub const fn from_words(w: &[u32; 1]) -> Membership {
+        Membership::from_word(w[0])
+    }
+}
+record!(Membership, 1);
 
 /// An event of the global alphabet.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -182,6 +400,63 @@ impl EventSpec {
     #[inline]
     pub fn is_controllable(&self) -> bool {
         matches!(self.trigger, Trigger::Command)
+    }
+
+    /// Its record: trigger (0 command, 1 rising, 2 falling, 3 expired);
+    /// its mask span or timer (0 for a command); `when`; `unless`;
+    /// `request` (`0xFFFF_FFFF` for none); `actions`; `members`.
+    pub const fn to_words(&self) -> [u32; 7] {
+        let (kind, binding) = match self.trigger {
+            Trigger::Command => (0, 0),
+            Trigger::Rising(mask) => (1, mask.to_word()),
+            Trigger::Falling(mask) => (2, mask.to_word()),
+            Trigger::Expired(timer) => (3, timer as u32),
+        };
+        [
+            kind,
+            binding,
+            self.when.to_word(),
+            self.unless.to_word(),
+            match self.request {
+                Some(i) => i as u32,
+                None => u32::MAX,
+            },
+            self.actions.to_word(),
+            self.members.to_word(),
+        ]
+    }
+
+    /// The event of a record (a trigger kind above 3 reads as 3, a
+    /// request that is no [`Index`] as none). Always inline: the scan
+    /// reads one or two fields of it, a load and a shift each.
+    #[inline(always)]
+    pub const fn from_words(w: &[u32; 7]) -> EventSpec {
+        EventSpec {
+            trigger: Trigger::from_words(w[0], w[1]),
+            when: Span::from_word(w[2]),
+            unless: Span::from_word(w[3]),
+            request: if w[4] <= Index::MAX as u32 {
+                Some(w[4] as Index)
+            } else {
+                None
+            },
+            actions: Span::from_word(w[5]),
+            members: Span::from_word(w[6]),
+        }
+    }
+}
+record!(EventSpec, 7);
+
+impl Trigger {
+    /// The trigger of an event record's first two words.
+    #[inline(always)]
+    pub const fn from_words(kind: u32, binding: u32) -> Trigger {
+        match kind {
+            0 => Trigger::Command,
+            1 => Trigger::Rising(Span::from_word(binding)),
+            2 => Trigger::Falling(Span::from_word(binding)),
+            _ => Trigger::Expired(binding as Index),
+        }
     }
 }
 
@@ -229,7 +504,23 @@ impl StateMapEntry {
     pub fn holds(&self, state: u32) -> bool {
         state & self.mask == self.state
     }
+
+    /// Its record: `supervisor`; `state`; `mask`.
+    pub const fn to_words(&self) -> [u32; 3] {
+        [self.supervisor as u32, self.state, self.mask]
+    }
+
+    /// The entry of a record.
+    #[inline]
+    pub const fn from_words(w: &[u32; 3]) -> StateMapEntry {
+        StateMapEntry {
+            supervisor: w[0] as Index,
+            state: w[1],
+            mask: w[2],
+        }
+    }
 }
+record!(StateMapEntry, 3);
 
 /// A supervisor's size, initial state and alphabet.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -248,6 +539,37 @@ pub struct SupervisorSpec {
     /// [`AllowedSets::COMPUTED`] from its program when it moves.
     pub allowed: AllowedSets,
 }
+
+impl SupervisorSpec {
+    /// Its record: `states`; `initial`; `alphabet`; `outside`;
+    /// `allowed.index`; `allowed.bits`.
+    pub const fn to_words(&self) -> [u32; 6] {
+        [
+            self.states,
+            self.initial,
+            self.alphabet.to_word(),
+            self.outside.to_word(),
+            self.allowed.index.to_word(),
+            self.allowed.bits as u32,
+        ]
+    }
+
+    /// The supervisor of a record (always inline, as an event's).
+    #[inline(always)]
+    pub const fn from_words(w: &[u32; 6]) -> SupervisorSpec {
+        SupervisorSpec {
+            states: w[0],
+            initial: w[1],
+            alphabet: Span::from_word(w[2]),
+            outside: Span::from_word(w[3]),
+            allowed: AllowedSets {
+                index: Span::from_word(w[4]),
+                bits: w[5] as u8,
+            },
+        }
+    }
+}
+record!(SupervisorSpec, 6);
 
 /// A supervisor's *allowed set* in each of its states, stored in the form
 /// the scan reads: the events outside its alphabet and the local events it
@@ -315,28 +637,33 @@ pub struct Config<'a> {
     /// (whole 32-bit words: a multiple of 4, at least 4; smaller values
     /// count as 4). See [`crate::image`].
     pub rom_test_bytes_per_scan: u16,
-    /// Inputs in declaration order.
-    pub inputs: &'a [InputSpec],
-    /// The debounced inputs (`debounce_scans ≥ 2`) in declaration order:
-    /// filter counter `k` belongs to input `debounced[k]`.
-    pub debounced: &'a [Index],
+    /// Inputs in declaration order ([`InputSpec`] records; read them with
+    /// [`Config::input`]).
+    pub inputs: &'a [[u32; 2]],
+    /// The debounced inputs (`debounce_scans ≥ 2`) in declaration order,
+    /// one word each: filter counter `k` belongs to input `debounced[k]`.
+    pub debounced: &'a [u32],
     /// Mask (span of [`Config::input_masks`]) of the debounced inputs.
     pub debounce_mask: Span,
-    /// Outputs in declaration order.
-    pub outputs: &'a [OutputSpec],
-    /// Timers in declaration order.
-    pub timers: &'a [TimerSpec],
-    /// Events in declaration (priority) order.
-    pub events: &'a [EventSpec],
-    /// Supervisors in declaration order.
-    pub supervisors: &'a [SupervisorSpec],
+    /// Outputs in declaration order ([`OutputSpec`] records,
+    /// [`Config::output`]).
+    pub outputs: &'a [[u32; 2]],
+    /// Timers in declaration order ([`TimerSpec`] records,
+    /// [`Config::timer`]).
+    pub timers: &'a [[u32; 2]],
+    /// Events in declaration (priority) order ([`EventSpec`] records,
+    /// [`Config::event`]).
+    pub events: &'a [[u32; 7]],
+    /// Supervisors in declaration order ([`SupervisorSpec`] records,
+    /// [`Config::supervisor`]).
+    pub supervisors: &'a [[u32; 6]],
     /// Pool of input masks (edge bindings, `when`, `unless`, the debounced
     /// inputs), each [`words`]`(inputs.len())` long.
     pub input_masks: &'a [u32],
     /// Pool of event lists: the events each input's edges and each timer's
     /// expiry can raise (each in declaration order), and each
-    /// supervisor's alphabet (in its local order).
-    pub event_lists: &'a [Index],
+    /// supervisor's alphabet (in its local order); one word an event.
+    pub event_lists: &'a [u32],
     /// Pool of event sets, each [`words`]`(events.len())` long: what each
     /// supervisor never blocks, [`Config::commands`], and the stored
     /// allowed sets ([`AllowedSets`]).
@@ -348,18 +675,105 @@ pub struct Config<'a> {
     /// The controllable events with a request input, in declaration order
     /// (span of [`Config::event_lists`]).
     pub requested: Span,
-    /// Pool of actions.
-    pub actions: &'a [Action],
-    /// Pool of event memberships.
-    pub memberships: &'a [Membership],
-    /// Pool of state-map entries.
-    pub state_map: &'a [StateMapEntry],
+    /// Pool of actions, one word each ([`Action::to_word`]).
+    pub actions: &'a [u32],
+    /// Pool of event memberships, one word each
+    /// ([`Membership::to_word`]).
+    pub memberships: &'a [u32],
+    /// Pool of state-map entries ([`StateMapEntry`] records).
+    pub state_map: &'a [[u32; 3]],
     /// Guards of controllable events (symbolic supervisors:
     /// [`crate::guards`]); [`Guards::NONE`] without.
     pub guards: Guards<'a>,
     /// Pool of the packed set numbers of stored allowed sets
     /// ([`AllowedSets::index`]).
     pub allowed_index: &'a [u32],
+}
+
+impl<'a> Config<'a> {
+    /// Input `i` (panics past the inputs, which validation rules out).
+    #[inline]
+    pub fn input(&self, i: usize) -> InputSpec {
+        InputSpec::from_words(&self.inputs[i])
+    }
+
+    /// Output `o`.
+    #[inline]
+    pub fn output(&self, o: usize) -> OutputSpec {
+        OutputSpec::from_words(&self.outputs[o])
+    }
+
+    /// Timer `t`.
+    #[inline]
+    pub fn timer(&self, t: usize) -> TimerSpec {
+        TimerSpec::from_words(&self.timers[t])
+    }
+
+    /// Event `e`.
+    #[inline]
+    pub fn event(&self, e: usize) -> EventSpec {
+        EventSpec::from_words(&self.events[e])
+    }
+
+    /// Supervisor `j`.
+    #[inline]
+    pub fn supervisor(&self, j: usize) -> SupervisorSpec {
+        SupervisorSpec::from_words(&self.supervisors[j])
+    }
+
+    /// Every input, in order.
+    pub fn input_specs(&self) -> impl ExactSizeIterator<Item = InputSpec> + 'a {
+        self.inputs.iter().map(InputSpec::from_words)
+    }
+
+    /// Every output, in order.
+    pub fn output_specs(&self) -> impl ExactSizeIterator<Item = OutputSpec> + 'a {
+        self.outputs.iter().map(OutputSpec::from_words)
+    }
+
+    /// Every timer, in order.
+    pub fn timer_specs(&self) -> impl ExactSizeIterator<Item = TimerSpec> + 'a {
+        self.timers.iter().map(TimerSpec::from_words)
+    }
+
+    /// Every event, in order.
+    pub fn event_specs(&self) -> impl ExactSizeIterator<Item = EventSpec> + 'a {
+        self.events.iter().map(EventSpec::from_words)
+    }
+
+    /// Every supervisor, in order.
+    pub fn supervisor_specs(&self) -> impl ExactSizeIterator<Item = SupervisorSpec> + 'a {
+        self.supervisors.iter().map(SupervisorSpec::from_words)
+    }
+
+    /// The debounced inputs, in order.
+    pub fn debounced_inputs(&self) -> impl ExactSizeIterator<Item = Index> + 'a {
+        self.debounced.iter().map(|&i| i as Index)
+    }
+
+    /// The events of a span of [`Config::event_lists`].
+    pub fn event_list(&self, span: Span) -> impl ExactSizeIterator<Item = Index> + 'a {
+        span.of(self.event_lists).iter().map(|&e| e as Index)
+    }
+
+    /// The actions of a span of [`Config::actions`].
+    pub fn actions_of(&self, span: Span) -> impl ExactSizeIterator<Item = Action> + 'a {
+        span.of(self.actions).iter().map(|&a| Action::from_word(a))
+    }
+
+    /// The memberships of a span of [`Config::memberships`].
+    pub fn members_of(&self, span: Span) -> impl ExactSizeIterator<Item = Membership> + 'a {
+        span.of(self.memberships)
+            .iter()
+            .map(|&m| Membership::from_word(m))
+    }
+
+    /// The state-map entries of a span of [`Config::state_map`].
+    pub fn state_map_of(&self, span: Span) -> impl ExactSizeIterator<Item = StateMapEntry> + 'a {
+        span.of(self.state_map)
+            .iter()
+            .map(StateMapEntry::from_words)
+    }
 }
 
 /// Where one state bit comes from: a supervisor (a component of a
@@ -372,6 +786,23 @@ pub struct StateBit {
     pub shift: u8,
 }
 
+impl StateBit {
+    /// Its record: `component | shift << 16`.
+    pub const fn to_words(&self) -> [u32; 1] {
+        [self.component as u32 | (self.shift as u32) << 16]
+    }
+
+    /// The state bit of a record.
+    #[inline]
+    pub const fn from_words(w: &[u32; 1]) -> StateBit {
+        StateBit {
+            component: w[0] as Index,
+            shift: (w[0] >> 16) as u8,
+        }
+    }
+}
+record!(StateBit, 1);
+
 /// One decision node of a guard: read state bit `bit`, continue at `high`
 /// if it is 1, at `low` if 0.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -383,6 +814,24 @@ pub struct GuardNode {
     /// Where to go when the bit is 1.
     pub high: u16,
 }
+
+impl GuardNode {
+    /// Its record: `bit | low << 16`; `high`.
+    pub const fn to_words(&self) -> [u32; 2] {
+        [self.bit as u32 | (self.low as u32) << 16, self.high as u32]
+    }
+
+    /// The node of a record.
+    #[inline]
+    pub const fn from_words(w: &[u32; 2]) -> GuardNode {
+        GuardNode {
+            bit: w[0] as u16,
+            low: (w[0] >> 16) as u16,
+            high: w[1] as u16,
+        }
+    }
+}
+record!(GuardNode, 2);
 
 /// The guard of one controllable event: a decision diagram over state
 /// bits, which must hold for the event to be feasible.
@@ -397,18 +846,62 @@ pub struct GuardSpec {
     pub nodes: Span,
 }
 
+impl GuardSpec {
+    /// Its record: `event`; `root`; `nodes`.
+    pub const fn to_words(&self) -> [u32; 3] {
+        [self.event as u32, self.root as u32, self.nodes.to_word()]
+    }
+
+    /// The guard of a record.
+    #[inline]
+    pub const fn from_words(w: &[u32; 3]) -> GuardSpec {
+        GuardSpec {
+            event: w[0] as Index,
+            root: w[1] as u16,
+            nodes: Span::from_word(w[2]),
+        }
+    }
+}
+record!(GuardSpec, 3);
+
 /// The guards of a program's symbolic supervisors ([`crate::guards`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Guards<'a> {
-    /// One per guarded event, in increasing event order.
-    pub events: &'a [GuardSpec],
-    /// Pool of the state bits the nodes read.
-    pub bits: &'a [StateBit],
-    /// Pool of decision nodes.
-    pub nodes: &'a [GuardNode],
+    /// One per guarded event, in increasing event order ([`GuardSpec`]
+    /// records).
+    pub events: &'a [[u32; 3]],
+    /// Pool of the state bits the nodes read ([`StateBit`] records).
+    pub bits: &'a [[u32; 1]],
+    /// Pool of decision nodes ([`GuardNode`] records).
+    pub nodes: &'a [[u32; 2]],
 }
 
-impl Guards<'_> {
+impl<'a> Guards<'a> {
+    /// Guard `k`.
+    #[inline]
+    pub fn guard(&self, k: usize) -> GuardSpec {
+        GuardSpec::from_words(&self.events[k])
+    }
+
+    /// Every guard, in order.
+    pub fn guards(&self) -> impl ExactSizeIterator<Item = GuardSpec> + 'a {
+        self.events.iter().map(GuardSpec::from_words)
+    }
+
+    /// State bit `k`, `None` past the pool.
+    #[inline]
+    pub fn bit(&self, k: usize) -> Option<StateBit> {
+        self.bits.get(k).map(StateBit::from_words)
+    }
+
+    /// Node `k`, `None` past the pool.
+    #[inline]
+    pub fn node(&self, k: usize) -> Option<GuardNode> {
+        self.nodes.get(k).map(GuardNode::from_words)
+    }
+}
+
+impl Guards<'static> {
     /// No guards: a program without symbolic supervisors.
     pub const NONE: Guards<'static> = Guards {
         events: &[],
@@ -517,5 +1010,30 @@ impl<P: Program + ?Sized> Program for &P {
 
     fn recorded_crc(&self) -> u32 {
         (**self).recorded_crc()
+    }
+}
+
+/// Records for tests, leaked to `'static` like a generated constant.
+#[cfg(test)]
+pub(crate) mod leak {
+    extern crate std;
+    use super::Record;
+    use std::boxed::Box;
+    use std::vec::Vec;
+
+    /// The records of `items`.
+    pub(crate) fn records<T: Record<N>, const N: usize>(items: &[T]) -> &'static [[u32; N]] {
+        Box::leak(
+            items
+                .iter()
+                .map(Record::to_words)
+                .collect::<Vec<_>>()
+                .into_boxed_slice(),
+        )
+    }
+
+    /// The one-word records of `items`, as plain words.
+    pub(crate) fn words<T: Record<1>>(items: &[T]) -> &'static [u32] {
+        records(items).as_flattened()
     }
 }

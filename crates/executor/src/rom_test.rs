@@ -84,4 +84,4 @@ impl RomTest {
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

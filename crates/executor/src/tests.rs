@@ -8,6 +8,7 @@ extern crate std;
 
 use crate::memory::StaticMemory;
 use crate::pacing::Pacer;
+use crate::program::leak::{records, words};
 use crate::program::*;
 use crate::table::SupervisorTable;
 use crate::{Controller, Fault};
@@ -36,7 +37,16 @@ struct Conveyor {
 const INPUT_MASKS: [u32; 1] = [1 << LS];
 /// Events raised by `ls` (0–1) and by the timer (2); the alphabet of
 /// `belt` in its local order (3–6); the command with a request input (7).
-const EVENT_LISTS: [Index; 8] = [LS_ON, LS_OFF, CLEARED, LS_ON, START, LS_OFF, STOP, START];
+const EVENT_LISTS: [u32; 8] = [
+    LS_ON as u32,
+    LS_OFF as u32,
+    CLEARED as u32,
+    LS_ON as u32,
+    START as u32,
+    LS_OFF as u32,
+    STOP as u32,
+    START as u32,
+];
 /// What `belt` never blocks (0); the commands without a request input,
 /// with (1) and without (2) a request input on `start`.
 const EVENT_MASKS: [u32; 3] = [1 << CLEARED, 1 << STOP, 1 << START | 1 << STOP];
@@ -72,7 +82,7 @@ fn event(trigger: Trigger, actions: Span, members: Span) -> EventSpec {
 }
 
 fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Config<'static> {
-    let events: &'static [EventSpec] = Box::leak(Box::new([
+    let events = records(&[
         event(
             Trigger::Rising(Span::new(0, 1)),
             Span::EMPTY,
@@ -89,8 +99,8 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
             ..event(Trigger::Command, Span::new(1, 1), Span::new(1, 1))
         },
         event(Trigger::Command, Span::new(2, 1), Span::new(3, 1)),
-    ]));
-    let inputs: &'static [InputSpec] = Box::leak(Box::new([
+    ]);
+    let inputs = records(&[
         InputSpec {
             debounce_scans: debounce,
             raises: Span::new(0, 2),
@@ -103,7 +113,7 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
             debounce_scans: 0,
             raises: Span::EMPTY,
         },
-    ]));
+    ]);
     let debounced = debounce >= 2;
     Config {
         name: "conveyor",
@@ -116,13 +126,13 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
         lost_edge_fault: true,
         rom_test_bytes_per_scan: 64,
         inputs,
-        debounced: if debounced { &[LS] } else { &[] },
+        debounced: if debounced { &[LS as u32] } else { &[] },
         debounce_mask: if debounced {
             Span::new(0, 1)
         } else {
             Span::EMPTY
         },
-        outputs: &[
+        outputs: records(&[
             OutputSpec {
                 safe: false,
                 initial: false,
@@ -133,19 +143,19 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
                 initial: false,
                 state_map: Span { start: 0, len: 1 },
             },
-        ],
-        timers: &[TimerSpec {
+        ]),
+        timers: records(&[TimerSpec {
             preset_ms: 1000,
             raises: Span { start: 2, len: 1 },
-        }],
+        }]),
         events,
-        supervisors: &[SupervisorSpec {
+        supervisors: records(&[SupervisorSpec {
             states: 4,
             initial: 0,
             alphabet: Span { start: 3, len: 4 },
             outside: Span { start: 0, len: 1 },
             allowed: AllowedSets::COMPUTED,
-        }],
+        }]),
         input_masks: &INPUT_MASKS,
         event_lists: &EVENT_LISTS,
         event_masks: &EVENT_MASKS,
@@ -159,13 +169,13 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
         } else {
             Span::EMPTY
         },
-        actions: &ACTIONS,
-        memberships: &MEMBERS,
-        state_map: &[StateMapEntry {
+        actions: words(&ACTIONS),
+        memberships: words(&MEMBERS),
+        state_map: records(&[StateMapEntry {
             supervisor: 0,
             state: 2,
             mask: u32::MAX,
-        }],
+        }]),
         guards: Guards::NONE,
         allowed_index: &[],
     }
@@ -515,16 +525,16 @@ fn guarded_stop(bit: bool) -> Config<'static> {
     let (low, high) = if bit { (0, 1) } else { (1, 0) };
     Config {
         guards: Guards {
-            events: Box::leak(Box::new([GuardSpec {
+            events: records(&[GuardSpec {
                 event: STOP,
                 root: 2,
                 nodes: Span::new(0, 1),
-            }])),
-            bits: &[StateBit {
+            }]),
+            bits: records(&[StateBit {
                 component: 0,
                 shift: 0,
-            }],
-            nodes: Box::leak(Box::new([GuardNode { bit: 0, low, high }])),
+            }]),
+            nodes: records(&[GuardNode { bit: 0, low, high }]),
         },
         ..config(0, UnexpectedPolicy::Fault, None)
     }
@@ -552,12 +562,12 @@ fn the_structure_check_refuses_a_malformed_guard() {
         f(&mut c.guards);
         validate_config(&c).map_err(|e| (e.part, e.flaw))
     };
-    let guard = |event, root| -> &'static [GuardSpec] {
-        Box::leak(Box::new([GuardSpec {
+    let guard = |event, root| {
+        records(&[GuardSpec {
             event,
             root,
             nodes: Span::new(0, 1),
-        }]))
+        }])
     };
     // On an uncontrollable event.
     assert_eq!(
@@ -570,9 +580,7 @@ fn the_structure_check_refuses_a_malformed_guard() {
         Err((Part::Guard(0), Flaw::GuardNode { node: 3 }))
     );
     // A node pointing to itself, one reading a missing bit.
-    let node = |bit, low| -> &'static [GuardNode] {
-        Box::leak(Box::new([GuardNode { bit, low, high: 1 }]))
-    };
+    let node = |bit, low| records(&[GuardNode { bit, low, high: 1 }]);
     assert_eq!(
         with(&|g| g.nodes = node(0, 2)),
         Err((Part::Guard(0), Flaw::GuardNode { node: 2 }))
@@ -583,17 +591,14 @@ fn the_structure_check_refuses_a_malformed_guard() {
     );
     // A bit of a supervisor that does not exist, a shift past 31.
     assert_eq!(
-        with(&|g| g.bits = &[StateBit {
+        with(&|g| g.bits = records(&[StateBit {
             component: 1,
             shift: 0
-        }]),
+        }])),
         Err((Part::StateBit(0), Flaw::OutOfRange { index: 1, count: 1 }))
     );
     assert_eq!(
-        with(&|g| g.bits = &[StateBit {
-            component: 0,
-            shift: 32
-        }]),
+        with(&|g| g.bits = &[[32 << 16]]),
         Err((Part::StateBit(0), Flaw::Shift))
     );
 }
@@ -607,13 +612,13 @@ fn stored(index: u32, bits: u8) -> Config<'static> {
     for e in [LS_ON, START, LS_OFF, STOP] {
         masks.push(1 << CLEARED | 1 << e);
     }
-    let supervisors = Box::leak(Box::new([SupervisorSpec {
+    let supervisors = records(&[SupervisorSpec {
         allowed: AllowedSets {
             index: Span::new(0, 1),
             bits,
         },
-        ..c.supervisors[0]
-    }]));
+        ..c.supervisor(0)
+    }]);
     Config {
         supervisors,
         event_masks: Box::leak(masks.into_boxed_slice()),
@@ -698,13 +703,13 @@ fn stored_sets_that_are_not_the_programs_are_refused() {
     assert_eq!(check(stored(BELT_INDEX, 17)), Err((at, Flaw::AllowedIndex)));
     let long = Config {
         allowed_index: Box::leak(Box::new([BELT_INDEX, 0])),
-        supervisors: Box::leak(Box::new([SupervisorSpec {
+        supervisors: records(&[SupervisorSpec {
             allowed: AllowedSets {
                 index: Span::new(0, 2),
                 bits: 3,
             },
-            ..stored(BELT_INDEX, 3).supervisors[0]
-        }])),
+            ..stored(BELT_INDEX, 3).supervisor(0)
+        }]),
         ..stored(BELT_INDEX, 3)
     };
     assert_eq!(check(long), Err((at, Flaw::AllowedIndex)));

@@ -6,18 +6,28 @@
 //! with a CRC computed to match. [`validate`] proves what the scan relies
 //! on to index without a check: every index is in range, every span lies
 //! inside its pool and has the length its kind needs, sets have no bits
-//! past their last member, alphabets and memberships agree, and every table
-//! decodes to states of its supervisor. That stored allowed sets are
-//! their supervisors' is [`validate_allowed_sets`], checked at generation. A controller whose image fails it
-//! starts in fault mode (`Corrupt`) and no reset can leave it. Host tools
-//! call [`validate`] themselves to print where an image is wrong.
+//! past their last member, every table has the sizes of its supervisor.
+//! A controller whose image fails it starts in fault mode (`Corrupt`) and
+//! no reset can leave it; it is what an image loaded as words
+//! ([`crate::parse`]) needs, and it is kept small for the target.
+//!
+//! What a generator proves of its own output is [`validate_generated`],
+//! run at generation and by host tools, not by the controller: that the
+//! memberships and the alphabets agree, that each `outside` set and the
+//! command sets are the ones the events give, that every defined table
+//! entry is a state of its supervisor (the scan checks each state it
+//! moves to as well, so a flipped table word is a `Corrupt` fault, never
+//! a state out of range) and that stored allowed sets are their
+//! supervisors' ([`validate_allowed_sets`]). Host tools call both to print
+//! where an image is wrong.
 
 use core::fmt;
 
 use crate::bits;
 use crate::pacing::SCAN_PERIOD_MS;
 use crate::program::{
-    words, Action, Config, EventSpec, Index, Program, Span, SupervisorSpec, Trigger,
+    words, Action, Config, EventSpec, GuardNode, Index, Membership, Program, Span, StateBit,
+    StateMapEntry, SupervisorSpec, Trigger,
 };
 use crate::table::{bit, read_bits, Rows, SupervisorTable};
 
@@ -224,9 +234,9 @@ impl fmt::Display for Invalid {
     }
 }
 
-/// Checks the whole structure of `program`'s image (see the module docs).
-/// Linear in the image, apart from the memberships (events × supervisors
-/// having them) and a decode of every defined table entry.
+/// Checks the structure of `program`'s image that the scan relies on (see
+/// the module docs). Linear in the configuration; a table costs a count
+/// of its defined-bits.
 pub fn validate<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
     // Opaque to the optimiser: a generated configuration is a constant,
     // and folding it into the check would unroll every loop over its pools
@@ -252,6 +262,23 @@ pub fn validate<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
     Ok(())
 }
 
+/// Everything a generator proves of its image: [`validate`], then the
+/// agreement of memberships, alphabets, `outside` sets and command sets,
+/// every defined table entry a state of its supervisor (and a sparse
+/// table's row starts), and [`validate_allowed_sets`]. Run at generation
+/// and by host tools; the controller runs [`validate`] alone.
+pub fn validate_generated<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
+    validate(program)?;
+    let c = program.config();
+    agreement(&c)?;
+    for j in 0..c.supervisors.len() {
+        if let Some(table) = Index::try_from(j).ok().and_then(|j| program.table(j)) {
+            table_entries(&c, j, &table)?;
+        }
+    }
+    validate_allowed_sets(program)
+}
+
 /// Whether every stored allowed set of `program` is its supervisor's: in
 /// every state, the events outside its alphabet and exactly the local
 /// events its program enables ([`Program::enabled`]). Checked when a
@@ -263,7 +290,7 @@ pub fn validate<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
 /// passes [`validate`].
 pub fn validate_allowed_sets<P: Program + ?Sized>(program: &P) -> Result<(), Invalid> {
     let c = program.config();
-    for (j, spec) in c.supervisors.iter().enumerate() {
+    for (j, spec) in c.supervisor_specs().enumerate() {
         if spec.allowed.is_stored() {
             allowed_sets_of(program, &c, j)?;
         }
@@ -277,7 +304,7 @@ fn allowed_sets_of<P: Program + ?Sized>(
     c: &Config<'_>,
     j: usize,
 ) -> Result<(), Invalid> {
-    let spec = &c.supervisors[j];
+    let spec = &c.supervisor(j);
     let part = Part::Supervisor(j);
     let w = words(c.events.len());
     let outside = spec.outside.of(c.event_masks);
@@ -297,7 +324,7 @@ fn allowed_sets_of<P: Program + ?Sized>(
         for (chunk, local) in alphabet.chunks(32).enumerate() {
             let row = program.enabled(j as Index, state, (chunk * 32) as Index, local.len() as u8);
             for (k, &e) in local.iter().enumerate() {
-                if bits::contains(set, usize::from(e)) != (row >> k & 1 == 1) {
+                if bits::contains(set, e as usize) != (row >> k & 1 == 1) {
                     return wrong;
                 }
             }
@@ -326,37 +353,43 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
         in_range(Part::Reset, r.into(), inputs)?;
     }
     for (k, &i) in c.debounced.iter().enumerate() {
-        in_range(Part::Debounced(k), i.into(), inputs)?;
+        in_range(Part::Debounced(k), i as usize, inputs)?;
     }
     mask(Part::DebounceMask, c.debounce_mask, c)?;
-    for (i, spec) in c.inputs.iter().enumerate() {
+    for (i, spec) in c.input_specs().enumerate() {
         event_list(Part::Input(i), spec.raises, c)?;
     }
-    for (o, spec) in c.outputs.iter().enumerate() {
+    for (o, spec) in c.output_specs().enumerate() {
         pool(Part::Output(o), spec.state_map, c.state_map)?;
     }
-    for (t, spec) in c.timers.iter().enumerate() {
+    for (t, spec) in c.timer_specs().enumerate() {
         if !crate::timers::PRESET_MS.contains(&spec.preset_ms) {
             return fail(Part::Timer(t), Flaw::Preset);
         }
         event_list(Part::Timer(t), spec.raises, c)?;
     }
-    for (k, action) in c.actions.iter().enumerate() {
-        match *action {
+    for (k, action) in c.actions.iter().map(|&a| Action::from_word(a)).enumerate() {
+        match action {
             Action::Set(o) | Action::Clear(o) => in_range(Part::Action(k), o.into(), outputs)?,
             Action::Start(t) | Action::Reset(t) => in_range(Part::Action(k), t.into(), timers)?,
         }
     }
-    for (k, m) in c.memberships.iter().enumerate() {
+    for (k, &m) in c.memberships.iter().enumerate() {
+        let m = Membership::from_word(m);
         let part = Part::Membership(k);
         in_range(part, m.supervisor.into(), supervisors)?;
-        let alphabet = c.supervisors[usize::from(m.supervisor)].alphabet;
+        let alphabet = c.supervisor(usize::from(m.supervisor)).alphabet;
         in_range(part, m.local.into(), alphabet.len.into())?;
     }
-    for (k, entry) in c.state_map.iter().enumerate() {
+    for (k, entry) in c
+        .state_map
+        .iter()
+        .map(StateMapEntry::from_words)
+        .enumerate()
+    {
         let part = Part::StateMap(k);
         in_range(part, entry.supervisor.into(), supervisors)?;
-        let states = c.supervisors[usize::from(entry.supervisor)].states;
+        let states = c.supervisor(usize::from(entry.supervisor)).states;
         if entry.state >= states {
             return fail(part, out_of_range(entry.state, states));
         }
@@ -364,7 +397,7 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
             return fail(part, Flaw::StateMask);
         }
     }
-    for (e, spec) in c.events.iter().enumerate() {
+    for (e, spec) in c.event_specs().enumerate() {
         let part = Part::Event(e);
         match spec.trigger {
             Trigger::Rising(m) | Trigger::Falling(m) => mask(part, m, c)?,
@@ -379,51 +412,67 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
         pool(part, spec.actions, c.actions)?;
         pool(part, spec.members, c.memberships)?;
     }
-    for (j, spec) in c.supervisors.iter().enumerate() {
+    for (j, spec) in c.supervisor_specs().enumerate() {
         let part = Part::Supervisor(j);
         if spec.initial >= spec.states {
             return fail(part, out_of_range(spec.initial, spec.states));
         }
-        let alphabet = event_list(part, spec.alphabet, c)?;
-        let outside = event_set(part, spec.outside, c)?;
+        event_list(part, spec.alphabet, c)?;
+        event_set(part, spec.outside, c)?;
+        allowed_index(part, &spec, c)?;
+    }
+    event_set(Part::Commands, c.commands, c)?;
+    event_list(Part::Requested, c.requested, c)?;
+    validate_guards(c)
+}
+
+/// The agreement [`validate_generated`] adds to [`validate_config`]: each
+/// alphabet entry with exactly one membership, its own; each membership
+/// its alphabet's; each `outside` set the events outside the alphabet;
+/// the command sets exactly the controllable events without and with a
+/// request input. Assumes a configuration that passes
+/// [`validate_config`].
+fn agreement(c: &Config<'_>) -> Result<(), Invalid> {
+    for (j, spec) in c.supervisor_specs().enumerate() {
+        let part = Part::Supervisor(j);
+        let alphabet = spec.alphabet.of(c.event_lists);
+        let outside = spec.outside.of(c.event_masks);
         for (local, &e) in alphabet.iter().enumerate() {
-            let mut theirs = members(&c.events[usize::from(e)], c).filter(|m| m.0 == j);
+            let mut theirs = members(&c.event(e as usize), c).filter(|m| m.0 == j);
             match (theirs.next(), theirs.next()) {
                 (Some((_, l)), None) if l == local => {}
                 _ => return fail(part, Flaw::Membership),
             }
         }
-        for (e, event) in c.events.iter().enumerate() {
-            let member = members(event, c).any(|m| m.0 == j);
+        for (e, event) in c.event_specs().enumerate() {
+            let member = members(&event, c).any(|m| m.0 == j);
             if member == bits::contains(outside, e) {
                 return fail(part, Flaw::Outside);
             }
         }
-        allowed_index(part, spec, c)?;
     }
-    // Spans checked above: now whether each membership is its alphabet's.
-    for (e, spec) in c.events.iter().enumerate() {
-        for (j, local) in members(spec, c) {
-            let alphabet = c.supervisors[j].alphabet.of(c.event_lists);
-            if alphabet.get(local).map(|&x| usize::from(x)) != Some(e) {
+    for (e, spec) in c.event_specs().enumerate() {
+        for (j, local) in members(&spec, c) {
+            let alphabet = c.supervisor(j).alphabet.of(c.event_lists);
+            if alphabet.get(local).map(|&x| x as usize) != Some(e) {
                 return fail(Part::Event(e), Flaw::Membership);
             }
         }
     }
-    let commands = event_set(Part::Commands, c.commands, c)?;
-    let requested = event_list(Part::Requested, c.requested, c)?;
-    for (e, spec) in c.events.iter().enumerate() {
+    let commands = c.commands.of(c.event_masks);
+    let requested = c.requested.of(c.event_lists);
+    for (e, spec) in c.event_specs().enumerate() {
         let command = spec.is_controllable();
         let listed = bits::contains(commands, e);
         if listed != (command && spec.request.is_none()) {
             return fail(Part::Commands, Flaw::Commands);
         }
-        let listed = requested.iter().filter(|&&x| usize::from(x) == e).count();
+        let listed = requested.iter().filter(|&&x| x as usize == e).count();
         if listed != usize::from(command && spec.request.is_some()) {
             return fail(Part::Requested, Flaw::Commands);
         }
     }
-    validate_guards(c)
+    Ok(())
 }
 
 /// The guards: each on a command, in increasing event order, its nodes
@@ -433,17 +482,17 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
 /// of range ([`crate::guards`]).
 fn validate_guards(c: &Config<'_>) -> Result<(), Invalid> {
     let guards = &c.guards;
-    for (k, b) in guards.bits.iter().enumerate() {
+    for (k, b) in guards.bits.iter().map(StateBit::from_words).enumerate() {
         in_range(Part::StateBit(k), b.component.into(), c.supervisors.len())?;
         if b.shift >= 32 {
             return fail(Part::StateBit(k), Flaw::Shift);
         }
     }
     let mut previous: Option<Index> = None;
-    for (k, guard) in guards.events.iter().enumerate() {
+    for (k, guard) in guards.guards().enumerate() {
         let part = Part::Guard(k);
         in_range(part, guard.event.into(), c.events.len())?;
-        let command = c.events[usize::from(guard.event)].is_controllable();
+        let command = c.event(usize::from(guard.event)).is_controllable();
         if !command || previous.is_some_and(|p| p >= guard.event) {
             return fail(part, Flaw::Guarded);
         }
@@ -453,7 +502,7 @@ fn validate_guards(c: &Config<'_>) -> Result<(), Invalid> {
         if usize::from(guard.root) >= nodes.len() + 2 {
             return bad(usize::from(guard.root));
         }
-        for (i, node) in nodes.iter().enumerate() {
+        for (i, node) in nodes.iter().map(GuardNode::from_words).enumerate() {
             let at = i + 2;
             if usize::from(node.low) >= at
                 || usize::from(node.high) >= at
@@ -471,7 +520,7 @@ fn validate_guards(c: &Config<'_>) -> Result<(), Invalid> {
 #[inline(never)]
 fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Result<(), Invalid> {
     let part = Part::Table(j);
-    let spec = &c.supervisors[j];
+    let spec = &c.supervisor(j);
     if table.events != spec.alphabet.len {
         return fail(part, Flaw::TableEvents);
     }
@@ -488,11 +537,7 @@ fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Resu
     if bits_of(table.defined) < pairs {
         return fail(part, Flaw::TableLength);
     }
-    // `pairs` fits in the defined words, so in a usize.
-    let pairs = pairs as usize;
-    let defined = (0..pairs).filter(|&p| bit(table.defined, p)).count() as u64;
-    let (entries, sparse) = match table.rows {
-        Rows::Dense | Rows::Net { .. } => (pairs as u64, None),
+    let entries = match table.rows {
         Rows::Sparse {
             row_starts,
             start_bits,
@@ -502,15 +547,37 @@ fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Resu
             {
                 return fail(part, Flaw::TableLength);
             }
-            (defined, Some((row_starts, start_bits)))
+            // `pairs` fits in the defined words, so in a usize.
+            (0..pairs as usize)
+                .filter(|&p| bit(table.defined, p))
+                .count() as u64
         }
+        _ => pairs,
     };
     if bits_of(table.targets) < entries * u64::from(width) {
         return fail(part, Flaw::TableLength);
     }
-    // Every defined pair's target, in the layout's entry order: pair order
-    // when dense, the count of defined pairs before it when sparse.
-    let m = m as usize;
+    Ok(())
+}
+
+/// Every defined pair's target of table `j` a state of supervisor `j`, in
+/// the layout's entry order (pair order when dense, the count of defined
+/// pairs before it when sparse), and a sparse table's row starts those
+/// counts. Assumes a table that passes [`validate_table`].
+fn table_entries(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Result<(), Invalid> {
+    let part = Part::Table(j);
+    let spec = &c.supervisor(j);
+    let sparse = match table.rows {
+        Rows::Net { .. } => return Ok(()),
+        Rows::Dense => None,
+        Rows::Sparse {
+            row_starts,
+            start_bits,
+        } => Some((row_starts, start_bits)),
+    };
+    let width = table.state_bits;
+    let m = usize::from(table.events);
+    let pairs = spec.states as usize * m;
     let mut before = 0usize;
     for pair in 0..pairs {
         let state = (pair / m) as u32;
@@ -580,9 +647,7 @@ fn validate_net(
 /// checked against the pool by the caller, the supervisors by the pool's
 /// check.
 fn members<'c>(event: &EventSpec, c: &Config<'c>) -> impl Iterator<Item = (usize, usize)> + 'c {
-    let span = event.members;
-    span.of(c.memberships)
-        .iter()
+    c.members_of(event.members)
         .map(|m| (usize::from(m.supervisor), usize::from(m.local)))
 }
 
@@ -654,10 +719,10 @@ fn pool<T>(part: Part, span: Span, pool: &[T]) -> Result<&[T], Invalid> {
 }
 
 /// A list of events in `event_lists`, every one in range.
-fn event_list<'c>(part: Part, span: Span, c: &Config<'c>) -> Result<&'c [Index], Invalid> {
+fn event_list<'c>(part: Part, span: Span, c: &Config<'c>) -> Result<&'c [u32], Invalid> {
     let list = pool(part, span, c.event_lists)?;
     for &e in list {
-        in_range(part, e.into(), c.events.len())?;
+        in_range(part, e as usize, c.events.len())?;
     }
     Ok(list)
 }

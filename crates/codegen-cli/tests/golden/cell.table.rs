@@ -4,9 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode,
-    GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit,
-    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
+    indices, mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec,
+    GuardNode, GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span,
+    StateBit, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -474,87 +474,89 @@ pub const INPUT_WORDS: usize = executor::program::words(input::COUNT);
 /// - 16 `ra_inlet_b_open`: unfiltered
 /// - 17 `rb_inlet_a_open`: unfiltered
 /// - 18 `rb_inlet_b_open`: unfiltered
-const INPUTS: [InputSpec; 19] = [
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::new(0, 2),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::new(2, 2),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-];
+const INPUTS: [[u32; 2]; 19] = InputSpec::records(
+    &[
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::new(0, 2),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::new(2, 2),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+    ],
+);
 
 /// The debounced inputs; filter counter `k` belongs to the `k`-th.
-const DEBOUNCED: [Index; 0] = [];
+const DEBOUNCED: [u32; 0] = indices(&[]);
 
 /// Outputs, by output (level in fault mode, and how each is driven):
 /// - 0 `ma_fill` (safe 0): 1 while `cell.1` is in `ma5`
@@ -581,142 +583,146 @@ const DEBOUNCED: [Index; 0] = [];
 /// - 21 `rb_tc_on` (safe 0): 1 while `cell.2` is in `rb8`
 /// - 22 `rb_tc_cool` (safe 0): 1 while `cell.2` is in `rb11`
 /// - 23 `rb_drain` (safe 0): 1 while `cell.2` is in `rb12`
-const OUTPUTS: [OutputSpec; 24] = [
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(0, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(1, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(2, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(3, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(4, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(5, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(6, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(7, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(8, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(9, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(10, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(11, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(12, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(13, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(14, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(15, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(16, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(17, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(18, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(19, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(20, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(21, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(22, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(23, 1),
-    },
-];
+const OUTPUTS: [[u32; 2]; 24] = OutputSpec::records(
+    &[
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(0, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(1, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(2, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(3, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(4, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(5, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(6, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(7, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(8, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(9, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(10, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(11, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(12, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(13, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(14, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(15, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(16, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(17, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(18, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(19, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(20, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(21, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(22, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(23, 1),
+        },
+    ],
+);
 
 /// Timer presets, by timer:
 /// - 0 `reaction_a`: 300000 ms, started by `t_ra4`, expiry raises `t_ra5`
 /// - 1 `reaction_b`: 300000 ms, started by `t_rb4`, expiry raises `t_rb5`
-const TIMERS: [TimerSpec; 2] = [
-    TimerSpec {
-        preset_ms: 300000,
-        raises: Span::new(4, 1),
-    },
-    TimerSpec {
-        preset_ms: 300000,
-        raises: Span::new(5, 1),
-    },
-];
+const TIMERS: [[u32; 2]; 2] = TimerSpec::records(
+    &[
+        TimerSpec {
+            preset_ms: 300000,
+            raises: Span::new(4, 1),
+        },
+        TimerSpec {
+            preset_ms: 300000,
+            raises: Span::new(5, 1),
+        },
+    ],
+);
 
 /// Events in priority order (trigger and conditions; actions; supervisors, with the event's local index):
 /// - 0 `t_ra8` (controllable): commanded, only while `start_ra` is 1; in `cell.1` (local 19), `cell.2` (local 9)
@@ -747,252 +753,256 @@ const TIMERS: [TimerSpec; 2] = [
 /// - 25 `t_rb5` (uncontrollable, plant): expiry of `reaction_b`; in `cell.2` (local 14)
 /// - 26 `t_rb6` (controllable): commanded, only while `rb_output_temp` is 1; in `cell.2` (local 15)
 /// - 27 `t_rb7` (controllable): commanded, only while `rb_empty` is 1; in `cell.2` (local 16)
-const EVENTS: [EventSpec; 28] = [
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::START_RA),
-        actions: Span::EMPTY,
-        members: Span::new(0, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::START_RB),
-        actions: Span::EMPTY,
-        members: Span::new(2, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(4, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(6, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(8, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(10, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::MA_LEVEL1),
-        actions: Span::EMPTY,
-        members: Span::new(12, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::MA_LEVEL1),
-        actions: Span::EMPTY,
-        members: Span::new(13, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::MA_FULL),
-        actions: Span::EMPTY,
-        members: Span::new(14, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::MA_FULL),
-        actions: Span::EMPTY,
-        members: Span::new(15, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::MB_LEVEL1),
-        actions: Span::EMPTY,
-        members: Span::new(16, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::MB_LEVEL1),
-        actions: Span::EMPTY,
-        members: Span::new(17, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::MB_FULL),
-        actions: Span::EMPTY,
-        members: Span::new(18, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::MB_FULL),
-        actions: Span::EMPTY,
-        members: Span::new(19, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::MB_FULL),
-        actions: Span::EMPTY,
-        members: Span::new(20, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::MA_FULL),
-        actions: Span::EMPTY,
-        members: Span::new(22, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(0, 1)),
-        when: Span::new(1, 1),
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(24, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(2, 1)),
-        when: Span::new(3, 1),
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(26, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(2, 1)),
-        when: Span::new(4, 1),
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(28, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(0, 1)),
-        when: Span::new(5, 1),
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(30, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::RA_SETPOINT),
-        actions: Span::new(0, 1),
-        members: Span::new(32, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Expired(timer::REACTION_A),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(34, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::RA_OUTPUT_TEMP),
-        actions: Span::EMPTY,
-        members: Span::new(35, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::RA_EMPTY),
-        actions: Span::EMPTY,
-        members: Span::new(36, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::RB_SETPOINT),
-        actions: Span::new(1, 1),
-        members: Span::new(38, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Expired(timer::REACTION_B),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(39, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::RB_OUTPUT_TEMP),
-        actions: Span::EMPTY,
-        members: Span::new(40, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::RB_EMPTY),
-        actions: Span::EMPTY,
-        members: Span::new(41, 1),
-    },
-];
+const EVENTS: [[u32; 7]; 28] = EventSpec::records(
+    &[
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::START_RA),
+            actions: Span::EMPTY,
+            members: Span::new(0, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::START_RB),
+            actions: Span::EMPTY,
+            members: Span::new(2, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(4, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(6, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(8, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(10, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::MA_LEVEL1),
+            actions: Span::EMPTY,
+            members: Span::new(12, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::MA_LEVEL1),
+            actions: Span::EMPTY,
+            members: Span::new(13, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::MA_FULL),
+            actions: Span::EMPTY,
+            members: Span::new(14, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::MA_FULL),
+            actions: Span::EMPTY,
+            members: Span::new(15, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::MB_LEVEL1),
+            actions: Span::EMPTY,
+            members: Span::new(16, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::MB_LEVEL1),
+            actions: Span::EMPTY,
+            members: Span::new(17, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::MB_FULL),
+            actions: Span::EMPTY,
+            members: Span::new(18, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::MB_FULL),
+            actions: Span::EMPTY,
+            members: Span::new(19, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::MB_FULL),
+            actions: Span::EMPTY,
+            members: Span::new(20, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::MA_FULL),
+            actions: Span::EMPTY,
+            members: Span::new(22, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(0, 1)),
+            when: Span::new(1, 1),
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(24, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(2, 1)),
+            when: Span::new(3, 1),
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(26, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(2, 1)),
+            when: Span::new(4, 1),
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(28, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(0, 1)),
+            when: Span::new(5, 1),
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(30, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::RA_SETPOINT),
+            actions: Span::new(0, 1),
+            members: Span::new(32, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Expired(timer::REACTION_A),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(34, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::RA_OUTPUT_TEMP),
+            actions: Span::EMPTY,
+            members: Span::new(35, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::RA_EMPTY),
+            actions: Span::EMPTY,
+            members: Span::new(36, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::RB_SETPOINT),
+            actions: Span::new(1, 1),
+            members: Span::new(38, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Expired(timer::REACTION_B),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(39, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::RB_OUTPUT_TEMP),
+            actions: Span::EMPTY,
+            members: Span::new(40, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::RB_EMPTY),
+            actions: Span::EMPTY,
+            members: Span::new(41, 1),
+        },
+    ],
+);
 
 /// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
 /// - 0 `cell.1`: 2147483648 states, initial `0`
 /// - 1 `cell.2`: 65536 states, initial `ra13 + rb13 + c1 + c2 + c3 + c4 + c5`
-const SUPERVISORS: [SupervisorSpec; 2] = [
-    SupervisorSpec {
-        states: 2147483648,
-        initial: 0,
-        alphabet: Span::new(6, 24),
-        outside: Span::new(0, 1),
-        allowed: AllowedSets::COMPUTED,
-    },
-    SupervisorSpec {
-        states: 65536,
-        initial: 64513,
-        alphabet: Span::new(30, 18),
-        outside: Span::new(1, 1),
-        allowed: AllowedSets::COMPUTED,
-    },
-];
+const SUPERVISORS: [[u32; 6]; 2] = SupervisorSpec::records(
+    &[
+        SupervisorSpec {
+            states: 2147483648,
+            initial: 0,
+            alphabet: Span::new(6, 24),
+            outside: Span::new(0, 1),
+            allowed: AllowedSets::COMPUTED,
+        },
+        SupervisorSpec {
+            states: 65536,
+            initial: 64513,
+            alphabet: Span::new(30, 18),
+            outside: Span::new(1, 1),
+            allowed: AllowedSets::COMPUTED,
+        },
+    ],
+);
 
 /// Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position:
 /// - 0: edge of `t_ra2`, edge of `t_rb3`
@@ -1018,74 +1028,76 @@ const INPUT_MASKS: [u32; 6] = [
 /// - 6–29: alphabet of `cell.1`
 /// - 30–47: alphabet of `cell.2`
 /// - 48–65: the commands with a request input
-const EVENT_LISTS: [Index; 66] = [
-    event::T_RA2,
-    event::T_RB3,
-    event::T_RA3,
-    event::T_RB2,
-    event::T_RA5,
-    event::T_RB5,
-    event::T_MA1,
-    event::T_MA2,
-    event::T_MA3,
-    event::T_MA4,
-    event::T_MA5,
-    event::T_MA6,
-    event::T_MB1,
-    event::T_MB2,
-    event::T_MB3,
-    event::T_MB4,
-    event::T_MB5,
-    event::T_MB6,
-    event::T_RA1,
-    event::T_RA2,
-    event::T_RA3,
-    event::T_RA4,
-    event::T_RA5,
-    event::T_RA6,
-    event::T_RA7,
-    event::T_RA8,
-    event::T_RB1,
-    event::T_RB2,
-    event::T_RB3,
-    event::T_RB8,
-    event::T_MA1,
-    event::T_MA2,
-    event::T_MB1,
-    event::T_MB2,
-    event::T_RA1,
-    event::T_RA2,
-    event::T_RA3,
-    event::T_RA4,
-    event::T_RA7,
-    event::T_RA8,
-    event::T_RB1,
-    event::T_RB2,
-    event::T_RB3,
-    event::T_RB4,
-    event::T_RB5,
-    event::T_RB6,
-    event::T_RB7,
-    event::T_RB8,
-    event::T_RA8,
-    event::T_RB8,
-    event::T_MA3,
-    event::T_MA4,
-    event::T_MA5,
-    event::T_MA6,
-    event::T_MB3,
-    event::T_MB4,
-    event::T_MB5,
-    event::T_MB6,
-    event::T_RA1,
-    event::T_RB1,
-    event::T_RA4,
-    event::T_RA6,
-    event::T_RA7,
-    event::T_RB4,
-    event::T_RB6,
-    event::T_RB7,
-];
+const EVENT_LISTS: [u32; 66] = indices(
+    &[
+        event::T_RA2,
+        event::T_RB3,
+        event::T_RA3,
+        event::T_RB2,
+        event::T_RA5,
+        event::T_RB5,
+        event::T_MA1,
+        event::T_MA2,
+        event::T_MA3,
+        event::T_MA4,
+        event::T_MA5,
+        event::T_MA6,
+        event::T_MB1,
+        event::T_MB2,
+        event::T_MB3,
+        event::T_MB4,
+        event::T_MB5,
+        event::T_MB6,
+        event::T_RA1,
+        event::T_RA2,
+        event::T_RA3,
+        event::T_RA4,
+        event::T_RA5,
+        event::T_RA6,
+        event::T_RA7,
+        event::T_RA8,
+        event::T_RB1,
+        event::T_RB2,
+        event::T_RB3,
+        event::T_RB8,
+        event::T_MA1,
+        event::T_MA2,
+        event::T_MB1,
+        event::T_MB2,
+        event::T_RA1,
+        event::T_RA2,
+        event::T_RA3,
+        event::T_RA4,
+        event::T_RA7,
+        event::T_RA8,
+        event::T_RB1,
+        event::T_RB2,
+        event::T_RB3,
+        event::T_RB4,
+        event::T_RB5,
+        event::T_RB6,
+        event::T_RB7,
+        event::T_RB8,
+        event::T_RA8,
+        event::T_RB8,
+        event::T_MA3,
+        event::T_MA4,
+        event::T_MA5,
+        event::T_MA6,
+        event::T_MB3,
+        event::T_MB4,
+        event::T_MB5,
+        event::T_MB6,
+        event::T_RA1,
+        event::T_RB1,
+        event::T_RA4,
+        event::T_RA6,
+        event::T_RA7,
+        event::T_RB4,
+        event::T_RB6,
+        event::T_RB7,
+    ],
+);
 
 /// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position:
 /// - 0: outside the alphabet of `cell.1`
@@ -1114,10 +1126,9 @@ const EVENT_MASKS: [u32; 3] = [
 /// Event actions, by position:
 /// - 0: `t_ra4`
 /// - 1: `t_rb4`
-const ACTIONS: [Action; 2] = [
-    Action::Start(timer::REACTION_A),
-    Action::Start(timer::REACTION_B),
-];
+const ACTIONS: [u32; 2] = Action::words(
+    &[Action::Start(timer::REACTION_A), Action::Start(timer::REACTION_B)],
+);
 
 /// Which supervisors have each event, and its local index there, by position:
 /// - 0–1: `t_ra8`
@@ -1148,176 +1159,178 @@ const ACTIONS: [Action; 2] = [
 /// - 39: `t_rb5`
 /// - 40: `t_rb6`
 /// - 41: `t_rb7`
-const MEMBERSHIPS: [Membership; 42] = [
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 19,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 9,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 23,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 17,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 1,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 1,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 0,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 0,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 7,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 3,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 6,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 2,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 2,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 3,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 4,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 5,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 8,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 9,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 10,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 11,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 12,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 4,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 20,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 10,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 13,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 5,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 14,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 6,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 21,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 11,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 22,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 12,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 15,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 7,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 16,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 17,
-    },
-    Membership {
-        supervisor: supervisor::CELL_1,
-        local: 18,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 8,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 13,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 14,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 15,
-    },
-    Membership {
-        supervisor: supervisor::CELL_2,
-        local: 16,
-    },
-];
+const MEMBERSHIPS: [u32; 42] = Membership::words(
+    &[
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 19,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 9,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 23,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 17,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 1,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 1,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 0,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 0,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 7,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 3,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 6,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 2,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 2,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 3,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 4,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 5,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 8,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 9,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 10,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 11,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 12,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 4,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 20,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 10,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 13,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 5,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 14,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 6,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 21,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 11,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 22,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 12,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 15,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 7,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 16,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 17,
+        },
+        Membership {
+            supervisor: supervisor::CELL_1,
+            local: 18,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 8,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 13,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 14,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 15,
+        },
+        Membership {
+            supervisor: supervisor::CELL_2,
+            local: 16,
+        },
+    ],
+);
 
 /// Moore outputs: a supervisor's state, or a count of tokens in a net's place (its counter's mask), by position:
 /// - 0: `ma_fill`
@@ -1344,32 +1357,34 @@ const MEMBERSHIPS: [Membership; 42] = [
 /// - 21: `rb_tc_on`
 /// - 22: `rb_tc_cool`
 /// - 23: `rb_drain`
-const STATE_MAP: [StateMapEntry; 24] = [
-    StateMapEntry::marked(supervisor::CELL_1, 0x10, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x20, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x40, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x80, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x100, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x800000, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x8000, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x10000, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x20000, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x40000, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x80000, 1),
-    StateMapEntry::marked(supervisor::CELL_2, 0x4, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x400000, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x2000000, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x1000000, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x4000000, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x20000000, 1),
-    StateMapEntry::marked(supervisor::CELL_1, 0x40000000, 1),
-    StateMapEntry::marked(supervisor::CELL_2, 0x2, 1),
-    StateMapEntry::marked(supervisor::CELL_2, 0x10, 1),
-    StateMapEntry::marked(supervisor::CELL_2, 0x8, 1),
-    StateMapEntry::marked(supervisor::CELL_2, 0x20, 1),
-    StateMapEntry::marked(supervisor::CELL_2, 0x100, 1),
-    StateMapEntry::marked(supervisor::CELL_2, 0x200, 1),
-];
+const STATE_MAP: [[u32; 3]; 24] = StateMapEntry::records(
+    &[
+        StateMapEntry::marked(supervisor::CELL_1, 0x10, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x20, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x40, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x80, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x100, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x800000, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x8000, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x10000, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x20000, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x40000, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x80000, 1),
+        StateMapEntry::marked(supervisor::CELL_2, 0x4, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x400000, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x2000000, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x1000000, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x4000000, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x20000000, 1),
+        StateMapEntry::marked(supervisor::CELL_1, 0x40000000, 1),
+        StateMapEntry::marked(supervisor::CELL_2, 0x2, 1),
+        StateMapEntry::marked(supervisor::CELL_2, 0x10, 1),
+        StateMapEntry::marked(supervisor::CELL_2, 0x8, 1),
+        StateMapEntry::marked(supervisor::CELL_2, 0x20, 1),
+        StateMapEntry::marked(supervisor::CELL_2, 0x100, 1),
+        StateMapEntry::marked(supervisor::CELL_2, 0x200, 1),
+    ],
+);
 
 /// The executor's description of the project.
 #[allow(dead_code)]

@@ -4,9 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode,
-    GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit,
-    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
+    indices, mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec,
+    GuardNode, GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span,
+    StateBit, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -126,38 +126,44 @@ pub const INPUT_WORDS: usize = executor::program::words(input::COUNT);
 /// Input filtering and the events each input's edges can raise, by input:
 /// - 0 `ls`: debounced over 2 scans; its edges can raise `re_ls` and `fe_ls`
 /// - 1 `reset`: unfiltered
-const INPUTS: [InputSpec; 2] = [
-    InputSpec {
-        debounce_scans: 2,
-        raises: Span::new(0, 2),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-];
+const INPUTS: [[u32; 2]; 2] = InputSpec::records(
+    &[
+        InputSpec {
+            debounce_scans: 2,
+            raises: Span::new(0, 2),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+    ],
+);
 
 /// The debounced inputs; filter counter `k` belongs to the `k`-th.
-const DEBOUNCED: [Index; 1] = [input::LS];
+const DEBOUNCED: [u32; 1] = indices(&[input::LS]);
 
 /// Outputs, by output (level in fault mode, and how each is driven):
 /// - 0 `belt` (safe 0): latched, initially 0; set by `start`; cleared by `stop`
-const OUTPUTS: [OutputSpec; 1] = [
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::EMPTY,
-    },
-];
+const OUTPUTS: [[u32; 2]; 1] = OutputSpec::records(
+    &[
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::EMPTY,
+        },
+    ],
+);
 
 /// Timer presets, by timer:
 /// - 0 `runon`: 1000 ms, started by `fe_ls`, reset by `re_ls`, expiry raises `gone`
-const TIMERS: [TimerSpec; 1] = [
-    TimerSpec {
-        preset_ms: 1000,
-        raises: Span::new(2, 1),
-    },
-];
+const TIMERS: [[u32; 2]; 1] = TimerSpec::records(
+    &[
+        TimerSpec {
+            preset_ms: 1000,
+            raises: Span::new(2, 1),
+        },
+    ],
+);
 
 /// Events in priority order (trigger and conditions; actions; supervisors, with the event's local index):
 /// - 0 `gone` (uncontrollable, plant): expiry of `runon`; in `conveyor` (local 0)
@@ -165,63 +171,67 @@ const TIMERS: [TimerSpec; 1] = [
 /// - 2 `fe_ls` (uncontrollable, plant): falling edge of `ls`; starts `runon`; in `conveyor` (local 2)
 /// - 3 `start` (controllable): commanded; sets `belt`; in `conveyor` (local 3)
 /// - 4 `stop` (controllable): commanded; clears `belt`; in `conveyor` (local 4)
-const EVENTS: [EventSpec; 5] = [
-    EventSpec {
-        trigger: Trigger::Expired(timer::RUNON),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(0, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(0, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::new(0, 1),
-        members: Span::new(1, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Falling(Span::new(0, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::new(1, 1),
-        members: Span::new(2, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::new(2, 1),
-        members: Span::new(3, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::new(3, 1),
-        members: Span::new(4, 1),
-    },
-];
+const EVENTS: [[u32; 7]; 5] = EventSpec::records(
+    &[
+        EventSpec {
+            trigger: Trigger::Expired(timer::RUNON),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(0, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(0, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::new(0, 1),
+            members: Span::new(1, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Falling(Span::new(0, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::new(1, 1),
+            members: Span::new(2, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::new(2, 1),
+            members: Span::new(3, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::new(3, 1),
+            members: Span::new(4, 1),
+        },
+    ],
+);
 
 /// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
 /// - 0 `conveyor`: 8 states, initial `clear.off.idle.idle`
-const SUPERVISORS: [SupervisorSpec; 1] = [
-    SupervisorSpec {
-        states: 8,
-        initial: 0,
-        alphabet: Span::new(3, 5),
-        outside: Span::EMPTY,
-        allowed: AllowedSets {
-            index: Span::new(0, 1),
-            bits: 3,
+const SUPERVISORS: [[u32; 6]; 1] = SupervisorSpec::records(
+    &[
+        SupervisorSpec {
+            states: 8,
+            initial: 0,
+            alphabet: Span::new(3, 5),
+            outside: Span::EMPTY,
+            allowed: AllowedSets {
+                index: Span::new(0, 1),
+                bits: 3,
+            },
         },
-    },
-];
+    ],
+);
 
 /// Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position:
 /// - 0: the debounced inputs, edge of `re_ls`, edge of `fe_ls`
@@ -231,16 +241,18 @@ const INPUT_MASKS: [u32; 1] = [mask_word(0, &[input::LS])];
 /// - 0–1: edges of `ls`
 /// - 2: expiry of `runon`
 /// - 3–7: alphabet of `conveyor`
-const EVENT_LISTS: [Index; 8] = [
-    event::RE_LS,
-    event::FE_LS,
-    event::GONE,
-    event::GONE,
-    event::RE_LS,
-    event::FE_LS,
-    event::START,
-    event::STOP,
-];
+const EVENT_LISTS: [u32; 8] = indices(
+    &[
+        event::RE_LS,
+        event::FE_LS,
+        event::GONE,
+        event::GONE,
+        event::RE_LS,
+        event::FE_LS,
+        event::START,
+        event::STOP,
+    ],
+);
 
 /// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position:
 /// - 0: allowed by `conveyor`
@@ -267,12 +279,14 @@ const EVENT_MASKS: [u32; 8] = [
 /// - 1: `fe_ls`
 /// - 2: `start`
 /// - 3: `stop`
-const ACTIONS: [Action; 4] = [
-    Action::Reset(timer::RUNON),
-    Action::Start(timer::RUNON),
-    Action::Set(output::BELT),
-    Action::Clear(output::BELT),
-];
+const ACTIONS: [u32; 4] = Action::words(
+    &[
+        Action::Reset(timer::RUNON),
+        Action::Start(timer::RUNON),
+        Action::Set(output::BELT),
+        Action::Clear(output::BELT),
+    ],
+);
 
 /// Which supervisors have each event, and its local index there, by position:
 /// - 0: `gone`
@@ -280,31 +294,33 @@ const ACTIONS: [Action; 4] = [
 /// - 2: `fe_ls`
 /// - 3: `start`
 /// - 4: `stop`
-const MEMBERSHIPS: [Membership; 5] = [
-    Membership {
-        supervisor: supervisor::CONVEYOR,
-        local: 0,
-    },
-    Membership {
-        supervisor: supervisor::CONVEYOR,
-        local: 1,
-    },
-    Membership {
-        supervisor: supervisor::CONVEYOR,
-        local: 2,
-    },
-    Membership {
-        supervisor: supervisor::CONVEYOR,
-        local: 3,
-    },
-    Membership {
-        supervisor: supervisor::CONVEYOR,
-        local: 4,
-    },
-];
+const MEMBERSHIPS: [u32; 5] = Membership::words(
+    &[
+        Membership {
+            supervisor: supervisor::CONVEYOR,
+            local: 0,
+        },
+        Membership {
+            supervisor: supervisor::CONVEYOR,
+            local: 1,
+        },
+        Membership {
+            supervisor: supervisor::CONVEYOR,
+            local: 2,
+        },
+        Membership {
+            supervisor: supervisor::CONVEYOR,
+            local: 3,
+        },
+        Membership {
+            supervisor: supervisor::CONVEYOR,
+            local: 4,
+        },
+    ],
+);
 
 /// Moore outputs: (supervisor, state) pairs, by position.
-const STATE_MAP: [StateMapEntry; 0] = [];
+const STATE_MAP: [[u32; 3]; 0] = StateMapEntry::records(&[]);
 
 /// The stored allowed sets: in each state, the number `k` of the supervisor's allowed set, words `k·EVENT_WORDS ..` of `EVENT_MASKS`, packed; by position:
 /// - 0: `conveyor` (3-bit set numbers by state: `clear.off.idle.idle` 0, `blocked.off.idle.wanted` 1, `clear.off.timing.wanted` 2, `blocked.on.idle.running` 3, `clear.on.timing.running` 4, `clear.off.idle.wanted` 5, `clear.on.idle.done` 6, `clear.on.idle.running` 0)

@@ -4,9 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode,
-    GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit,
-    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
+    indices, mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec,
+    GuardNode, GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span,
+    StateBit, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -187,83 +187,84 @@ pub const INPUT_WORDS: usize = executor::program::words(input::COUNT);
 /// - 6 `t1_depart`: unfiltered
 /// - 7 `t2_depart`: unfiltered
 /// - 8 `reset`: unfiltered
-const INPUTS: [InputSpec; 9] = [
-    InputSpec {
-        debounce_scans: 2,
-        raises: Span::new(0, 1),
-    },
-    InputSpec {
-        debounce_scans: 2,
-        raises: Span::new(1, 1),
-    },
-    InputSpec {
-        debounce_scans: 2,
-        raises: Span::new(2, 1),
-    },
-    InputSpec {
-        debounce_scans: 2,
-        raises: Span::new(3, 1),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::new(4, 1),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-];
+const INPUTS: [[u32; 2]; 9] = InputSpec::records(
+    &[
+        InputSpec {
+            debounce_scans: 2,
+            raises: Span::new(0, 1),
+        },
+        InputSpec {
+            debounce_scans: 2,
+            raises: Span::new(1, 1),
+        },
+        InputSpec {
+            debounce_scans: 2,
+            raises: Span::new(2, 1),
+        },
+        InputSpec {
+            debounce_scans: 2,
+            raises: Span::new(3, 1),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::new(4, 1),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+    ],
+);
 
 /// The debounced inputs; filter counter `k` belongs to the `k`-th.
-const DEBOUNCED: [Index; 4] = [
-    input::S13_T1,
-    input::S13_T2,
-    input::S14_T1,
-    input::S14_T2,
-];
+const DEBOUNCED: [u32; 4] = indices(
+    &[input::S13_T1, input::S13_T2, input::S14_T1, input::S14_T2],
+);
 
 /// Outputs, by output (level in fault mode, and how each is driven):
 /// - 0 `t1_enable` (safe 0): 1 while `sup_crane1` is in `idle` or `train2`
 /// - 1 `t2_enable` (safe 0): 1 while `sup_crane1` is in `idle` or `train1`
 /// - 2 `section_busy` (safe 0): 1 while `sup_section` is in `t1_in` or `t2_in`
 /// - 3 `crane1_load` (safe 0): latched, initially 0; set by `st_ld1`; cleared by `f_ld1`
-const OUTPUTS: [OutputSpec; 4] = [
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(0, 2),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(2, 2),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(4, 2),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::EMPTY,
-    },
-];
+const OUTPUTS: [[u32; 2]; 4] = OutputSpec::records(
+    &[
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(0, 2),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(2, 2),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(4, 2),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::EMPTY,
+        },
+    ],
+);
 
 /// Timer presets, by timer.
-const TIMERS: [TimerSpec; 0] = [];
+const TIMERS: [[u32; 2]; 0] = TimerSpec::records(&[]);
 
 /// Events in priority order (trigger and conditions; actions; supervisors, with the event's local index):
 /// - 0 `t1_at13` (uncontrollable, plant): rising edge of `s13_t1`; in `sup_crane1` (local 0)
@@ -274,98 +275,102 @@ const TIMERS: [TimerSpec; 0] = [];
 /// - 5 `st_ld1` (controllable): commanded, only while `ld1_ready` is 1; sets `crane1_load`; in `sup_crane1` (local 3)
 /// - 6 `run_t1` (controllable): commanded, only while `t1_depart` is 1; in `sup_crane1` (local 4), `sup_section` (local 2)
 /// - 7 `run_t2` (controllable): commanded, only while `t2_depart` is 1; in `sup_crane1` (local 5), `sup_section` (local 3)
-const EVENTS: [EventSpec; 8] = [
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(0, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(0, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(1, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(1, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(2, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::new(0, 1),
-        members: Span::new(2, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(3, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(3, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(4, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(4, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::LD1_READY),
-        actions: Span::new(1, 1),
-        members: Span::new(5, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::T1_DEPART),
-        actions: Span::EMPTY,
-        members: Span::new(6, 2),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::T2_DEPART),
-        actions: Span::EMPTY,
-        members: Span::new(8, 2),
-    },
-];
+const EVENTS: [[u32; 7]; 8] = EventSpec::records(
+    &[
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(0, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(0, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(1, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(1, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(2, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::new(0, 1),
+            members: Span::new(2, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(3, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(3, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(4, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(4, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::LD1_READY),
+            actions: Span::new(1, 1),
+            members: Span::new(5, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::T1_DEPART),
+            actions: Span::EMPTY,
+            members: Span::new(6, 2),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::T2_DEPART),
+            actions: Span::EMPTY,
+            members: Span::new(8, 2),
+        },
+    ],
+);
 
 /// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
 /// - 0 `sup_crane1`: 3 states, initial `idle`
 /// - 1 `sup_section`: 3 states, initial `free`
-const SUPERVISORS: [SupervisorSpec; 2] = [
-    SupervisorSpec {
-        states: 3,
-        initial: 0,
-        alphabet: Span::new(5, 6),
-        outside: Span::new(3, 1),
-        allowed: AllowedSets {
-            index: Span::new(0, 1),
-            bits: 2,
+const SUPERVISORS: [[u32; 6]; 2] = SupervisorSpec::records(
+    &[
+        SupervisorSpec {
+            states: 3,
+            initial: 0,
+            alphabet: Span::new(5, 6),
+            outside: Span::new(3, 1),
+            allowed: AllowedSets {
+                index: Span::new(0, 1),
+                bits: 2,
+            },
         },
-    },
-    SupervisorSpec {
-        states: 3,
-        initial: 0,
-        alphabet: Span::new(11, 4),
-        outside: Span::new(7, 1),
-        allowed: AllowedSets {
-            index: Span::new(1, 1),
-            bits: 3,
+        SupervisorSpec {
+            states: 3,
+            initial: 0,
+            alphabet: Span::new(11, 4),
+            outside: Span::new(7, 1),
+            allowed: AllowedSets {
+                index: Span::new(1, 1),
+                bits: 3,
+            },
         },
-    },
-];
+    ],
+);
 
 /// Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position:
 /// - 0: edge of `t1_at13`
@@ -392,26 +397,28 @@ const INPUT_MASKS: [u32; 6] = [
 /// - 5–10: alphabet of `sup_crane1`
 /// - 11–14: alphabet of `sup_section`
 /// - 15–17: the commands with a request input
-const EVENT_LISTS: [Index; 18] = [
-    event::T1_AT13,
-    event::T2_AT13,
-    event::T1_AT14,
-    event::T2_AT14,
-    event::F_LD1,
-    event::T1_AT13,
-    event::T2_AT13,
-    event::F_LD1,
-    event::ST_LD1,
-    event::RUN_T1,
-    event::RUN_T2,
-    event::T1_AT14,
-    event::T2_AT14,
-    event::RUN_T1,
-    event::RUN_T2,
-    event::ST_LD1,
-    event::RUN_T1,
-    event::RUN_T2,
-];
+const EVENT_LISTS: [u32; 18] = indices(
+    &[
+        event::T1_AT13,
+        event::T2_AT13,
+        event::T1_AT14,
+        event::T2_AT14,
+        event::F_LD1,
+        event::T1_AT13,
+        event::T2_AT13,
+        event::F_LD1,
+        event::ST_LD1,
+        event::RUN_T1,
+        event::RUN_T2,
+        event::T1_AT14,
+        event::T2_AT14,
+        event::RUN_T1,
+        event::RUN_T2,
+        event::ST_LD1,
+        event::RUN_T1,
+        event::RUN_T2,
+    ],
+);
 
 /// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position:
 /// - 0: allowed by `sup_crane1`
@@ -436,10 +443,9 @@ const EVENT_MASKS: [u32; 8] = [
 /// Event actions, by position:
 /// - 0: `f_ld1`
 /// - 1: `st_ld1`
-const ACTIONS: [Action; 2] = [
-    Action::Clear(output::CRANE1_LOAD),
-    Action::Set(output::CRANE1_LOAD),
-];
+const ACTIONS: [u32; 2] = Action::words(
+    &[Action::Clear(output::CRANE1_LOAD), Action::Set(output::CRANE1_LOAD)],
+);
 
 /// Which supervisors have each event, and its local index there, by position:
 /// - 0: `t1_at13`
@@ -450,61 +456,65 @@ const ACTIONS: [Action; 2] = [
 /// - 5: `st_ld1`
 /// - 6–7: `run_t1`
 /// - 8–9: `run_t2`
-const MEMBERSHIPS: [Membership; 10] = [
-    Membership {
-        supervisor: supervisor::SUP_CRANE1,
-        local: 0,
-    },
-    Membership {
-        supervisor: supervisor::SUP_CRANE1,
-        local: 1,
-    },
-    Membership {
-        supervisor: supervisor::SUP_CRANE1,
-        local: 2,
-    },
-    Membership {
-        supervisor: supervisor::SUP_SECTION,
-        local: 0,
-    },
-    Membership {
-        supervisor: supervisor::SUP_SECTION,
-        local: 1,
-    },
-    Membership {
-        supervisor: supervisor::SUP_CRANE1,
-        local: 3,
-    },
-    Membership {
-        supervisor: supervisor::SUP_CRANE1,
-        local: 4,
-    },
-    Membership {
-        supervisor: supervisor::SUP_SECTION,
-        local: 2,
-    },
-    Membership {
-        supervisor: supervisor::SUP_CRANE1,
-        local: 5,
-    },
-    Membership {
-        supervisor: supervisor::SUP_SECTION,
-        local: 3,
-    },
-];
+const MEMBERSHIPS: [u32; 10] = Membership::words(
+    &[
+        Membership {
+            supervisor: supervisor::SUP_CRANE1,
+            local: 0,
+        },
+        Membership {
+            supervisor: supervisor::SUP_CRANE1,
+            local: 1,
+        },
+        Membership {
+            supervisor: supervisor::SUP_CRANE1,
+            local: 2,
+        },
+        Membership {
+            supervisor: supervisor::SUP_SECTION,
+            local: 0,
+        },
+        Membership {
+            supervisor: supervisor::SUP_SECTION,
+            local: 1,
+        },
+        Membership {
+            supervisor: supervisor::SUP_CRANE1,
+            local: 3,
+        },
+        Membership {
+            supervisor: supervisor::SUP_CRANE1,
+            local: 4,
+        },
+        Membership {
+            supervisor: supervisor::SUP_SECTION,
+            local: 2,
+        },
+        Membership {
+            supervisor: supervisor::SUP_CRANE1,
+            local: 5,
+        },
+        Membership {
+            supervisor: supervisor::SUP_SECTION,
+            local: 3,
+        },
+    ],
+);
 
 /// Moore outputs: (supervisor, state) pairs, by position:
 /// - 0–1: `t1_enable`
 /// - 2–3: `t2_enable`
 /// - 4–5: `section_busy`
-const STATE_MAP: [StateMapEntry; 6] = [
-    StateMapEntry::in_state(supervisor::SUP_CRANE1, 0),
-    StateMapEntry::in_state(supervisor::SUP_CRANE1, 2),
-    StateMapEntry::in_state(supervisor::SUP_CRANE1, 0),
-    StateMapEntry::in_state(supervisor::SUP_CRANE1, 1),
-    StateMapEntry::in_state(supervisor::SUP_SECTION, 1),
-    StateMapEntry::in_state(supervisor::SUP_SECTION, 2),
-];
+const STATE_MAP: [[u32; 3]; 6] = StateMapEntry::records(
+    &[
+        StateMapEntry::in_state(supervisor::SUP_CRANE1, 0),
+        StateMapEntry::in_state(supervisor::SUP_CRANE1, 2),
+        StateMapEntry::in_state(supervisor::SUP_CRANE1, 0),
+        StateMapEntry::in_state(supervisor::SUP_CRANE1, 1),
+        StateMapEntry::in_state(supervisor::SUP_SECTION, 1),
+        StateMapEntry::in_state(supervisor::SUP_SECTION, 2),
+    ],
+);
 
 /// The stored allowed sets: in each state, the number `k` of the supervisor's allowed set, words `k·EVENT_WORDS ..` of `EVENT_MASKS`, packed; by position:
 /// - 0: `sup_crane1` (2-bit set numbers by state: `idle` 0, `train1` 1, `train2` 2)

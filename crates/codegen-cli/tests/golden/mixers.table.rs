@@ -4,9 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode,
-    GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit,
-    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
+    indices, mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec,
+    GuardNode, GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span,
+    StateBit, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -201,43 +201,45 @@ pub const INPUT_WORDS: usize = executor::program::words(input::COUNT);
 /// - 5 `full_b`: unfiltered
 /// - 6 `mixed_b`: unfiltered
 /// - 7 `empty_b`: unfiltered
-const INPUTS: [InputSpec; 8] = [
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-];
+const INPUTS: [[u32; 2]; 8] = InputSpec::records(
+    &[
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+    ],
+);
 
 /// The debounced inputs; filter counter `k` belongs to the `k`-th.
-const DEBOUNCED: [Index; 0] = [];
+const DEBOUNCED: [u32; 0] = indices(&[]);
 
 /// Outputs, by output (level in fault mode, and how each is driven):
 /// - 0 `fill_a` (safe 0): 1 while `mixers` is in `ma2`
@@ -247,46 +249,48 @@ const DEBOUNCED: [Index; 0] = [];
 /// - 4 `stir_b` (safe 0): 1 while `mixers` is in `mb4`
 /// - 5 `drain_b` (safe 0): 1 while `mixers` is in `mb5`
 /// - 6 `supply_busy` (safe 0): 1 while `mixers` is in `m3`
-const OUTPUTS: [OutputSpec; 7] = [
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(0, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(1, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(2, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(3, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(4, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(5, 1),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(6, 1),
-    },
-];
+const OUTPUTS: [[u32; 2]; 7] = OutputSpec::records(
+    &[
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(0, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(1, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(2, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(3, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(4, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(5, 1),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(6, 1),
+        },
+    ],
+);
 
 /// Timer presets, by timer.
-const TIMERS: [TimerSpec; 0] = [];
+const TIMERS: [[u32; 2]; 0] = TimerSpec::records(&[]);
 
 /// Events in priority order (trigger and conditions; actions; supervisors, with the event's local index):
 /// - 0 `t1` (controllable): commanded, only while `start_a` is 1; in `mixers` (local 0)
@@ -297,84 +301,88 @@ const TIMERS: [TimerSpec; 0] = [];
 /// - 5 `t6` (controllable): commanded, only while `full_b` is 1; in `mixers` (local 5)
 /// - 6 `t7` (controllable): commanded, only while `mixed_b` is 1; in `mixers` (local 6)
 /// - 7 `t8` (controllable): commanded, only while `empty_b` is 1; in `mixers` (local 7)
-const EVENTS: [EventSpec; 8] = [
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::START_A),
-        actions: Span::EMPTY,
-        members: Span::new(0, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::FULL_A),
-        actions: Span::EMPTY,
-        members: Span::new(1, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::MIXED_A),
-        actions: Span::EMPTY,
-        members: Span::new(2, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::EMPTY_A),
-        actions: Span::EMPTY,
-        members: Span::new(3, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::START_B),
-        actions: Span::EMPTY,
-        members: Span::new(4, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::FULL_B),
-        actions: Span::EMPTY,
-        members: Span::new(5, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::MIXED_B),
-        actions: Span::EMPTY,
-        members: Span::new(6, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::EMPTY_B),
-        actions: Span::EMPTY,
-        members: Span::new(7, 1),
-    },
-];
+const EVENTS: [[u32; 7]; 8] = EventSpec::records(
+    &[
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::START_A),
+            actions: Span::EMPTY,
+            members: Span::new(0, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::FULL_A),
+            actions: Span::EMPTY,
+            members: Span::new(1, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::MIXED_A),
+            actions: Span::EMPTY,
+            members: Span::new(2, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::EMPTY_A),
+            actions: Span::EMPTY,
+            members: Span::new(3, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::START_B),
+            actions: Span::EMPTY,
+            members: Span::new(4, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::FULL_B),
+            actions: Span::EMPTY,
+            members: Span::new(5, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::MIXED_B),
+            actions: Span::EMPTY,
+            members: Span::new(6, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::EMPTY_B),
+            actions: Span::EMPTY,
+            members: Span::new(7, 1),
+        },
+    ],
+);
 
 /// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
 /// - 0 `mixers`: 1024 states, initial `ma1 + mb1 + c1`
-const SUPERVISORS: [SupervisorSpec; 1] = [
-    SupervisorSpec {
-        states: 1024,
-        initial: 545,
-        alphabet: Span::new(0, 8),
-        outside: Span::EMPTY,
-        allowed: AllowedSets::COMPUTED,
-    },
-];
+const SUPERVISORS: [[u32; 6]; 1] = SupervisorSpec::records(
+    &[
+        SupervisorSpec {
+            states: 1024,
+            initial: 545,
+            alphabet: Span::new(0, 8),
+            outside: Span::EMPTY,
+            allowed: AllowedSets::COMPUTED,
+        },
+    ],
+);
 
 /// Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position.
 const INPUT_MASKS: [u32; 0] = [];
@@ -382,30 +390,32 @@ const INPUT_MASKS: [u32; 0] = [];
 /// Event lists: what an input's edges or a timer's expiry can raise, each supervisor's alphabet, the commands with a request input, by position:
 /// - 0–7: alphabet of `mixers`
 /// - 8–15: the commands with a request input
-const EVENT_LISTS: [Index; 16] = [
-    event::T1,
-    event::T2,
-    event::T3,
-    event::T4,
-    event::T5,
-    event::T6,
-    event::T7,
-    event::T8,
-    event::T1,
-    event::T2,
-    event::T3,
-    event::T4,
-    event::T5,
-    event::T6,
-    event::T7,
-    event::T8,
-];
+const EVENT_LISTS: [u32; 16] = indices(
+    &[
+        event::T1,
+        event::T2,
+        event::T3,
+        event::T4,
+        event::T5,
+        event::T6,
+        event::T7,
+        event::T8,
+        event::T1,
+        event::T2,
+        event::T3,
+        event::T4,
+        event::T5,
+        event::T6,
+        event::T7,
+        event::T8,
+    ],
+);
 
 /// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position.
 const EVENT_MASKS: [u32; 0] = [];
 
 /// Event actions, by position.
-const ACTIONS: [Action; 0] = [];
+const ACTIONS: [u32; 0] = Action::words(&[]);
 
 /// Which supervisors have each event, and its local index there, by position:
 /// - 0: `t1`
@@ -416,40 +426,42 @@ const ACTIONS: [Action; 0] = [];
 /// - 5: `t6`
 /// - 6: `t7`
 /// - 7: `t8`
-const MEMBERSHIPS: [Membership; 8] = [
-    Membership {
-        supervisor: supervisor::MIXERS,
-        local: 0,
-    },
-    Membership {
-        supervisor: supervisor::MIXERS,
-        local: 1,
-    },
-    Membership {
-        supervisor: supervisor::MIXERS,
-        local: 2,
-    },
-    Membership {
-        supervisor: supervisor::MIXERS,
-        local: 3,
-    },
-    Membership {
-        supervisor: supervisor::MIXERS,
-        local: 4,
-    },
-    Membership {
-        supervisor: supervisor::MIXERS,
-        local: 5,
-    },
-    Membership {
-        supervisor: supervisor::MIXERS,
-        local: 6,
-    },
-    Membership {
-        supervisor: supervisor::MIXERS,
-        local: 7,
-    },
-];
+const MEMBERSHIPS: [u32; 8] = Membership::words(
+    &[
+        Membership {
+            supervisor: supervisor::MIXERS,
+            local: 0,
+        },
+        Membership {
+            supervisor: supervisor::MIXERS,
+            local: 1,
+        },
+        Membership {
+            supervisor: supervisor::MIXERS,
+            local: 2,
+        },
+        Membership {
+            supervisor: supervisor::MIXERS,
+            local: 3,
+        },
+        Membership {
+            supervisor: supervisor::MIXERS,
+            local: 4,
+        },
+        Membership {
+            supervisor: supervisor::MIXERS,
+            local: 5,
+        },
+        Membership {
+            supervisor: supervisor::MIXERS,
+            local: 6,
+        },
+        Membership {
+            supervisor: supervisor::MIXERS,
+            local: 7,
+        },
+    ],
+);
 
 /// Moore outputs: a supervisor's state, or a count of tokens in a net's place (its counter's mask), by position:
 /// - 0: `fill_a`
@@ -459,15 +471,17 @@ const MEMBERSHIPS: [Membership; 8] = [
 /// - 4: `stir_b`
 /// - 5: `drain_b`
 /// - 6: `supply_busy`
-const STATE_MAP: [StateMapEntry; 7] = [
-    StateMapEntry::marked(supervisor::MIXERS, 0x2, 1),
-    StateMapEntry::marked(supervisor::MIXERS, 0x8, 1),
-    StateMapEntry::marked(supervisor::MIXERS, 0x10, 1),
-    StateMapEntry::marked(supervisor::MIXERS, 0x40, 1),
-    StateMapEntry::marked(supervisor::MIXERS, 0x80, 1),
-    StateMapEntry::marked(supervisor::MIXERS, 0x100, 1),
-    StateMapEntry::marked(supervisor::MIXERS, 0x4, 1),
-];
+const STATE_MAP: [[u32; 3]; 7] = StateMapEntry::records(
+    &[
+        StateMapEntry::marked(supervisor::MIXERS, 0x2, 1),
+        StateMapEntry::marked(supervisor::MIXERS, 0x8, 1),
+        StateMapEntry::marked(supervisor::MIXERS, 0x10, 1),
+        StateMapEntry::marked(supervisor::MIXERS, 0x40, 1),
+        StateMapEntry::marked(supervisor::MIXERS, 0x80, 1),
+        StateMapEntry::marked(supervisor::MIXERS, 0x100, 1),
+        StateMapEntry::marked(supervisor::MIXERS, 0x4, 1),
+    ],
+);
 
 /// The executor's description of the project.
 #[allow(dead_code)]

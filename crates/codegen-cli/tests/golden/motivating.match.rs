@@ -4,9 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode,
-    GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit,
-    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
+    indices, mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec,
+    GuardNode, GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span,
+    StateBit, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -166,60 +166,64 @@ pub const INPUT_WORDS: usize = executor::program::words(input::COUNT);
 /// - 3 `x_f`: unfiltered; its edges can raise `f`
 /// - 4 `req_c_lo`: unfiltered
 /// - 5 `reset`: unfiltered
-const INPUTS: [InputSpec; 6] = [
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::new(0, 1),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::new(1, 1),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::new(2, 1),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::new(3, 1),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::EMPTY,
-    },
-];
+const INPUTS: [[u32; 2]; 6] = InputSpec::records(
+    &[
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::new(0, 1),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::new(1, 1),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::new(2, 1),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::new(3, 1),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::EMPTY,
+        },
+    ],
+);
 
 /// The debounced inputs; filter counter `k` belongs to the `k`-th.
-const DEBOUNCED: [Index; 0] = [];
+const DEBOUNCED: [u32; 0] = indices(&[]);
 
 /// Outputs, by output (level in fault mode, and how each is driven):
 /// - 0 `x_c_hi` (safe 0): latched, initially 0; set by `c_hi`; cleared by `c_lo` and `c_cl`
 /// - 1 `x_c_lo` (safe 0): latched, initially 0; set by `c_lo`; cleared by `c_hi` and `c_cl`
 /// - 2 `x_d_on` (safe 0): latched, initially 0; set by `d_on`; cleared by `d_off`
-const OUTPUTS: [OutputSpec; 3] = [
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::EMPTY,
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::EMPTY,
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::EMPTY,
-    },
-];
+const OUTPUTS: [[u32; 2]; 3] = OutputSpec::records(
+    &[
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::EMPTY,
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::EMPTY,
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::EMPTY,
+        },
+    ],
+);
 
 /// Timer presets, by timer.
-const TIMERS: [TimerSpec; 0] = [];
+const TIMERS: [[u32; 2]; 0] = TimerSpec::records(&[]);
 
 /// Events in priority order (trigger and conditions; actions; supervisors, with the event's local index):
 /// - 0 `a` (uncontrollable, operator): rising edge of `x_a`; in `motivating` (local 0)
@@ -231,95 +235,99 @@ const TIMERS: [TimerSpec; 0] = [];
 /// - 6 `c_cl` (controllable): commanded; clears `x_c_hi`, clears `x_c_lo`; in `motivating` (local 6)
 /// - 7 `d_on` (controllable): commanded; sets `x_d_on`; in `motivating` (local 7)
 /// - 8 `d_off` (controllable): commanded; clears `x_d_on`; in `motivating` (local 8)
-const EVENTS: [EventSpec; 9] = [
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(0, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(0, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(1, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(1, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(2, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(2, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(3, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(3, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: Some(input::REQ_C_LO),
-        actions: Span::new(0, 2),
-        members: Span::new(4, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::new(2, 2),
-        members: Span::new(5, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::new(4, 2),
-        members: Span::new(6, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::new(6, 1),
-        members: Span::new(7, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Command,
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::new(7, 1),
-        members: Span::new(8, 1),
-    },
-];
+const EVENTS: [[u32; 7]; 9] = EventSpec::records(
+    &[
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(0, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(0, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(1, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(1, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(2, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(2, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(3, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(3, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: Some(input::REQ_C_LO),
+            actions: Span::new(0, 2),
+            members: Span::new(4, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::new(2, 2),
+            members: Span::new(5, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::new(4, 2),
+            members: Span::new(6, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::new(6, 1),
+            members: Span::new(7, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Command,
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::new(7, 1),
+            members: Span::new(8, 1),
+        },
+    ],
+);
 
 /// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
 /// - 0 `motivating`: 10 states, initial `0`
-const SUPERVISORS: [SupervisorSpec; 1] = [
-    SupervisorSpec {
-        states: 10,
-        initial: 0,
-        alphabet: Span::new(4, 9),
-        outside: Span::EMPTY,
-        allowed: AllowedSets {
-            index: Span::new(0, 1),
-            bits: 3,
+const SUPERVISORS: [[u32; 6]; 1] = SupervisorSpec::records(
+    &[
+        SupervisorSpec {
+            states: 10,
+            initial: 0,
+            alphabet: Span::new(4, 9),
+            outside: Span::EMPTY,
+            allowed: AllowedSets {
+                index: Span::new(0, 1),
+                bits: 3,
+            },
         },
-    },
-];
+    ],
+);
 
 /// Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position:
 /// - 0: edge of `a`
@@ -340,22 +348,24 @@ const INPUT_MASKS: [u32; 4] = [
 /// - 3: edges of `x_f`
 /// - 4–12: alphabet of `motivating`
 /// - 13: the commands with a request input
-const EVENT_LISTS: [Index; 14] = [
-    event::A,
-    event::B,
-    event::E,
-    event::F,
-    event::A,
-    event::B,
-    event::E,
-    event::F,
-    event::C_LO,
-    event::C_HI,
-    event::C_CL,
-    event::D_ON,
-    event::D_OFF,
-    event::C_LO,
-];
+const EVENT_LISTS: [u32; 14] = indices(
+    &[
+        event::A,
+        event::B,
+        event::E,
+        event::F,
+        event::A,
+        event::B,
+        event::E,
+        event::F,
+        event::C_LO,
+        event::C_HI,
+        event::C_CL,
+        event::D_ON,
+        event::D_OFF,
+        event::C_LO,
+    ],
+);
 
 /// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position:
 /// - 0: allowed by `motivating`
@@ -385,16 +395,18 @@ const EVENT_MASKS: [u32; 9] = [
 /// - 4–5: `c_cl`
 /// - 6: `d_on`
 /// - 7: `d_off`
-const ACTIONS: [Action; 8] = [
-    Action::Clear(output::X_C_HI),
-    Action::Set(output::X_C_LO),
-    Action::Clear(output::X_C_LO),
-    Action::Set(output::X_C_HI),
-    Action::Clear(output::X_C_HI),
-    Action::Clear(output::X_C_LO),
-    Action::Set(output::X_D_ON),
-    Action::Clear(output::X_D_ON),
-];
+const ACTIONS: [u32; 8] = Action::words(
+    &[
+        Action::Clear(output::X_C_HI),
+        Action::Set(output::X_C_LO),
+        Action::Clear(output::X_C_LO),
+        Action::Set(output::X_C_HI),
+        Action::Clear(output::X_C_HI),
+        Action::Clear(output::X_C_LO),
+        Action::Set(output::X_D_ON),
+        Action::Clear(output::X_D_ON),
+    ],
+);
 
 /// Which supervisors have each event, and its local index there, by position:
 /// - 0: `a`
@@ -406,47 +418,49 @@ const ACTIONS: [Action; 8] = [
 /// - 6: `c_cl`
 /// - 7: `d_on`
 /// - 8: `d_off`
-const MEMBERSHIPS: [Membership; 9] = [
-    Membership {
-        supervisor: supervisor::MOTIVATING,
-        local: 0,
-    },
-    Membership {
-        supervisor: supervisor::MOTIVATING,
-        local: 1,
-    },
-    Membership {
-        supervisor: supervisor::MOTIVATING,
-        local: 2,
-    },
-    Membership {
-        supervisor: supervisor::MOTIVATING,
-        local: 3,
-    },
-    Membership {
-        supervisor: supervisor::MOTIVATING,
-        local: 4,
-    },
-    Membership {
-        supervisor: supervisor::MOTIVATING,
-        local: 5,
-    },
-    Membership {
-        supervisor: supervisor::MOTIVATING,
-        local: 6,
-    },
-    Membership {
-        supervisor: supervisor::MOTIVATING,
-        local: 7,
-    },
-    Membership {
-        supervisor: supervisor::MOTIVATING,
-        local: 8,
-    },
-];
+const MEMBERSHIPS: [u32; 9] = Membership::words(
+    &[
+        Membership {
+            supervisor: supervisor::MOTIVATING,
+            local: 0,
+        },
+        Membership {
+            supervisor: supervisor::MOTIVATING,
+            local: 1,
+        },
+        Membership {
+            supervisor: supervisor::MOTIVATING,
+            local: 2,
+        },
+        Membership {
+            supervisor: supervisor::MOTIVATING,
+            local: 3,
+        },
+        Membership {
+            supervisor: supervisor::MOTIVATING,
+            local: 4,
+        },
+        Membership {
+            supervisor: supervisor::MOTIVATING,
+            local: 5,
+        },
+        Membership {
+            supervisor: supervisor::MOTIVATING,
+            local: 6,
+        },
+        Membership {
+            supervisor: supervisor::MOTIVATING,
+            local: 7,
+        },
+        Membership {
+            supervisor: supervisor::MOTIVATING,
+            local: 8,
+        },
+    ],
+);
 
 /// Moore outputs: (supervisor, state) pairs, by position.
-const STATE_MAP: [StateMapEntry; 0] = [];
+const STATE_MAP: [[u32; 3]; 0] = StateMapEntry::records(&[]);
 
 /// The stored allowed sets: in each state, the number `k` of the supervisor's allowed set, words `k·EVENT_WORDS ..` of `EVENT_MASKS`, packed; by position:
 /// - 0: `motivating` (3-bit set numbers by state: `0` 0, `1` 1, `2` 2, `3` 3, `4` 4, `5` 5, `6` 6, `7` 7, …)

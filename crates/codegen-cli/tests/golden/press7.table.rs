@@ -4,9 +4,9 @@
 
 #[allow(unused_imports)]
 use executor::program::{
-    mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode,
-    GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit,
-    StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
+    indices, mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec,
+    GuardNode, GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span,
+    StateBit, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy,
 };
 
 #[allow(unused_imports)]
@@ -158,66 +158,70 @@ pub const INPUT_WORDS: usize = executor::program::words(input::COUNT);
 /// - 3 `part`: debounced over 3 scans; its edges can raise `part_in` and `part_out`
 /// - 4 `top_ls`: unfiltered; its edges can raise `at_top`
 /// - 5 `bottom_ls`: unfiltered; its edges can raise `at_bottom`
-const INPUTS: [InputSpec; 6] = [
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::new(0, 1),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::new(1, 1),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::new(2, 1),
-    },
-    InputSpec {
-        debounce_scans: 3,
-        raises: Span::new(3, 2),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::new(5, 1),
-    },
-    InputSpec {
-        debounce_scans: 0,
-        raises: Span::new(6, 1),
-    },
-];
+const INPUTS: [[u32; 2]; 6] = InputSpec::records(
+    &[
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::new(0, 1),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::new(1, 1),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::new(2, 1),
+        },
+        InputSpec {
+            debounce_scans: 3,
+            raises: Span::new(3, 2),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::new(5, 1),
+        },
+        InputSpec {
+            debounce_scans: 0,
+            raises: Span::new(6, 1),
+        },
+    ],
+);
 
 /// The debounced inputs; filter counter `k` belongs to the `k`-th.
-const DEBOUNCED: [Index; 1] = [input::PART];
+const DEBOUNCED: [u32; 1] = indices(&[input::PART]);
 
 /// Outputs, by output (level in fault mode, and how each is driven):
 /// - 0 `auto_lamp` (safe 0): 1 while `press` is in `2`, `3`, `4` or `6`
 /// - 1 `part_hold` (safe 0): 1 while `press` is in `3` or `4`
 /// - 2 `up_sol` (safe 0): 1 while `press` is in `4` or `7`
 /// - 3 `down_sol` (safe 0): 1 while `press` is in `3`
-const OUTPUTS: [OutputSpec; 4] = [
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(0, 4),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(4, 2),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(6, 2),
-    },
-    OutputSpec {
-        safe: false,
-        initial: false,
-        state_map: Span::new(8, 1),
-    },
-];
+const OUTPUTS: [[u32; 2]; 4] = OutputSpec::records(
+    &[
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(0, 4),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(4, 2),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(6, 2),
+        },
+        OutputSpec {
+            safe: false,
+            initial: false,
+            state_map: Span::new(8, 1),
+        },
+    ],
+);
 
 /// Timer presets, by timer.
-const TIMERS: [TimerSpec; 0] = [];
+const TIMERS: [[u32; 2]; 0] = TimerSpec::records(&[]);
 
 /// Events in priority order (trigger and conditions; actions; supervisors, with the event's local index):
 /// - 0 `auto` (uncontrollable, operator): rising edge of `auto_pb` when `top_ls`; in `press` (local 0)
@@ -227,79 +231,83 @@ const TIMERS: [TimerSpec; 0] = [];
 /// - 4 `part_out` (uncontrollable, plant): falling edge of `part`; in `press` (local 4)
 /// - 5 `at_bottom` (uncontrollable, plant): rising edge of `bottom_ls`; in `press` (local 5)
 /// - 6 `at_top` (uncontrollable, plant): rising edge of `top_ls`; in `press` (local 6)
-const EVENTS: [EventSpec; 7] = [
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(0, 1)),
-        when: Span::new(1, 1),
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(0, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(2, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(1, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(3, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(2, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(4, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(3, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Falling(Span::new(4, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(4, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(5, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(5, 1),
-    },
-    EventSpec {
-        trigger: Trigger::Rising(Span::new(1, 1)),
-        when: Span::EMPTY,
-        unless: Span::EMPTY,
-        request: None,
-        actions: Span::EMPTY,
-        members: Span::new(6, 1),
-    },
-];
+const EVENTS: [[u32; 7]; 7] = EventSpec::records(
+    &[
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(0, 1)),
+            when: Span::new(1, 1),
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(0, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(2, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(1, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(3, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(2, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(4, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(3, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Falling(Span::new(4, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(4, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(5, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(5, 1),
+        },
+        EventSpec {
+            trigger: Trigger::Rising(Span::new(1, 1)),
+            when: Span::EMPTY,
+            unless: Span::EMPTY,
+            request: None,
+            actions: Span::EMPTY,
+            members: Span::new(6, 1),
+        },
+    ],
+);
 
 /// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
 /// - 0 `press`: 7 states, initial `1`
-const SUPERVISORS: [SupervisorSpec; 1] = [
-    SupervisorSpec {
-        states: 7,
-        initial: 0,
-        alphabet: Span::new(7, 7),
-        outside: Span::EMPTY,
-        allowed: AllowedSets {
-            index: Span::new(0, 1),
-            bits: 3,
+const SUPERVISORS: [[u32; 6]; 1] = SupervisorSpec::records(
+    &[
+        SupervisorSpec {
+            states: 7,
+            initial: 0,
+            alphabet: Span::new(7, 7),
+            outside: Span::EMPTY,
+            allowed: AllowedSets {
+                index: Span::new(0, 1),
+                bits: 3,
+            },
         },
-    },
-];
+    ],
+);
 
 /// Input masks of edge bindings, `when`/`unless` conditions and the debounced inputs, `INPUT_WORDS` words each, by position:
 /// - 0: edge of `auto`
@@ -325,22 +333,24 @@ const INPUT_MASKS: [u32; 6] = [
 /// - 5: edges of `top_ls`
 /// - 6: edges of `bottom_ls`
 /// - 7–13: alphabet of `press`
-const EVENT_LISTS: [Index; 14] = [
-    event::AUTO,
-    event::STOP,
-    event::RESET,
-    event::PART_IN,
-    event::PART_OUT,
-    event::AT_TOP,
-    event::AT_BOTTOM,
-    event::AUTO,
-    event::STOP,
-    event::RESET,
-    event::PART_IN,
-    event::PART_OUT,
-    event::AT_BOTTOM,
-    event::AT_TOP,
-];
+const EVENT_LISTS: [u32; 14] = indices(
+    &[
+        event::AUTO,
+        event::STOP,
+        event::RESET,
+        event::PART_IN,
+        event::PART_OUT,
+        event::AT_TOP,
+        event::AT_BOTTOM,
+        event::AUTO,
+        event::STOP,
+        event::RESET,
+        event::PART_IN,
+        event::PART_OUT,
+        event::AT_BOTTOM,
+        event::AT_TOP,
+    ],
+);
 
 /// Event sets, `EVENT_WORDS` words each: what each supervisor never blocks, the commands without a request input, the allowed sets a supervisor stores (`ALLOWED_INDEX`), by position:
 /// - 0: allowed by `press`
@@ -365,7 +375,7 @@ const EVENT_MASKS: [u32; 5] = [
 ];
 
 /// Event actions, by position.
-const ACTIONS: [Action; 0] = [];
+const ACTIONS: [u32; 0] = Action::words(&[]);
 
 /// Which supervisors have each event, and its local index there, by position:
 /// - 0: `auto`
@@ -375,53 +385,57 @@ const ACTIONS: [Action; 0] = [];
 /// - 4: `part_out`
 /// - 5: `at_bottom`
 /// - 6: `at_top`
-const MEMBERSHIPS: [Membership; 7] = [
-    Membership {
-        supervisor: supervisor::PRESS,
-        local: 0,
-    },
-    Membership {
-        supervisor: supervisor::PRESS,
-        local: 1,
-    },
-    Membership {
-        supervisor: supervisor::PRESS,
-        local: 2,
-    },
-    Membership {
-        supervisor: supervisor::PRESS,
-        local: 3,
-    },
-    Membership {
-        supervisor: supervisor::PRESS,
-        local: 4,
-    },
-    Membership {
-        supervisor: supervisor::PRESS,
-        local: 5,
-    },
-    Membership {
-        supervisor: supervisor::PRESS,
-        local: 6,
-    },
-];
+const MEMBERSHIPS: [u32; 7] = Membership::words(
+    &[
+        Membership {
+            supervisor: supervisor::PRESS,
+            local: 0,
+        },
+        Membership {
+            supervisor: supervisor::PRESS,
+            local: 1,
+        },
+        Membership {
+            supervisor: supervisor::PRESS,
+            local: 2,
+        },
+        Membership {
+            supervisor: supervisor::PRESS,
+            local: 3,
+        },
+        Membership {
+            supervisor: supervisor::PRESS,
+            local: 4,
+        },
+        Membership {
+            supervisor: supervisor::PRESS,
+            local: 5,
+        },
+        Membership {
+            supervisor: supervisor::PRESS,
+            local: 6,
+        },
+    ],
+);
 
 /// Moore outputs: (supervisor, state) pairs, by position:
 /// - 0–3: `auto_lamp`
 /// - 4–5: `part_hold`
 /// - 6–7: `up_sol`
 /// - 8: `down_sol`
-const STATE_MAP: [StateMapEntry; 9] = [
-    StateMapEntry::in_state(supervisor::PRESS, 1),
-    StateMapEntry::in_state(supervisor::PRESS, 2),
-    StateMapEntry::in_state(supervisor::PRESS, 3),
-    StateMapEntry::in_state(supervisor::PRESS, 5),
-    StateMapEntry::in_state(supervisor::PRESS, 2),
-    StateMapEntry::in_state(supervisor::PRESS, 3),
-    StateMapEntry::in_state(supervisor::PRESS, 3),
-    StateMapEntry::in_state(supervisor::PRESS, 6),
-    StateMapEntry::in_state(supervisor::PRESS, 2),
-];
+const STATE_MAP: [[u32; 3]; 9] = StateMapEntry::records(
+    &[
+        StateMapEntry::in_state(supervisor::PRESS, 1),
+        StateMapEntry::in_state(supervisor::PRESS, 2),
+        StateMapEntry::in_state(supervisor::PRESS, 3),
+        StateMapEntry::in_state(supervisor::PRESS, 5),
+        StateMapEntry::in_state(supervisor::PRESS, 2),
+        StateMapEntry::in_state(supervisor::PRESS, 3),
+        StateMapEntry::in_state(supervisor::PRESS, 3),
+        StateMapEntry::in_state(supervisor::PRESS, 6),
+        StateMapEntry::in_state(supervisor::PRESS, 2),
+    ],
+);
 
 /// The stored allowed sets: in each state, the number `k` of the supervisor's allowed set, words `k·EVENT_WORDS ..` of `EVENT_MASKS`, packed; by position:
 /// - 0: `press` (3-bit set numbers by state: `1` 0, `2` 0, `3` 1, `4` 2, `5` 3, `6` 4, `7` 2)

@@ -354,13 +354,30 @@ pub mod places {{"
 
     /// `const <name>: [<ty>; N] = [<items>];` under the doc comment
     /// `titled(title, doc)`: one pool of the configuration.
+    ///
+    /// A pool of typed items is stored as their words (the image: the
+    /// executor's `Config`), written as the typed values converted by a
+    /// `const fn`: `Ty::records(&[..])`, `Ty::words(&[..])` for a kind of
+    /// one word, `indices(&[..])` for indices.
     fn pool(&mut self, name: &str, ty: &str, title: &str, doc: &str, items: &[String]) {
+        let n = items.len();
+        let items = items.join(", ");
+        let (ty, value) = match ty {
+            "u32" => (format!("[u32; {n}]"), format!("[{items}]")),
+            "Index" => (format!("[u32; {n}]"), format!("indices(&[{items}])")),
+            "Action" | "Membership" => (format!("[u32; {n}]"), format!("{ty}::words(&[{items}])")),
+            _ => {
+                let k = record_words(ty);
+                (
+                    format!("[[u32; {k}]; {n}]"),
+                    format!("{ty}::records(&[{items}])"),
+                )
+            }
+        };
         let _ = writeln!(
             self.out,
-            "{}const {name}: [{ty}; {}] = [{}];",
-            titled(title, doc),
-            items.len(),
-            items.join(", ")
+            "{}const {name}: {ty} = {value};",
+            titled(title, doc)
         );
     }
 
@@ -981,6 +998,18 @@ fn stored_sets(pools: &ConfigPools, j: usize) -> Vec<usize> {
     (0..sup.states)
         .map_while(|x| config.stored_set(sup, x))
         .collect()
+}
+
+/// Words of a record of the executor's type `ty`.
+fn record_words(ty: &str) -> usize {
+    match ty {
+        "InputSpec" | "OutputSpec" | "TimerSpec" | "GuardNode" => 2,
+        "EventSpec" => 7,
+        "SupervisorSpec" => 6,
+        "StateMapEntry" | "GuardSpec" => 3,
+        "StateBit" => 1,
+        _ => unreachable!("no record type {ty}"),
+    }
 }
 
 #[cfg(test)]

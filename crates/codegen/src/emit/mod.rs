@@ -328,7 +328,7 @@ fn write_program(project: &Project, lowered: &Lowered) -> Unformatted {
     };
     let _ = writeln!(
         e.out,
-        "#[allow(unused_imports)]\nuse executor::program::{{mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode, GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy}};\n#[allow(unused_imports)]\n{uses}"
+        "#[allow(unused_imports)]\nuse executor::program::{{indices, mask_word, mask_word_except, Action, AllowedSets, Config, EventSpec, GuardNode, GuardSpec, Guards, Index, InputSpec, Membership, OutputSpec, Span, StateBit, StateMapEntry, SupervisorSpec, TimerSpec, Trigger, UnexpectedPolicy}};\n#[allow(unused_imports)]\n{uses}"
     );
     e.names();
     e.config();

@@ -11,7 +11,10 @@ use plc_project::{Action, Drive, Project, Trigger, Unexpected};
 use std::collections::HashMap;
 use std::collections::HashSet;
 
-/// The executor's description of a project, in owned vectors.
+/// The executor's description of a project, in owned vectors: the typed
+/// lay-out, which the emitter and host tools read, and its records as the
+/// image holds them ([`ConfigPools::config`] reads those). After changing a
+/// typed field, [`ConfigPools::refresh`] writes the records anew.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ConfigPools {
     /// Project name.
@@ -78,6 +81,27 @@ pub struct ConfigPools {
     /// The layout of each net, in declaration order: its groups are the
     /// supervisors after the automata.
     pub nets: Vec<NetLayout>,
+    /// The pools' records, as [`ConfigPools::config`] hands them out.
+    records: Records,
+}
+
+/// The records of the pools of a [`ConfigPools`] (the image's words:
+/// [`executor::image`]).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+struct Records {
+    inputs: Vec<[u32; 2]>,
+    debounced: Vec<u32>,
+    outputs: Vec<[u32; 2]>,
+    timers: Vec<[u32; 2]>,
+    events: Vec<[u32; 7]>,
+    supervisors: Vec<[u32; 6]>,
+    event_lists: Vec<u32>,
+    actions: Vec<u32>,
+    memberships: Vec<u32>,
+    state_map: Vec<[u32; 3]>,
+    guards: Vec<[u32; 3]>,
+    state_bits: Vec<[u32; 1]>,
+    guard_nodes: Vec<[u32; 2]>,
 }
 
 /// Why a project cannot be laid out, before [`ConfigPools::from_project`]
@@ -244,11 +268,44 @@ impl ConfigPools {
             guard_nodes: guards.nodes,
             allowed_index: layout.allowed_index,
             nets,
-        })
+            records: Records::default(),
+        }
+        .refreshed())
+    }
+
+    /// Writes the records of the typed pools anew: after a change to them,
+    /// before [`ConfigPools::config`].
+    pub fn refresh(&mut self) {
+        let words = |list: &[Index]| list.iter().map(|&i| u32::from(i)).collect();
+        self.records = Records {
+            inputs: ex::encode(&self.inputs),
+            debounced: words(&self.debounced),
+            outputs: ex::encode(&self.outputs),
+            timers: ex::encode(&self.timers),
+            events: ex::encode(&self.events),
+            supervisors: ex::encode(&self.supervisors),
+            event_lists: words(&self.event_lists),
+            actions: self.actions.iter().map(ex::Action::to_word).collect(),
+            memberships: self
+                .memberships
+                .iter()
+                .map(ex::Membership::to_word)
+                .collect(),
+            state_map: ex::encode(&self.state_map),
+            guards: ex::encode(&self.guards),
+            state_bits: ex::encode(&self.state_bits),
+            guard_nodes: ex::encode(&self.guard_nodes),
+        };
+    }
+
+    fn refreshed(mut self) -> ConfigPools {
+        self.refresh();
+        self
     }
 
     /// The executor's borrowed view.
     pub fn config(&self) -> Config<'_> {
+        let r = &self.records;
         Config {
             name: &self.name,
             scan_period_ms: self.scan_period_ms,
@@ -259,25 +316,25 @@ impl ConfigPools {
             overrun_fault: self.overrun_fault,
             lost_edge_fault: self.lost_edge_fault,
             rom_test_bytes_per_scan: self.rom_test_bytes_per_scan,
-            inputs: &self.inputs,
-            debounced: &self.debounced,
+            inputs: &r.inputs,
+            debounced: &r.debounced,
             debounce_mask: self.debounce_mask,
-            outputs: &self.outputs,
-            timers: &self.timers,
-            events: &self.events,
-            supervisors: &self.supervisors,
+            outputs: &r.outputs,
+            timers: &r.timers,
+            events: &r.events,
+            supervisors: &r.supervisors,
             input_masks: &self.input_masks,
-            event_lists: &self.event_lists,
+            event_lists: &r.event_lists,
             event_masks: &self.event_masks,
             commands: self.commands,
             requested: self.requested,
-            actions: &self.actions,
-            memberships: &self.memberships,
-            state_map: &self.state_map,
+            actions: &r.actions,
+            memberships: &r.memberships,
+            state_map: &r.state_map,
             guards: ex::Guards {
-                events: &self.guards,
-                bits: &self.state_bits,
-                nodes: &self.guard_nodes,
+                events: &r.guards,
+                bits: &r.state_bits,
+                nodes: &r.guard_nodes,
             },
             allowed_index: &self.allowed_index,
         }

@@ -78,8 +78,9 @@ pub enum Lowered {
 impl Lowered {
     /// Lowers `project` for `backend`, telling `progress` what the logic
     /// backend is minimising.
-    /// Its stored allowed sets are checked against its supervisors
-    /// ([`executor::validate::validate_allowed_sets`]), which the
+    /// Its image is checked for everything generation proves
+    /// ([`executor::validate::validate_generated`]: the agreement of its
+    /// pools, its table entries, its stored allowed sets), which the
     /// controller leaves to generation.
     pub fn new(project: &Project, backend: Backend, progress: &dyn Progress) -> Result<Lowered> {
         let lowered = match backend {
@@ -87,8 +88,8 @@ impl Lowered {
             Backend::Logic => Lowered::Logic(LogicImage::with_progress(project, progress)?),
             Backend::Match => Lowered::Match(MatchImage::new(project)?),
         };
-        executor::validate::validate_allowed_sets(&lowered).map_err(|invalid| {
-            Error::AllowedSets {
+        executor::validate::validate_generated(&lowered).map_err(|invalid| {
+            Error::GeneratedImage {
                 project: project.path.clone(),
                 invalid,
             }

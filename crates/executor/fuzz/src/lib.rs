@@ -210,6 +210,9 @@ pub fn apply(image: &mut TableImage, m: Mutation) {
             Some(())
         }
     };
+    // The image holds the pools' records: written anew from the changed
+    // typed pools.
+    image.pools.refresh();
 }
 
 /// A value near the sizes of a small project half the time, any value the
@@ -250,7 +253,7 @@ fn run(images: &[TableImage], u: &mut Unstructured<'_>) -> Result<()> {
     }
     let corrupt = validate(&image).is_err() || image.computed_crc() != image.crc;
     let config = image.config();
-    let safe: Vec<bool> = config.outputs.iter().map(|o| o.safe).collect();
+    let safe: Vec<bool> = config.output_specs().map(|o| o.safe).collect();
     let controller = || {
         Controller::new(&image, HeapMemory::for_config(&config))
             .expect("memory sized for its configuration fits it")
@@ -336,7 +339,7 @@ fn check_scan(config: &Config<'_>, r: &ScanRecord<'_>, safe: &[bool], corrupt: O
     match r.fault {
         Some(_) => assert_eq!(r.outputs, safe, "fault mode writes the safe image"),
         None => {
-            for (x, spec) in r.states.iter().zip(config.supervisors) {
+            for (x, spec) in r.states.iter().zip(config.supervisor_specs()) {
                 assert!(*x < spec.states, "state {x} of {}", spec.states);
             }
         }

@@ -7,6 +7,7 @@ extern crate std;
 
 use crate::image::{self, IMAGE_CRC};
 use crate::memory::StaticMemory;
+use crate::program::leak::{records, words};
 use crate::program::*;
 use crate::table::{read_bits, Rows, SupervisorTable, TableProgram};
 use crate::{Controller, Fault};
@@ -29,9 +30,9 @@ fn leak<T>(v: Vec<T>) -> &'static [T] {
     Box::leak(v.into_boxed_slice())
 }
 
-/// A pool of one item.
-fn one<T>(item: T) -> &'static [T] {
-    leak(vec![item])
+/// A pool of one record.
+fn one<T: Record<N>, const N: usize>(item: T) -> &'static [[u32; N]] {
+    records(&[item])
 }
 
 /// The ring's table in the dense layout, packed as the module docs of
@@ -114,35 +115,35 @@ fn ring_config(rom_test_bytes_per_scan: u16) -> Config<'static> {
         overrun_fault: false,
         lost_edge_fault: false,
         rom_test_bytes_per_scan,
-        inputs: &INPUTS,
+        inputs: records(&INPUTS),
         debounced: &[],
         debounce_mask: Span::EMPTY,
-        outputs: &OUTPUTS,
+        outputs: records(&OUTPUTS),
         timers: &[],
-        events: &EVENT_SPECS,
-        supervisors: &SUPERVISORS,
+        events: records(&EVENT_SPECS),
+        supervisors: records(&SUPERVISORS),
         input_masks: &INPUT_MASKS,
         event_lists: &[0, 0],
         event_masks: &[],
         commands: Span::EMPTY,
         requested: Span::EMPTY,
         actions: &[],
-        memberships: &[Membership {
+        memberships: words(&[Membership {
             supervisor: 0,
             local: 0,
-        }],
-        state_map: &[StateMapEntry {
+        }]),
+        state_map: records(&[StateMapEntry {
             supervisor: 0,
             state: 0,
             mask: u32::MAX,
-        }],
+        }]),
         guards: Guards::NONE,
         allowed_index: &[],
     }
 }
 
 /// The ring as a table program, with the CRC a generator would record.
-fn ring(rom_test_bytes_per_scan: u16) -> TableProgram<'static> {
+pub(crate) fn ring(rom_test_bytes_per_scan: u16) -> TableProgram<'static> {
     with_config(ring_config(rom_test_bytes_per_scan))
 }
 
@@ -290,27 +291,27 @@ fn scan_of_fault(program: &Flippable, flip_at: usize, limit: usize) -> Option<us
 }
 
 /// A tiny program with one item in every pool and no two fields alike.
-fn every_pool() -> TableProgram<'static> {
+pub(crate) fn every_pool() -> TableProgram<'static> {
     let config = Config {
         name: "abcde",
         debounce_mask: Span::new(1, 1),
         commands: Span::new(2, 1),
         requested: Span::new(3, 1),
-        inputs: leak(vec![InputSpec {
+        inputs: records(&[InputSpec {
             debounce_scans: 3,
             raises: Span::new(0, 2),
         }]),
         debounced: &[0],
-        outputs: leak(vec![OutputSpec {
+        outputs: records(&[OutputSpec {
             safe: true,
             initial: false,
             state_map: Span::new(0, 1),
         }]),
-        timers: leak(vec![TimerSpec {
+        timers: records(&[TimerSpec {
             preset_ms: 500,
             raises: Span::new(2, 1),
         }]),
-        events: leak(vec![EventSpec {
+        events: records(&[EventSpec {
             trigger: Trigger::Rising(Span::new(0, 1)),
             when: Span::new(1, 1),
             unless: Span::EMPTY,
@@ -318,7 +319,7 @@ fn every_pool() -> TableProgram<'static> {
             actions: Span::new(0, 1),
             members: Span::new(0, 1),
         }]),
-        supervisors: leak(vec![SupervisorSpec {
+        supervisors: records(&[SupervisorSpec {
             states: 3,
             initial: 2,
             alphabet: Span::new(3, 1),
@@ -331,31 +332,31 @@ fn every_pool() -> TableProgram<'static> {
         input_masks: &[0x11, 0x22],
         event_lists: &[5, 6, 7, 8],
         event_masks: &[0x33, 0x44, 0x55],
-        actions: &[Action::Start(0)],
-        memberships: &[Membership {
+        actions: words(&[Action::Start(0)]),
+        memberships: words(&[Membership {
             supervisor: 9,
             local: 10,
-        }],
-        state_map: &[StateMapEntry {
+        }]),
+        state_map: records(&[StateMapEntry {
             supervisor: 11,
             state: 12,
             mask: u32::MAX,
-        }],
+        }]),
         guards: Guards {
-            events: leak(vec![GuardSpec {
+            events: records(&[GuardSpec {
                 event: 13,
                 root: 2,
                 nodes: Span::new(0, 1),
             }]),
-            bits: &[StateBit {
+            bits: records(&[StateBit {
                 component: 14,
                 shift: 15,
-            }],
-            nodes: &[GuardNode {
+            }]),
+            nodes: records(&[GuardNode {
                 bit: 16,
                 low: 17,
                 high: 18,
-            }],
+            }]),
         },
         allowed_index: &[20],
         ..ring_config(8)
@@ -438,8 +439,8 @@ fn every_field_of_the_configuration_and_tables_is_in_the_image() {
     // per field of a table: each gives another CRC, and no two the same.
     let p = every_pool();
     let c = p.config;
-    let (input, output, timer) = (c.inputs[0], c.outputs[0], c.timers[0]);
-    let (event, supervisor, table) = (c.events[0], c.supervisors[0], p.tables[0]);
+    let (input, output, timer) = (c.input(0), c.output(0), c.timer(0));
+    let (event, supervisor, table) = (c.event(0), c.supervisor(0), p.tables[0]);
     let other = Span::new(7, 3);
     let with = |config: Config<'static>| TableProgram { config, ..p };
     let with_table = |table: SupervisorTable<'static>| TableProgram {
@@ -462,7 +463,7 @@ fn every_field_of_the_configuration_and_tables_is_in_the_image() {
         ("requested", with(Config { requested: other, ..c })),
         ("debounce", with(Config { inputs: one(InputSpec { debounce_scans: 4, ..input }), ..c })),
         ("input raises", with(Config { inputs: one(InputSpec { raises: other, ..input }), ..c })),
-        ("debounced", with(Config { debounced: one(1), ..c })),
+        ("debounced", with(Config { debounced: &[1], ..c })),
         ("safe level", with(Config { outputs: one(OutputSpec { safe: false, ..output }), ..c })),
         ("initial level", with(Config { outputs: one(OutputSpec { initial: true, ..output }), ..c })),
         ("output state map", with(Config { outputs: one(OutputSpec { state_map: other, ..output }), ..c })),
@@ -485,8 +486,8 @@ fn every_field_of_the_configuration_and_tables_is_in_the_image() {
         ("input masks", with(Config { input_masks: leak(vec![0x11, 0x23]), ..c })),
         ("event lists", with(Config { event_lists: leak(vec![5, 6, 7, 9]), ..c })),
         ("event masks", with(Config { event_masks: leak(vec![0x33, 0x44, 0x56]), ..c })),
-        ("action", with(Config { actions: one(Action::Reset(0)), ..c })),
-        ("membership", with(Config { memberships: one(Membership { supervisor: 9, local: 11 }), ..c })),
+        ("action", with(Config { actions: words(&[Action::Reset(0)]), ..c })),
+        ("membership", with(Config { memberships: words(&[Membership { supervisor: 9, local: 11 }]), ..c })),
         ("state map", with(Config { state_map: one(StateMapEntry { supervisor: 11, state: 13, mask: u32::MAX }), ..c })),
         ("state map mask", with(Config { state_map: one(StateMapEntry { supervisor: 11, state: 12, mask: 14 }), ..c })),
         ("table events", with_table(SupervisorTable { events: 3, ..table })),
@@ -620,11 +621,11 @@ fn a_flipped_configuration_byte_is_found() {
     // word 41.
     let program = ring(16);
     let (n, pass) = shares(&program);
-    let mut event = program.config.events[0];
+    let mut event = program.config.event(0);
     event.members = Span::new(0, 1 ^ 0x80);
     let corrupt = TableProgram {
         config: Config {
-            events: leak(vec![event]),
+            events: records(&[event]),
             ..program.config
         },
         ..program

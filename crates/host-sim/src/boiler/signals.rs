@@ -323,10 +323,9 @@ impl IoMap {
     /// lowered configuration of the project), by [`Input::index`].
     pub fn debounce(&self, config: &Config<'_>) -> [u8; Input::ALL.len()] {
         Input::ALL.map(|input| {
-            config
-                .inputs
-                .get(self.input(input))
-                .map_or(0, |spec| spec.debounce_scans)
+            config.inputs.get(self.input(input)).map_or(0, |spec| {
+                executor::program::InputSpec::from_words(spec).debounce_scans
+            })
         })
     }
 
