@@ -492,7 +492,15 @@ fn refresh_allowed<P: Program>(
     for (k, word) in allowed.iter_mut().enumerate() {
         *word = outside.get(k).copied().unwrap_or(0);
     }
-    for (chunk, events) in spec.alphabet.of(config.event_lists).chunks(32).enumerate() {
+    let alphabet = spec.alphabet.of(config.event_lists);
+    // A Petri-net group tests its transitions straight into the set.
+    if program
+        .table(j as Index)
+        .is_some_and(|t| t.insert_enabled_net(state, alphabet, allowed))
+    {
+        return;
+    }
+    for (chunk, events) in alphabet.chunks(32).enumerate() {
         let from = (chunk * 32) as Index;
         let mut row = program.enabled(j as Index, state, from, events.len() as u8);
         while row != 0 {
@@ -529,10 +537,10 @@ fn allowed_of(allowed: &mut [u32], event_words: usize, j: usize) -> &mut [u32] {
 /// The events no supervisor blocks (feasible, unless a guard holds a
 /// command back: [`next_command`]).
 fn refresh_feasible(ram: &mut Ram<'_>) {
-    // With two or three words the words are held in registers across the
+    // With one to three words the words are held in registers across the
     // rows (a row is a few loads and ANDs); otherwise word by word.
     let ew = ram.feasible.len();
-    if ew == 2 || ew == 3 {
+    if (1..=3).contains(&ew) {
         return and_rows(ram.allowed, ram.feasible);
     }
     for (k, word) in ram.feasible.iter_mut().enumerate() {
@@ -545,7 +553,7 @@ fn refresh_feasible(ram: &mut Ram<'_>) {
     }
 }
 
-/// `feasible` (two or three words) := the AND of the rows of `allowed`,
+/// `feasible` (one to three words) := the AND of the rows of `allowed`,
 /// the words held in registers across the rows (a row is a few loads and
 /// ANDs, whatever the supervisor count). Out of line: inlined, it would
 /// cost a one-word program's scan more than it saves.
@@ -562,10 +570,10 @@ fn and_rows(allowed: &[u32], feasible: &mut [u32]) {
             *out = word;
         }
     }
-    if feasible.len() == 2 {
-        and::<2>(allowed, feasible);
-    } else {
-        and::<3>(allowed, feasible);
+    match feasible.len() {
+        1 => and::<1>(allowed, feasible),
+        2 => and::<2>(allowed, feasible),
+        _ => and::<3>(allowed, feasible),
     }
 }
 
