@@ -537,10 +537,10 @@ fn allowed_of(allowed: &mut [u32], event_words: usize, j: usize) -> &mut [u32] {
 /// The events no supervisor blocks (feasible, unless a guard holds a
 /// command back: [`next_command`]).
 fn refresh_feasible(ram: &mut Ram<'_>) {
-    // With one to three words the words are held in registers across the
+    // With two or three words the words are held in registers across the
     // rows (a row is a few loads and ANDs); otherwise word by word.
     let ew = ram.feasible.len();
-    if (1..=3).contains(&ew) {
+    if ew == 2 || ew == 3 {
         return and_rows(ram.allowed, ram.feasible);
     }
     for (k, word) in ram.feasible.iter_mut().enumerate() {
@@ -553,7 +553,7 @@ fn refresh_feasible(ram: &mut Ram<'_>) {
     }
 }
 
-/// `feasible` (one to three words) := the AND of the rows of `allowed`,
+/// `feasible` (two or three words) := the AND of the rows of `allowed`,
 /// the words held in registers across the rows (a row is a few loads and
 /// ANDs, whatever the supervisor count). Out of line: inlined, it would
 /// cost a one-word program's scan more than it saves.
@@ -570,10 +570,10 @@ fn and_rows(allowed: &[u32], feasible: &mut [u32]) {
             *out = word;
         }
     }
-    match feasible.len() {
-        1 => and::<1>(allowed, feasible),
-        2 => and::<2>(allowed, feasible),
-        _ => and::<3>(allowed, feasible),
+    if feasible.len() == 2 {
+        and::<2>(allowed, feasible);
+    } else {
+        and::<3>(allowed, feasible);
     }
 }
 
