@@ -494,7 +494,15 @@ fn refresh_allowed<P: Program>(
     for (k, word) in allowed.iter_mut().enumerate() {
         *word = outside.get(k).copied().unwrap_or(0);
     }
-    for (chunk, events) in spec.alphabet.of(config.event_lists).chunks(32).enumerate() {
+    let alphabet = spec.alphabet.of(config.event_lists);
+    // A Petri-net group tests its transitions straight into the set.
+    if program
+        .table(j as Index)
+        .is_some_and(|t| t.insert_enabled_net(state, alphabet, allowed))
+    {
+        return;
+    }
+    for (chunk, events) in alphabet.chunks(32).enumerate() {
         let from = (chunk * 32) as Index;
         let mut row = program.enabled(j as Index, state, from, events.len() as u8);
         while row != 0 {

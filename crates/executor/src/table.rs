@@ -128,6 +128,7 @@ impl<'a> Config<'a> {
 /// Bit `index` of a bit array (false past its end): the executor's bit
 /// sets and the tables' defined-bits are one layout.
 pub use crate::bits::contains as bit;
+use crate::bits::insert as bit_insert;
 
 /// Number of set bits in `from..to`.
 #[inline]
@@ -192,17 +193,61 @@ impl SupervisorTable<'_> {
             return 0;
         }
         if let Rows::Net { fields } = self.rows {
-            let (pre, post) = (self.defined, self.targets);
-            return (0..len).fold(0, |row, k| {
-                let t = from + k;
-                let defined = match (pre.get(t), post.get(t)) {
-                    (Some(&pre), Some(&post)) => self.fire(fields, state, pre, post).is_some(),
-                    _ => false,
-                };
-                row | u32::from(defined) << k
-            });
+            return self.net_enabled(fields, state, from, len);
         }
         read_bits_at(self.defined, state as usize * m + from, len as u8)
+    }
+
+    /// For a table of the net layout: adds to `allowed` (a bit set of
+    /// events) the event `alphabet[t]` of every local transition `t` that
+    /// fires from the marking `state`, and returns `true`; `false`, adding
+    /// nothing, for the other layouts. One test per transition (that of
+    /// [`SupervisorTable::enabled`]) straight into the set, without rows
+    /// of 32 transitions to build and scatter.
+    #[inline]
+    pub fn insert_enabled_net(&self, state: u32, alphabet: &[Index], allowed: &mut [u32]) -> bool {
+        let Rows::Net { fields } = self.rows else {
+            return false;
+        };
+        let transitions = self.defined.iter().zip(self.targets).zip(alphabet);
+        if fields.len() == usize::from(self.state_bits) {
+            for ((&pre, &post), &e) in transitions {
+                if state & (pre | post) == pre {
+                    bit_insert(allowed, usize::from(e));
+                }
+            }
+        } else {
+            for ((&pre, &post), &e) in transitions {
+                if fire(fields, state, pre, post).is_some() {
+                    bit_insert(allowed, usize::from(e));
+                }
+            }
+        }
+        true
+    }
+
+    /// [`SupervisorTable::enabled`] of the net layout: the local
+    /// transitions `from..from + len` (`len ≤ 32`) that fire from the
+    /// marking `state`. A group of one-bit counters asks one test per
+    /// transition, with no branch: `t` fires from `x` exactly when
+    /// `x & (PRE[t] | POST[t]) == PRE[t]` (every input place marked, and
+    /// no output place outside the inputs marked, which would overflow).
+    /// Other groups ask [`fire`] per transition.
+    #[inline]
+    fn net_enabled(&self, fields: &[u32], state: u32, from: usize, len: usize) -> u32 {
+        let pre = self.defined.get(from..).unwrap_or_default();
+        let post = self.targets.get(from..).unwrap_or_default();
+        let arcs = pre.iter().zip(post).take(len);
+        if fields.len() == usize::from(self.state_bits) {
+            // Built from the last transition down, so that each step is a
+            // shift and an OR.
+            return arcs.rev().fold(0, |row, (&pre, &post)| {
+                row << 1 | u32::from(state & (pre | post) == pre)
+            });
+        }
+        arcs.enumerate().fold(0, |row, (k, (&pre, &post))| {
+            row | u32::from(fire(fields, state, pre, post).is_some()) << k
+        })
     }
 }
 
@@ -400,6 +445,58 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Every transition of a group tested at once (a row, or inserted
+    /// into an event set) agrees with δ transition by transition: one-bit
+    /// groups (the branch-free test) and wider counters ([`fire`]), with
+    /// more transitions than a row holds.
+    #[test]
+    fn net_rows_and_event_sets_agree_with_next_state() {
+        extern crate std;
+        use std::vec::Vec;
+        // Every PRE and POST pair on 4 places but a few, as 40 transitions
+        // at a time; events numbered backwards from 70 (two words).
+        let pairs: Vec<(u32, u32)> = (0..16u32)
+            .flat_map(|pre| (0..16u32).map(move |post| (pre, post)))
+            .collect();
+        for narrow in [true, false] {
+            let fields: &[u32] = if narrow {
+                &[1, 2, 4, 8]
+            } else {
+                &[0b11, 0b1100]
+            };
+            for arcs in pairs.chunks(40) {
+                let defined: Vec<u32> = arcs.iter().map(|a| a.0).collect();
+                let targets: Vec<u32> = arcs.iter().map(|a| a.1).collect();
+                let alphabet: Vec<Index> = (0..arcs.len() as Index).map(|k| 70 - k).collect();
+                let table = SupervisorTable {
+                    events: arcs.len() as Index,
+                    state_bits: 4,
+                    defined: &defined,
+                    targets: &targets,
+                    rows: Rows::Net { fields },
+                };
+                for x in 0..16 {
+                    let mut set = [0u32; 3];
+                    assert!(table.insert_enabled_net(x, &alphabet, &mut set));
+                    for (k, &e) in alphabet.iter().enumerate() {
+                        let fires = table.next_state(x, k as Index).is_some();
+                        let row = table.enabled(x, k as Index / 32 * 32, 32);
+                        assert_eq!(row >> (k % 32) & 1 == 1, fires, "row, x={x:#b} t={k}");
+                        assert_eq!(bit(&set, usize::from(e)), fires, "set, x={x:#b} t={k}");
+                    }
+                    let others = set.iter().map(|w| w.count_ones()).sum::<u32>() as usize;
+                    let fired = (0..arcs.len())
+                        .filter(|&k| table.next_state(x, k as Index).is_some())
+                        .count();
+                    assert_eq!(others, fired, "no event outside the alphabet");
+                }
+            }
+        }
+        let mut set = [0u32; 1];
+        assert!(!DENSE.insert_enabled_net(0, &[0, 1], &mut set), "not a net");
+        assert_eq!(set, [0]);
     }
 
     #[test]

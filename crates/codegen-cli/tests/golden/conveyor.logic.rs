@@ -455,23 +455,78 @@ pub mod logic {
         /// `sup_conveyor`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
         ///
         /// `q`: state code (3 bits); `e`: local event index. An event the state does
-        /// not define, or an index of no event, leaves the code unchanged.
+        /// not define, or an index of no event, leaves the code unchanged. The product
+        /// terms of ω, each setting the code bits whose ω holds it: those asking no
+        /// event wire high for every event they do not exclude, the others in the arm of
+        /// their event. The executor asks `_step`, hence `_move`, instead.
+        #[allow(dead_code)]
         pub fn sup_conveyor_next(q: u32, e: u16) -> u32 {
-            let q2 = (q >> 2) & 1 != 0;
-            let q1 = (q >> 1) & 1 != 0;
-            let q0 = q & 1 != 0;
-            let gone = e == GONE;
-            let re_ls = e == RE_LS;
-            let fe_ls = e == FE_LS;
-            let start = e == START;
-            let stop = e == STOP;
-            let w2 = (q2 & !re_ls & !stop) | (q1 & q0 & fe_ls) | (q1 & !q0 & start)
-                | (q2 & !q1 & !re_ls) | (q1 & !q0 & gone) | (q2 & q0 & !re_ls);
-            let w1 = (!q2 & q1 & !q0 & !gone & !re_ls & !start) | (q2 & q1 & !stop)
-                | (q1 & q0 & !fe_ls) | (!q2 & !q1 & q0 & fe_ls) | (q2 & !q0 & re_ls)
-                | (q2 & !q0 & gone) | (q0 & start) | (q2 & q1 & q0);
-            let w0 = (q0 & !fe_ls) | (!q2 & q1 & gone) | re_ls | (q2 & q0);
-            ((w2 as u32) << 2) | ((w1 as u32) << 1) | (w0 as u32)
+            let wire: u32 = if e < 5 { 1 << e } else { 0 };
+            let mut w = 0;
+            if q & 0x1 == 0x1 && wire & 0x4 == 0 {
+                w |= 0x1;
+            }
+            if q & 0x5 == 0x5 {
+                w |= 0x1;
+            }
+            if q & 0x7 == 0x2 && wire & 0xb == 0 {
+                w |= 0x2;
+            }
+            if q & 0x6 == 0x6 && wire & 0x10 == 0 {
+                w |= 0x2;
+            }
+            if q & 0x3 == 0x3 && wire & 0x4 == 0 {
+                w |= 0x2;
+            }
+            if q & 0x7 == 0x7 {
+                w |= 0x2;
+            }
+            if q & 0x4 == 0x4 && wire & 0x12 == 0 {
+                w |= 0x4;
+            }
+            if q & 0x6 == 0x4 && wire & 0x2 == 0 {
+                w |= 0x4;
+            }
+            if q & 0x5 == 0x5 && wire & 0x2 == 0 {
+                w |= 0x4;
+            }
+            match e {
+                GONE => {
+                    if q & 0x6 == 0x2 {
+                        w |= 0x1;
+                    }
+                    if q & 0x5 == 0x4 {
+                        w |= 0x2;
+                    }
+                    if q & 0x3 == 0x2 {
+                        w |= 0x4;
+                    }
+                }
+                RE_LS => {
+                    w |= 0x1;
+                    if q & 0x5 == 0x4 {
+                        w |= 0x2;
+                    }
+                }
+                FE_LS => {
+                    if q & 0x7 == 0x1 {
+                        w |= 0x2;
+                    }
+                    if q & 0x3 == 0x3 {
+                        w |= 0x4;
+                    }
+                }
+                START => {
+                    if q & 0x1 == 0x1 {
+                        w |= 0x2;
+                    }
+                    if q & 0x3 == 0x2 {
+                        w |= 0x4;
+                    }
+                }
+                _ => {}
+            }
+            w
         }
 
         /// `sup_conveyor`: whether local event `e` is defined in state code `q`: enabled
@@ -492,30 +547,112 @@ pub mod logic {
 
         /// `sup_conveyor`: which of the local events `from..from + len` (`len` at most 32)
         /// are defined in state code `q`: bit `k` for event `from + k` (one row of φ).
+        /// φ's rows by state code, the codes of equal rows in one arm; 0 for a code of
+        /// no state.
         pub fn sup_conveyor_enabled(q: u32, from: u16, len: u8) -> u32 {
-            let q2 = (q >> 2) & 1 != 0;
-            let q1 = (q >> 1) & 1 != 0;
-            let q0 = q & 1 != 0;
-            let phi: [bool; 5] = [
-                (!q2 & q1 & !q0) | (q2 & !q1 & !q0),
-                !q0 | q2,
-                !q2 & q0,
-                (!q2 & q1 & !q0) | (!q1 & q0),
-                q2 & q1 & !q0,
+            let phi: [u32; 1] = [
+                match q {
+                    0x0 | 0x7 => 0x2,
+                    0x1 => 0xc,
+                    0x2 => 0xb,
+                    0x3 => 0x4,
+                    0x4 => 0x3,
+                    0x5 => 0xa,
+                    0x6 => 0x12,
+                    _ => 0,
+                },
             ];
-            let mut row = 0;
-            for k in 0..u16::from(len.min(32)) {
-                if phi.get(usize::from(from.wrapping_add(k))) == Some(&true) {
-                    row |= 1 << k;
-                }
+            let (word, shift) = (usize::from(from / 32), u32::from(from % 32));
+            let low = phi.get(word).map_or(0, |w| w >> shift);
+            let high = match shift {
+                0 => 0,
+                _ => phi.get(word + 1).map_or(0, |w| w << (32 - shift)),
+            };
+            match len {
+                0 => 0,
+                32.. => low | high,
+                _ => (low | high) & ((1 << len) - 1),
             }
-            row
+        }
+
+        /// `sup_conveyor`: the code reached from `q` on local event `e` when `q` is the code of
+        /// a state that defines `e` (what `_step` asks; otherwise unspecified): per event,
+        /// the terms of ω that are 1 on some state code defining it.
+        pub fn sup_conveyor_move(q: u32, e: u16) -> u32 {
+            let mut w = 0;
+            match e {
+                GONE => {
+                    if q & 0x4 == 0x4 {
+                        w |= 0x4;
+                    }
+                    if q & 0x6 == 0x4 {
+                        w |= 0x4;
+                    }
+                    if q & 0x6 == 0x2 {
+                        w |= 0x1;
+                    }
+                    if q & 0x5 == 0x4 {
+                        w |= 0x2;
+                    }
+                    if q & 0x3 == 0x2 {
+                        w |= 0x4;
+                    }
+                }
+                RE_LS => {
+                    if q & 0x1 == 0x1 {
+                        w |= 0x1;
+                    }
+                    if q & 0x5 == 0x5 {
+                        w |= 0x1;
+                    }
+                    if q & 0x6 == 0x6 {
+                        w |= 0x2;
+                    }
+                    if q & 0x3 == 0x3 {
+                        w |= 0x2;
+                    }
+                    if q & 0x7 == 0x7 {
+                        w |= 0x2;
+                    }
+                    w |= 0x1;
+                    if q & 0x5 == 0x4 {
+                        w |= 0x2;
+                    }
+                }
+                FE_LS => {
+                    if q & 0x7 == 0x1 {
+                        w |= 0x2;
+                    }
+                    if q & 0x3 == 0x3 {
+                        w |= 0x4;
+                    }
+                }
+                START => {
+                    if q & 0x1 == 0x1 {
+                        w |= 0x3;
+                    }
+                    if q & 0x5 == 0x5 {
+                        w |= 0x5;
+                    }
+                    if q & 0x4 == 0x4 {
+                        w |= 0x4;
+                    }
+                    if q & 0x6 == 0x4 {
+                        w |= 0x4;
+                    }
+                    if q & 0x3 == 0x2 {
+                        w |= 0x4;
+                    }
+                }
+                _ => {}
+            }
+            w
         }
 
         /// `sup_conveyor`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
         pub fn sup_conveyor_step(q: u32, e: u16) -> Option<u32> {
-            if sup_conveyor_defined(q, e) { Some(sup_conveyor_next(q, e)) } else { None }
+            if sup_conveyor_defined(q, e) { Some(sup_conveyor_move(q, e)) } else { None }
         }
     }
 }

@@ -718,16 +718,26 @@ pub mod logic {
         /// `sup_sup_crane1`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
         ///
         /// `q`: state code (2 bits); `e`: local event index. An event the state does
-        /// not define, or an index of no event, leaves the code unchanged.
+        /// not define, or an index of no event, leaves the code unchanged. The product
+        /// terms of ω, each setting the code bits whose ω holds it: those asking no
+        /// event wire high for every event they do not exclude, the others in the arm of
+        /// their event. The executor asks `_step`, hence `_move`, instead.
+        #[allow(dead_code)]
         pub fn sup_sup_crane1_next(q: u32, e: u16) -> u32 {
-            let q1 = (q >> 1) & 1 != 0;
-            let q0 = q & 1 != 0;
-            let t1_at13 = e == T1_AT13;
-            let t2_at13 = e == T2_AT13;
-            let f_ld1 = e == F_LD1;
-            let w1 = (q1 & !f_ld1) | (!q0 & t2_at13);
-            let w0 = (q0 & !f_ld1) | (!q1 & t1_at13);
-            ((w1 as u32) << 1) | (w0 as u32)
+            let wire: u32 = if e < 6 { 1 << e } else { 0 };
+            let mut w = 0;
+            if q & 0x1 == 0x1 && wire & 0x4 == 0 {
+                w |= 0x1;
+            }
+            if q & 0x2 == 0x2 && wire & 0x4 == 0 {
+                w |= 0x2;
+            }
+            match e {
+                T1_AT13 if q & 0x2 == 0x0 => w |= 0x1,
+                T2_AT13 if q & 0x1 == 0x0 => w |= 0x2,
+                _ => {}
+            }
+            w
         }
 
         /// `sup_sup_crane1`: whether local event `e` is defined in state code `q`: enabled
@@ -748,24 +758,58 @@ pub mod logic {
 
         /// `sup_sup_crane1`: which of the local events `from..from + len` (`len` at most 32)
         /// are defined in state code `q`: bit `k` for event `from + k` (one row of φ).
+        /// φ's rows by state code, the codes of equal rows in one arm; 0 for a code of
+        /// no state.
         pub fn sup_sup_crane1_enabled(q: u32, from: u16, len: u8) -> u32 {
-            let q1 = (q >> 1) & 1 != 0;
-            let q0 = q & 1 != 0;
-            let phi: [bool; 6] = [!q1 & !q0, !q1 & !q0, q0 | q1, q0 | q1, !q0, !q1];
-            let mut row = 0;
-            for k in 0..u16::from(len.min(32)) {
-                if phi.get(usize::from(from.wrapping_add(k))) == Some(&true) {
-                    row |= 1 << k;
-                }
+            let phi: [u32; 1] = [
+                match q {
+                    0x0 => 0x33,
+                    0x1 => 0x2c,
+                    0x2 => 0x1c,
+                    _ => 0,
+                },
+            ];
+            let (word, shift) = (usize::from(from / 32), u32::from(from % 32));
+            let low = phi.get(word).map_or(0, |w| w >> shift);
+            let high = match shift {
+                0 => 0,
+                _ => phi.get(word + 1).map_or(0, |w| w << (32 - shift)),
+            };
+            match len {
+                0 => 0,
+                32.. => low | high,
+                _ => (low | high) & ((1 << len) - 1),
             }
-            row
+        }
+
+        /// `sup_sup_crane1`: the code reached from `q` on local event `e` when `q` is the code of
+        /// a state that defines `e` (what `_step` asks; otherwise unspecified): per event,
+        /// the terms of ω that are 1 on some state code defining it.
+        pub fn sup_sup_crane1_move(q: u32, e: u16) -> u32 {
+            let mut w = 0;
+            match e {
+                T1_AT13 if q & 0x2 == 0x0 => w |= 0x1,
+                T2_AT13 if q & 0x1 == 0x0 => w |= 0x2,
+                ST_LD1 => {
+                    if q & 0x1 == 0x1 {
+                        w |= 0x1;
+                    }
+                    if q & 0x2 == 0x2 {
+                        w |= 0x2;
+                    }
+                }
+                RUN_T1 if q & 0x2 == 0x2 => w |= 0x2,
+                RUN_T2 if q & 0x1 == 0x1 => w |= 0x1,
+                _ => {}
+            }
+            w
         }
 
         /// `sup_sup_crane1`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
         pub fn sup_sup_crane1_step(q: u32, e: u16) -> Option<u32> {
             if sup_sup_crane1_defined(q, e) {
-                Some(sup_sup_crane1_next(q, e))
+                Some(sup_sup_crane1_move(q, e))
             } else {
                 None
             }
@@ -795,17 +839,26 @@ pub mod logic {
         /// `sup_sup_section`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
         ///
         /// `q`: state code (2 bits); `e`: local event index. An event the state does
-        /// not define, or an index of no event, leaves the code unchanged.
+        /// not define, or an index of no event, leaves the code unchanged. The product
+        /// terms of ω, each setting the code bits whose ω holds it: those asking no
+        /// event wire high for every event they do not exclude, the others in the arm of
+        /// their event. The executor asks `_step`, hence `_move`, instead.
+        #[allow(dead_code)]
         pub fn sup_sup_section_next(q: u32, e: u16) -> u32 {
-            let q1 = (q >> 1) & 1 != 0;
-            let q0 = q & 1 != 0;
-            let t1_at14 = e == T1_AT14;
-            let t2_at14 = e == T2_AT14;
-            let run_t1 = e == RUN_T1;
-            let run_t2 = e == RUN_T2;
-            let w1 = (!q0 & run_t2) | (q1 & !t2_at14);
-            let w0 = (!q1 & run_t1) | (q0 & !t1_at14);
-            ((w1 as u32) << 1) | (w0 as u32)
+            let wire: u32 = if e < 4 { 1 << e } else { 0 };
+            let mut w = 0;
+            if q & 0x1 == 0x1 && wire & 0x1 == 0 {
+                w |= 0x1;
+            }
+            if q & 0x2 == 0x2 && wire & 0x2 == 0 {
+                w |= 0x2;
+            }
+            match e {
+                RUN_T1 if q & 0x2 == 0x0 => w |= 0x1,
+                RUN_T2 if q & 0x1 == 0x0 => w |= 0x2,
+                _ => {}
+            }
+            w
         }
 
         /// `sup_sup_section`: whether local event `e` is defined in state code `q`: enabled
@@ -824,24 +877,48 @@ pub mod logic {
 
         /// `sup_sup_section`: which of the local events `from..from + len` (`len` at most 32)
         /// are defined in state code `q`: bit `k` for event `from + k` (one row of φ).
+        /// φ's rows by state code, the codes of equal rows in one arm; 0 for a code of
+        /// no state.
         pub fn sup_sup_section_enabled(q: u32, from: u16, len: u8) -> u32 {
-            let q1 = (q >> 1) & 1 != 0;
-            let q0 = q & 1 != 0;
-            let phi: [bool; 4] = [q0, q1, !q1 & !q0, !q1 & !q0];
-            let mut row = 0;
-            for k in 0..u16::from(len.min(32)) {
-                if phi.get(usize::from(from.wrapping_add(k))) == Some(&true) {
-                    row |= 1 << k;
-                }
+            let phi: [u32; 1] = [
+                match q {
+                    0x0 => 0xc,
+                    0x1 => 0x1,
+                    0x2 => 0x2,
+                    _ => 0,
+                },
+            ];
+            let (word, shift) = (usize::from(from / 32), u32::from(from % 32));
+            let low = phi.get(word).map_or(0, |w| w >> shift);
+            let high = match shift {
+                0 => 0,
+                _ => phi.get(word + 1).map_or(0, |w| w << (32 - shift)),
+            };
+            match len {
+                0 => 0,
+                32.. => low | high,
+                _ => (low | high) & ((1 << len) - 1),
             }
-            row
+        }
+
+        /// `sup_sup_section`: the code reached from `q` on local event `e` when `q` is the code of
+        /// a state that defines `e` (what `_step` asks; otherwise unspecified): per event,
+        /// the terms of ω that are 1 on some state code defining it.
+        pub fn sup_sup_section_move(q: u32, e: u16) -> u32 {
+            let mut w = 0;
+            match e {
+                RUN_T1 if q & 0x2 == 0x0 => w |= 0x1,
+                RUN_T2 if q & 0x1 == 0x0 => w |= 0x2,
+                _ => {}
+            }
+            w
         }
 
         /// `sup_sup_section`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
         pub fn sup_sup_section_step(q: u32, e: u16) -> Option<u32> {
             if sup_sup_section_defined(q, e) {
-                Some(sup_sup_section_next(q, e))
+                Some(sup_sup_section_move(q, e))
             } else {
                 None
             }

@@ -651,32 +651,79 @@ pub mod logic {
         /// `sup_motivating`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
         ///
         /// `q`: state code (4 bits); `e`: local event index. An event the state does
-        /// not define, or an index of no event, leaves the code unchanged.
+        /// not define, or an index of no event, leaves the code unchanged. The product
+        /// terms of ω, each setting the code bits whose ω holds it: those asking no
+        /// event wire high for every event they do not exclude, the others in the arm of
+        /// their event. The executor asks `_step`, hence `_move`, instead.
+        #[allow(dead_code)]
         pub fn sup_motivating_next(q: u32, e: u16) -> u32 {
-            let q3 = (q >> 3) & 1 != 0;
-            let q2 = (q >> 2) & 1 != 0;
-            let q1 = (q >> 1) & 1 != 0;
-            let q0 = q & 1 != 0;
-            let a = e == A;
-            let b = e == B;
-            let e_2 = e == E_2;
-            let f = e == F;
-            let c_lo = e == C_LO;
-            let c_hi = e == C_HI;
-            let c_cl = e == C_CL;
-            let d_on = e == D_ON;
-            let d_off = e == D_OFF;
-            let w3 = (q2 & !q1 & !q0 & f) | (!q2 & q1 & q0 & e_2) | (q3 & !c_cl)
-                | (q3 & !q0);
-            let w2 = (q2 & q1 & !d_off) | (q2 & !q1 & !f) | (q1 & q0 & d_on)
-                | (q2 & !q1 & q0) | (q2 & q1 & !q0);
-            let w1 = (!q2 & q1 & !e_2 & !d_on) | (q2 & q0 & f) | (!q3 & !q2 & q0 & b)
-                | (q2 & q1 & !d_off) | (q1 & !q0);
-            let w0 = (q2 & !q1 & q0 & !f) | (q3 & q0 & !c_cl) | (q3 & d_off)
-                | (q2 & q1 & q0 & !d_off) | (q2 & q1 & c_cl) | (q2 & !q1 & b)
-                | (!q2 & q1 & q0 & !d_on) | (!q2 & q1 & c_hi) | (!q2 & q1 & c_lo)
-                | (!q3 & !q2 & !q1 & q0 & !b) | (!q3 & !q2 & !q1 & a);
-            ((w3 as u32) << 3) | ((w2 as u32) << 2) | ((w1 as u32) << 1) | (w0 as u32)
+            let wire: u32 = if e < 9 { 1 << e } else { 0 };
+            let mut w = 0;
+            if q & 0x7 == 0x5 && wire & 0x8 == 0 {
+                w |= 0x1;
+            }
+            if q & 0x9 == 0x9 && wire & 0x40 == 0 {
+                w |= 0x1;
+            }
+            if q & 0x7 == 0x7 && wire & 0x100 == 0 {
+                w |= 0x1;
+            }
+            if q & 0x7 == 0x3 && wire & 0x80 == 0 {
+                w |= 0x1;
+            }
+            if q & 0xf == 0x1 && wire & 0x2 == 0 {
+                w |= 0x1;
+            }
+            if q & 0x6 == 0x2 && wire & 0x84 == 0 {
+                w |= 0x2;
+            }
+            if q & 0x6 == 0x6 && wire & 0x100 == 0 {
+                w |= 0x6;
+            }
+            if q & 0x3 == 0x2 {
+                w |= 0x2;
+            }
+            if q & 0x6 == 0x4 && wire & 0x8 == 0 {
+                w |= 0x4;
+            }
+            if q & 0x7 == 0x5 {
+                w |= 0x4;
+            }
+            if q & 0x7 == 0x6 {
+                w |= 0x4;
+            }
+            if q & 0x8 == 0x8 && wire & 0x40 == 0 {
+                w |= 0x8;
+            }
+            if q & 0x9 == 0x8 {
+                w |= 0x8;
+            }
+            match e {
+                A if q & 0xe == 0x0 => w |= 0x1,
+                B => {
+                    if q & 0x6 == 0x4 {
+                        w |= 0x1;
+                    }
+                    if q & 0xd == 0x1 {
+                        w |= 0x2;
+                    }
+                }
+                E_2 if q & 0x7 == 0x3 => w |= 0x8,
+                F => {
+                    if q & 0x5 == 0x5 {
+                        w |= 0x2;
+                    }
+                    if q & 0x7 == 0x4 {
+                        w |= 0x8;
+                    }
+                }
+                C_LO | C_HI if q & 0x6 == 0x2 => w |= 0x1,
+                C_CL if q & 0x6 == 0x6 => w |= 0x1,
+                D_ON if q & 0x3 == 0x3 => w |= 0x4,
+                D_OFF if q & 0x8 == 0x8 => w |= 0x1,
+                _ => {}
+            }
+            w
         }
 
         /// `sup_motivating`: whether local event `e` is defined in state code `q`: enabled
@@ -702,36 +749,100 @@ pub mod logic {
 
         /// `sup_motivating`: which of the local events `from..from + len` (`len` at most 32)
         /// are defined in state code `q`: bit `k` for event `from + k` (one row of φ).
+        /// φ's rows by state code, the codes of equal rows in one arm; 0 for a code of
+        /// no state.
         pub fn sup_motivating_enabled(q: u32, from: u16, len: u8) -> u32 {
-            let q3 = (q >> 3) & 1 != 0;
-            let q2 = (q >> 2) & 1 != 0;
-            let q1 = (q >> 1) & 1 != 0;
-            let q0 = q & 1 != 0;
-            let phi: [bool; 9] = [
-                !q3 & !q2 & !q1 & !q0,
-                (!q3 & !q2 & !q1 & q0) | (q2 & !q1 & !q0),
-                !q2 & q1 & q0,
-                q2 & !q1,
-                !q2 & q1 & !q0,
-                !q2 & q1 & !q0,
-                (q2 & q1 & !q0) | (q3 & q0),
-                !q2 & q1 & q0,
-                (q2 & q1 & q0) | (q3 & !q0),
+            let phi: [u32; 1] = [
+                match q {
+                    0x0 => 0x1,
+                    0x1 => 0x2,
+                    0x2 => 0x30,
+                    0x3 => 0x84,
+                    0x4 => 0xa,
+                    0x5 => 0x8,
+                    0x6 | 0x9 => 0x40,
+                    0x7 | 0x8 => 0x100,
+                    _ => 0,
+                },
             ];
-            let mut row = 0;
-            for k in 0..u16::from(len.min(32)) {
-                if phi.get(usize::from(from.wrapping_add(k))) == Some(&true) {
-                    row |= 1 << k;
-                }
+            let (word, shift) = (usize::from(from / 32), u32::from(from % 32));
+            let low = phi.get(word).map_or(0, |w| w >> shift);
+            let high = match shift {
+                0 => 0,
+                _ => phi.get(word + 1).map_or(0, |w| w << (32 - shift)),
+            };
+            match len {
+                0 => 0,
+                32.. => low | high,
+                _ => (low | high) & ((1 << len) - 1),
             }
-            row
+        }
+
+        /// `sup_motivating`: the code reached from `q` on local event `e` when `q` is the code of
+        /// a state that defines `e` (what `_step` asks; otherwise unspecified): per event,
+        /// the terms of ω that are 1 on some state code defining it.
+        pub fn sup_motivating_move(q: u32, e: u16) -> u32 {
+            let mut w = 0;
+            match e {
+                A if q & 0xe == 0x0 => w |= 0x1,
+                B => {
+                    if q & 0x6 == 0x4 {
+                        w |= 0x5;
+                    }
+                    if q & 0xd == 0x1 {
+                        w |= 0x2;
+                    }
+                }
+                E_2 if q & 0x7 == 0x3 => w |= 0x9,
+                F => {
+                    if q & 0x7 == 0x5 {
+                        w |= 0x4;
+                    }
+                    if q & 0x5 == 0x5 {
+                        w |= 0x2;
+                    }
+                    if q & 0x7 == 0x4 {
+                        w |= 0x8;
+                    }
+                }
+                C_LO | C_HI => {
+                    if q & 0x6 == 0x2 {
+                        w |= 0x3;
+                    }
+                    if q & 0x3 == 0x2 {
+                        w |= 0x2;
+                    }
+                }
+                C_CL => {
+                    if q & 0x6 == 0x6 {
+                        w |= 0x7;
+                    }
+                    if q & 0x3 == 0x2 {
+                        w |= 0x2;
+                    }
+                    if q & 0x7 == 0x6 {
+                        w |= 0x4;
+                    }
+                }
+                D_ON if q & 0x3 == 0x3 => w |= 0x4,
+                D_OFF => {
+                    if q & 0x8 == 0x8 {
+                        w |= 0x9;
+                    }
+                    if q & 0x9 == 0x8 {
+                        w |= 0x8;
+                    }
+                }
+                _ => {}
+            }
+            w
         }
 
         /// `sup_motivating`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
         pub fn sup_motivating_step(q: u32, e: u16) -> Option<u32> {
             if sup_motivating_defined(q, e) {
-                Some(sup_motivating_next(q, e))
+                Some(sup_motivating_move(q, e))
             } else {
                 None
             }

@@ -623,25 +623,48 @@ pub mod logic {
         /// `sup_press`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.
         ///
         /// `q`: state code (3 bits); `e`: local event index. An event the state does
-        /// not define, or an index of no event, leaves the code unchanged.
+        /// not define, or an index of no event, leaves the code unchanged. The product
+        /// terms of ω, each setting the code bits whose ω holds it: those asking no
+        /// event wire high for every event they do not exclude, the others in the arm of
+        /// their event. The executor asks `_step`, hence `_move`, instead.
+        #[allow(dead_code)]
         pub fn sup_press_next(q: u32, e: u16) -> u32 {
-            let q2 = (q >> 2) & 1 != 0;
-            let q1 = (q >> 1) & 1 != 0;
-            let q0 = q & 1 != 0;
-            let auto = e == AUTO;
-            let stop = e == STOP;
-            let reset = e == RESET;
-            let part_in = e == PART_IN;
-            let part_out = e == PART_OUT;
-            let at_bottom = e == AT_BOTTOM;
-            let at_top = e == AT_TOP;
-            let w2 = (q2 & q1 & !at_top) | (q2 & !q1 & !part_out) | (q1 & q0 & at_top)
-                | (q1 & !q0 & stop) | (q2 & !q1 & !q0);
-            let w1 = (!q2 & q0 & part_in) | (q2 & !q0 & reset) | (q1 & q0 & !at_top)
-                | (q2 & q1 & !at_top) | (!q2 & q1 & !q0 & !stop);
-            let w0 = (!q2 & q1 & at_bottom) | (!q2 & !q1 & auto) | (q0 & !part_in)
-                | (q2 & q0) | (q1 & q0);
-            ((w2 as u32) << 2) | ((w1 as u32) << 1) | (w0 as u32)
+            let wire: u32 = if e < 7 { 1 << e } else { 0 };
+            let mut w = 0;
+            if q & 0x1 == 0x1 && wire & 0x8 == 0 {
+                w |= 0x1;
+            }
+            if q & 0x5 == 0x5 {
+                w |= 0x1;
+            }
+            if q & 0x3 == 0x3 {
+                w |= 0x1;
+            }
+            if q & 0x3 == 0x3 && wire & 0x40 == 0 {
+                w |= 0x2;
+            }
+            if q & 0x6 == 0x6 && wire & 0x40 == 0 {
+                w |= 0x6;
+            }
+            if q & 0x7 == 0x2 && wire & 0x2 == 0 {
+                w |= 0x2;
+            }
+            if q & 0x6 == 0x4 && wire & 0x10 == 0 {
+                w |= 0x4;
+            }
+            if q & 0x7 == 0x4 {
+                w |= 0x4;
+            }
+            match e {
+                AUTO if q & 0x6 == 0x0 => w |= 0x1,
+                STOP if q & 0x3 == 0x2 => w |= 0x4,
+                RESET if q & 0x5 == 0x4 => w |= 0x2,
+                PART_IN if q & 0x5 == 0x1 => w |= 0x2,
+                AT_BOTTOM if q & 0x6 == 0x2 => w |= 0x1,
+                AT_TOP if q & 0x3 == 0x3 => w |= 0x4,
+                _ => {}
+            }
+            w
         }
 
         /// `sup_press`: whether local event `e` is defined in state code `q`: enabled
@@ -664,32 +687,147 @@ pub mod logic {
 
         /// `sup_press`: which of the local events `from..from + len` (`len` at most 32)
         /// are defined in state code `q`: bit `k` for event `from + k` (one row of φ).
+        /// φ's rows by state code, the codes of equal rows in one arm; 0 for a code of
+        /// no state.
         pub fn sup_press_enabled(q: u32, from: u16, len: u8) -> u32 {
-            let q2 = (q >> 2) & 1 != 0;
-            let q1 = (q >> 1) & 1 != 0;
-            let q0 = q & 1 != 0;
-            let phi: [bool; 7] = [
-                true,
-                true,
-                true,
-                !q2 & !q1,
-                q2 & q0,
-                !q2 & q1 & !q0,
-                (q1 & q0) | (q2 & q1),
+            let phi: [u32; 1] = [
+                match q {
+                    0x0 | 0x1 => 0xf,
+                    0x2 => 0x27,
+                    0x3 | 0x6 => 0x47,
+                    0x4 => 0x7,
+                    0x5 => 0x17,
+                    _ => 0,
+                },
             ];
-            let mut row = 0;
-            for k in 0..u16::from(len.min(32)) {
-                if phi.get(usize::from(from.wrapping_add(k))) == Some(&true) {
-                    row |= 1 << k;
-                }
+            let (word, shift) = (usize::from(from / 32), u32::from(from % 32));
+            let low = phi.get(word).map_or(0, |w| w >> shift);
+            let high = match shift {
+                0 => 0,
+                _ => phi.get(word + 1).map_or(0, |w| w << (32 - shift)),
+            };
+            match len {
+                0 => 0,
+                32.. => low | high,
+                _ => (low | high) & ((1 << len) - 1),
             }
-            row
+        }
+
+        /// `sup_press`: the code reached from `q` on local event `e` when `q` is the code of
+        /// a state that defines `e` (what `_step` asks; otherwise unspecified): per event,
+        /// the terms of ω that are 1 on some state code defining it.
+        pub fn sup_press_move(q: u32, e: u16) -> u32 {
+            let mut w = 0;
+            match e {
+                AUTO => {
+                    if q & 0x1 == 0x1 {
+                        w |= 0x1;
+                    }
+                    if q & 0x5 == 0x5 {
+                        w |= 0x1;
+                    }
+                    if q & 0x3 == 0x3 {
+                        w |= 0x3;
+                    }
+                    if q & 0x6 == 0x6 {
+                        w |= 0x6;
+                    }
+                    if q & 0x7 == 0x2 {
+                        w |= 0x2;
+                    }
+                    if q & 0x6 == 0x4 {
+                        w |= 0x4;
+                    }
+                    if q & 0x7 == 0x4 {
+                        w |= 0x4;
+                    }
+                    if q & 0x6 == 0x0 {
+                        w |= 0x1;
+                    }
+                }
+                STOP => {
+                    if q & 0x1 == 0x1 {
+                        w |= 0x1;
+                    }
+                    if q & 0x5 == 0x5 {
+                        w |= 0x1;
+                    }
+                    if q & 0x3 == 0x3 {
+                        w |= 0x3;
+                    }
+                    if q & 0x6 == 0x6 {
+                        w |= 0x6;
+                    }
+                    if q & 0x6 == 0x4 {
+                        w |= 0x4;
+                    }
+                    if q & 0x7 == 0x4 {
+                        w |= 0x4;
+                    }
+                    if q & 0x3 == 0x2 {
+                        w |= 0x4;
+                    }
+                }
+                RESET => {
+                    if q & 0x1 == 0x1 {
+                        w |= 0x1;
+                    }
+                    if q & 0x5 == 0x5 {
+                        w |= 0x1;
+                    }
+                    if q & 0x3 == 0x3 {
+                        w |= 0x3;
+                    }
+                    if q & 0x6 == 0x6 {
+                        w |= 0x6;
+                    }
+                    if q & 0x7 == 0x2 {
+                        w |= 0x2;
+                    }
+                    if q & 0x6 == 0x4 {
+                        w |= 0x4;
+                    }
+                    if q & 0x7 == 0x4 {
+                        w |= 0x4;
+                    }
+                    if q & 0x5 == 0x4 {
+                        w |= 0x2;
+                    }
+                }
+                PART_IN if q & 0x5 == 0x1 => w |= 0x2,
+                PART_OUT => {
+                    if q & 0x1 == 0x1 {
+                        w |= 0x1;
+                    }
+                    if q & 0x5 == 0x5 {
+                        w |= 0x1;
+                    }
+                }
+                AT_BOTTOM => {
+                    if q & 0x7 == 0x2 {
+                        w |= 0x2;
+                    }
+                    if q & 0x6 == 0x2 {
+                        w |= 0x1;
+                    }
+                }
+                AT_TOP => {
+                    if q & 0x1 == 0x1 {
+                        w |= 0x1;
+                    }
+                    if q & 0x3 == 0x3 {
+                        w |= 0x5;
+                    }
+                }
+                _ => {}
+            }
+            w
         }
 
         /// `sup_press`: the code reached from `q` on local event `e`, `None` when the
         /// event is not defined there.
         pub fn sup_press_step(q: u32, e: u16) -> Option<u32> {
-            if sup_press_defined(q, e) { Some(sup_press_next(q, e)) } else { None }
+            if sup_press_defined(q, e) { Some(sup_press_move(q, e)) } else { None }
         }
     }
 }

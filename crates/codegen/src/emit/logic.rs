@@ -68,10 +68,14 @@ fn code_literal(code: u32, bits: usize) -> String {
 ///
 /// The module holds one constant per local event (`T1_AT13: u16 = 0`, the
 /// `e` the functions take) and the functions `<name>_next(q, e) -> u32`
-/// (`Ω`), `<name>_defined(q, e) -> bool` (`φ`), `<name>_enabled(q, from,
-/// len) -> u32` (a row of φ, as the executor's `Program::enabled`) and
-/// `<name>_step(q, e) -> Option<u32>` (φ and Ω, as its
-/// `Program::next_state`), where `q` is a state code. Its doc comment gives the state codes, the reset code
+/// (`Ω`, its terms as a PLA over the code bits), `<name>_defined(q, e) ->
+/// bool` (`φ`), `<name>_enabled(q, from, len) -> u32` (a row of φ, as the
+/// executor's `Program::enabled`: φ's rows looked up by state code),
+/// `<name>_move(q, e) -> u32` (Ω on an event `q` defines: per event, only
+/// the terms 1 on some state code defining it, so that a move evaluates no
+/// other event's terms) and `<name>_step(q, e) -> Option<u32>` (φ and that
+/// Ω, as its `Program::next_state`), where `q` is a state code. Its doc
+/// comment gives the state codes, the reset code
 /// and the transitions of the first states. Names are sanitised into
 /// identifiers, or into one-line text in doc comments, so no name can
 /// inject code; the functions use neither `std`, allocation nor `unsafe`.
@@ -177,49 +181,103 @@ pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
         }
     };
 
-    // Ω
+    // Ω as a PLA over the code bits, each term setting the bits of every
+    // ω_b it is in: the terms without a wire high are evaluated on every
+    // move (a wire low as a mask of the events they exclude), those with
+    // one only in the arm of that event (a term asking two wires high is
+    // never 1 on one-hot inputs and is left out). A move evaluates the
+    // common terms and its event's, not every term of every event.
     let _ = writeln!(
         out,
         "/// `{prefix}`: next state code of the CMSSM (Leduc–Wonham), minimised with Espresso.\n\
          ///\n\
          /// `q`: state code ({l} bits); `e`: local event index. An event the state does\n\
-         /// not define, or an index of no event, leaves the code unchanged."
+         /// not define, or an index of no event, leaves the code unchanged. The product\n\
+         /// terms of ω, each setting the code bits whose ω holds it: those asking no\n\
+         /// event wire high for every event they do not exclude, the others in the arm of\n\
+         /// their event. The executor asks `_step`, hence `_move`, instead."
     );
-    let _ = writeln!(out, "pub fn {prefix}_next(q: u32, e: u16) -> u32 {{");
-    bit_lets(&mut out, state_bits_used(logic.next_covers()));
-    let wires_used = logic
-        .next_covers()
-        .iter()
-        .flat_map(|c| c.cubes.iter())
-        .fold(0u128, |acc, c| acc | c.events_on | c.events_off);
-    for (i, wire) in wires.iter().enumerate() {
-        if wires_used >> i & 1 == 1 {
-            let _ = writeln!(out, "    let {wire} = e == {};", constants[i]);
+    // The executor asks `_move`; this is the whole of Ω, for other callers.
+    let _ = writeln!(
+        out,
+        "#[allow(dead_code)]\npub fn {prefix}_next(q: u32, e: u16) -> u32 {{"
+    );
+    // (mask, value, excluded events, bits) and, per event, (mask, value, bits).
+    let mut common: Vec<(u32, u32, u128, u32)> = Vec::new();
+    let mut specific: Vec<Vec<Term>> = vec![Vec::new(); m];
+    for (b, w) in logic.next_covers().iter().enumerate() {
+        for c in &w.cubes {
+            let terms_of = |on: u128| -> Option<usize> {
+                (on.count_ones() == 1).then(|| on.trailing_zeros() as usize)
+            };
+            if c.events_on == 0 {
+                let key = (c.state_mask, c.state_value, c.events_off);
+                match common.iter_mut().find(|t| (t.0, t.1, t.2) == key) {
+                    Some(t) => t.3 |= 1 << b,
+                    None => common.push((key.0, key.1, key.2, 1 << b)),
+                }
+            } else if let Some(i) = terms_of(c.events_on).filter(|&i| i < m) {
+                if c.events_off >> i & 1 == 1 {
+                    continue;
+                }
+                let terms = &mut specific[i];
+                match terms
+                    .iter_mut()
+                    .find(|t| (t.0, t.1) == (c.state_mask, c.state_value))
+                {
+                    Some(t) => t.2 |= 1 << b,
+                    None => terms.push((c.state_mask, c.state_value, 1 << b)),
+                }
+            }
         }
     }
-    if wires_used == 0 {
-        let _ = writeln!(out, "    let _ = e;");
-    }
-    for (b, w) in logic.next_covers().iter().enumerate().rev() {
-        let _ = writeln!(out, "    let w{b} = {};", sum_expr(w));
-    }
-    let assembled: Vec<String> = (0..l)
-        .rev()
-        .map(|b| {
-            if b == 0 {
-                "(w0 as u32)".to_owned()
-            } else {
-                format!("((w{b} as u32) << {b})")
+    let uses_q = common.iter().any(|t| t.0 != 0) || specific.iter().flatten().any(|t| t.0 != 0);
+    if common.is_empty() && specific.iter().all(Vec::is_empty) {
+        // ω is 0 for every code and event.
+        let _ = writeln!(out, "    let _ = (q, e);\n    0\n}}\n");
+    } else {
+        if !uses_q {
+            let _ = writeln!(out, "    let _ = q;");
+        }
+        let wire_type = match m {
+            0..=32 => "u32",
+            33..=64 => "u64",
+            _ => "u128",
+        };
+        if common.iter().any(|t| t.2 != 0) {
+            let _ = writeln!(
+                out,
+                "    let wire: {wire_type} = if e < {m} {{ 1 << e }} else {{ 0 }};"
+            );
+        }
+        let _ = writeln!(out, "    let mut w = 0;");
+        for &(mask, value, excluded, bits) in &common {
+            let mut tests = Vec::new();
+            if mask != 0 {
+                tests.push(format!("q & {mask:#x} == {value:#x}"));
             }
-        })
-        .collect();
-    // One bit alone needs no parentheses (rustc warns about them).
-    let body = match assembled.as_slice() {
-        [one] => one.trim_start_matches('(').trim_end_matches(')').to_owned(),
-        _ => assembled.join(" | "),
-    };
-    let _ = writeln!(out, "    {body}");
-    let _ = writeln!(out, "}}\n");
+            if excluded != 0 {
+                tests.push(format!("wire & {excluded:#x} == 0"));
+            }
+            if tests.is_empty() {
+                let _ = writeln!(out, "    w |= {bits:#x};");
+            } else {
+                let _ = writeln!(
+                    out,
+                    "    if {} {{\n        w |= {bits:#x};\n    }}",
+                    tests.join(" && ")
+                );
+            }
+        }
+        write_arms(
+            &mut out,
+            specific
+                .iter()
+                .zip(&constants)
+                .map(|(t, c)| (c.as_str(), t.clone())),
+        );
+        let _ = writeln!(out, "    w\n}}\n");
+    }
 
     // Φ
     let _ = writeln!(
@@ -240,12 +298,16 @@ pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
     }
     let _ = writeln!(out, "}}\n");
 
-    // Φ as a row, what the executor reads after every move: every φ
-    // evaluated once on the state bits, not one `_step` per event.
+    // Φ as a row, what the executor reads after every move: φ's rows by
+    // state code, the codes of equal rows in one arm (a lookup the
+    // compiler lays out as a table), so that a move costs one lookup
+    // whatever the size of φ's terms.
     let _ = writeln!(
         out,
         "/// `{prefix}`: which of the local events `from..from + len` (`len` at most 32)\n\
-         /// are defined in state code `q`: bit `k` for event `from + k` (one row of φ)."
+         /// are defined in state code `q`: bit `k` for event `from + k` (one row of φ).\n\
+         /// φ's rows by state code, the codes of equal rows in one arm; 0 for a code of\n\
+         /// no state."
     );
     let _ = writeln!(
         out,
@@ -254,24 +316,102 @@ pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
     if m == 0 {
         let _ = writeln!(out, "    let _ = (q, from, len);\n    0");
     } else {
-        bit_lets(&mut out, state_bits_used(logic.defined_covers()));
-        let _ = writeln!(out, "    let phi: [bool; {m}] = [");
-        for phi in logic.defined_covers() {
-            let _ = writeln!(out, "        {},", sum_expr(phi));
+        let words = m.div_ceil(32);
+        let mut rows: Vec<(Vec<u32>, Vec<u32>)> = Vec::new();
+        for &code in logic.encoding().codes() {
+            let mut row = vec![0u32; words];
+            for i in 0..m {
+                if logic.is_defined(code, i as u16) {
+                    row[i / 32] |= 1 << (i % 32);
+                }
+            }
+            match rows.iter_mut().find(|(r, _)| *r == row) {
+                Some((_, codes)) => codes.push(code),
+                None => rows.push((row, vec![code])),
+            }
+        }
+        let _ = writeln!(out, "    let phi: [u32; {words}] = [");
+        for w in 0..words {
+            let _ = writeln!(out, "        match q {{");
+            for (row, codes) in &rows {
+                if row[w] == 0 {
+                    continue;
+                }
+                let codes: Vec<String> = codes.iter().map(|c| format!("{c:#x}")).collect();
+                let _ = writeln!(out, "            {} => {:#x},", codes.join(" | "), row[w]);
+            }
+            let _ = writeln!(out, "            _ => 0,\n        }},");
         }
         let _ = writeln!(out, "    ];");
         let _ = writeln!(
             out,
-            "    let mut row = 0;\n    \
-             for k in 0..u16::from(len.min(32)) {{\n        \
-             if phi.get(usize::from(from.wrapping_add(k))) == Some(&true) {{\n            \
-             row |= 1 << k;\n        \
-             }}\n    \
-             }}\n    \
-             row"
+            "    let (word, shift) = (usize::from(from / 32), u32::from(from % 32));\n    \
+             let low = phi.get(word).map_or(0, |w| w >> shift);\n    \
+             let high = match shift {{\n        \
+             0 => 0,\n        \
+             _ => phi.get(word + 1).map_or(0, |w| w << (32 - shift)),\n    \
+             }};\n    \
+             match len {{\n        \
+             0 => 0,\n        \
+             32.. => low | high,\n        \
+             _ => (low | high) & ((1 << len) - 1),\n    \
+             }}"
         );
     }
     let _ = writeln!(out, "}}\n");
+
+    // Ω on a move the state defines, what the executor asks: per event,
+    // only the terms of ω that are 1 on some state code defining it (the
+    // others are 0 on every such code, so the result is ω's).
+    let _ = writeln!(
+        out,
+        "/// `{prefix}`: the code reached from `q` on local event `e` when `q` is the code of\n\
+         /// a state that defines `e` (what `_step` asks; otherwise unspecified): per event,\n\
+         /// the terms of ω that are 1 on some state code defining it."
+    );
+    let _ = writeln!(out, "pub fn {prefix}_move(q: u32, e: u16) -> u32 {{");
+    let codes = logic.encoding().codes();
+    let moves: Vec<Vec<Term>> = (0..m)
+        .map(|i| {
+            let defining: Vec<u32> = codes
+                .iter()
+                .copied()
+                .filter(|&c| logic.is_defined(c, i as u16))
+                .collect();
+            let mut terms: Vec<Term> = Vec::new();
+            let candidates = common
+                .iter()
+                .filter(|t| t.2 >> i & 1 == 0)
+                .map(|t| (t.0, t.1, t.3))
+                .chain(specific[i].iter().copied());
+            for (mask, value, bits) in candidates {
+                if !defining.iter().any(|&c| c & mask == value) {
+                    continue;
+                }
+                match terms.iter_mut().find(|t| (t.0, t.1) == (mask, value)) {
+                    Some(t) => t.2 |= bits,
+                    None => terms.push((mask, value, bits)),
+                }
+            }
+            terms
+        })
+        .collect();
+    if moves.iter().all(Vec::is_empty) {
+        let _ = writeln!(out, "    let _ = (q, e);\n    0\n}}\n");
+    } else {
+        if !moves.iter().flatten().any(|t| t.0 != 0) {
+            let _ = writeln!(out, "    let _ = q;");
+        }
+        let _ = writeln!(out, "    let mut w = 0;");
+        write_arms(
+            &mut out,
+            moves
+                .iter()
+                .zip(&constants)
+                .map(|(t, c)| (c.as_str(), t.clone())),
+        );
+        let _ = writeln!(out, "    w\n}}\n");
+    }
 
     // Both, as the executor wants them.
     let _ = writeln!(
@@ -283,12 +423,99 @@ pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
         out,
         "pub fn {prefix}_step(q: u32, e: u16) -> Option<u32> {{\n    \
          if {prefix}_defined(q, e) {{\n        \
-         Some({prefix}_next(q, e))\n    \
+         Some({prefix}_move(q, e))\n    \
          }} else {{\n        \
          None\n    \
          }}\n\
          }}\n}}"
     );
+    out
+}
+
+/// The statements adding each event's terms to `w` in the body of a
+/// function of `q` and `e`, from `(event constant, terms)` pairs: events
+/// whose terms are alike share an arm, an arm of one term is a guard, and
+/// a lone event an `if` (as clippy would have them).
+fn write_arms<'a>(out: &mut String, events: impl Iterator<Item = (&'a str, Vec<Term>)>) {
+    let mut arms: Vec<(Vec<&str>, Vec<Term>)> = Vec::new();
+    for (constant, terms) in events {
+        if terms.is_empty() {
+            continue;
+        }
+        match arms.iter_mut().find(|(_, t)| *t == terms) {
+            Some((names, _)) => names.push(constant),
+            None => arms.push((vec![constant], terms)),
+        }
+    }
+    match arms.as_slice() {
+        [] => {
+            let _ = writeln!(out, "    let _ = e;");
+        }
+        [(names, terms)] if names.len() == 1 => {
+            let name = names[0];
+            match terms.as_slice() {
+                [(mask, value, bits)] if *mask != 0 => {
+                    let _ = writeln!(
+                        out,
+                        "    if e == {name} && q & {mask:#x} == {value:#x} {{\n        w |= {bits:#x};\n    }}"
+                    );
+                }
+                _ => {
+                    let _ = writeln!(
+                        out,
+                        "    if e == {name} {{\n{}    }}",
+                        pla_body(terms, "w", "        ")
+                    );
+                }
+            }
+        }
+        _ => {
+            let _ = writeln!(out, "    match e {{");
+            for (names, terms) in &arms {
+                let names = names.join(" | ");
+                match terms.as_slice() {
+                    [(mask, value, bits)] if *mask != 0 => {
+                        let _ = writeln!(
+                            out,
+                            "        {names} if q & {mask:#x} == {value:#x} => w |= {bits:#x},"
+                        );
+                    }
+                    [(0, _, bits)] => {
+                        let _ = writeln!(out, "        {names} => w |= {bits:#x},");
+                    }
+                    _ => {
+                        let _ = writeln!(
+                            out,
+                            "        {names} => {{\n{}        }}",
+                            pla_body(terms, "w", "            ")
+                        );
+                    }
+                }
+            }
+            let _ = writeln!(out, "        _ => {{}}\n    }}");
+        }
+    }
+}
+
+/// A product term of a PLA over the code bits: `(mask, value, outputs)`,
+/// 1 where `q & mask == value`, setting the bits `outputs`.
+type Term = (u32, u32, u32);
+
+/// The statements of a PLA over the code bits `q` adding to the variable
+/// `var`, indented by `indent`: one `if` per term `(mask, value, bits)`
+/// (a term without literals sets its bits outright).
+fn pla_body(terms: &[Term], var: &str, indent: &str) -> String {
+    let mut out = String::new();
+    for &(mask, value, bits) in terms {
+        if mask == 0 {
+            let _ = writeln!(out, "{indent}{var} |= {bits:#x};");
+        } else {
+            let _ = writeln!(
+                out,
+                "{indent}if q & {mask:#x} == {value:#x} {{\n{indent}    {var} |= {bits:#x};\n{indent}}}"
+            );
+        }
+    }
     out
 }
 
@@ -559,17 +786,27 @@ mod tests {
             "/// - 0b10 `train2`: f_ld1 → idle, st_ld1 → train2, run_t1 → train2",
             "/// Local event 2: `f_ld1`.",
             "pub const F_LD1: u16 = 2;",
-            "let f_ld1 = e == F_LD1;",
         ] {
             assert!(kept.contains(expected), "missing `{expected}` in\n{laid_out}");
         }
+        // Ω's arms: one per event with terms of its own (events alike
+        // sharing one), a term alone as a guard.
+        assert!(
+            laid_out
+                .lines()
+                .any(|l| l.contains(" if q & ") && l.contains("=> w |=")),
+            "no Ω arm in\n{laid_out}"
+        );
         // φ is matched on the named events, one arm per local event.
         let arms: Vec<&str> = laid_out
             .lines()
             .map(str::trim)
-            .filter(|l| l.contains(" => "))
+            .filter(|l| {
+                l.contains(" => ") && !l.ends_with('{') && !l.contains("w |=") && *l != "_ => {}"
+            })
+            .take(7)
             .collect();
-        assert_eq!(arms.len(), 7, "{arms:?}");
+        assert_eq!(arms.last(), Some(&"_ => false,"), "{arms:?}");
         for (arm, event) in arms.iter().zip(events) {
             assert!(arm.starts_with(&event.to_ascii_uppercase()), "{arm}");
         }
@@ -577,9 +814,10 @@ mod tests {
 
     /// Found by the names property (`tests/build_names.rs`): an event named
     /// `1` gave the wire `_1` and the constant `_1`, the same identifier,
-    /// so `let _1 = e == _1;` did not compile.
+    /// so `let _1 = e == _1;` did not compile. Ω no longer binds wires (its
+    /// arms match the constants), but the constants stay distinct.
     #[test]
-    fn wires_of_events_without_letters_differ_from_their_constants() {
+    fn events_without_letters_get_distinct_constants() {
         let a = auto(
             "digits",
             &[("1", true), ("e_1", false), ("007", false)],
@@ -597,13 +835,13 @@ mod tests {
         };
         let code = supervisor_module(&logic, &names);
         for line in [
-            "let e_1 = e == E_1;",
-            "let e_1_2 = e == E_1_2;",
-            "let e_007 = e == E_007;",
+            "pub const E_1: u16 = 0;",
+            "pub const E_1_2: u16 = 1;",
+            "pub const E_007: u16 = 2;",
         ] {
             assert!(code.contains(line), "{line}\n{code}");
         }
-        assert!(!code.contains("let _"), "{code}");
+        syn::parse_file(&code).unwrap();
     }
 
     #[test]
@@ -665,14 +903,12 @@ mod tests {
                 "sup_sup__evil_next",
                 "sup_sup__evil_defined",
                 "sup_sup__evil_enabled",
+                "sup_sup__evil_move",
                 "sup_sup__evil_step"
             ]
         );
-        assert!(code.contains("let q_2 = e == Q_2;"), "{code}");
-        assert!(
-            code.contains("let x__fn_pwn____2 = e == X__FN_PWN____2;"),
-            "{code}"
-        );
+        assert!(code.contains("pub const Q_2: u16 = 2;"), "{code}");
+        assert!(code.contains("let mut w = 0;"), "{code}");
         // Names in doc comments stay on their line and out of code spans.
         assert!(
             code.contains("/// - 0b00 `a  b`: x }fn pwn(){ → */'\n"),
@@ -682,8 +918,8 @@ mod tests {
 
     #[test]
     fn constant_functions_are_literals() {
-        // One state, a self-loop and an event never defined: ω0 = 0, φ of
-        // `a` = 1, φ of `b` = 0.
+        // One state, a self-loop and an event never defined: ω0 = 0 (no
+        // term at all), φ of `a` = 1, φ of `b` = 0.
         let a = auto("one", &[("a", true), ("b", false)], &[("0", "a", "0")], &[]);
         let events = ["a", "b"];
         let logic =
@@ -695,7 +931,7 @@ mod tests {
             states: &["0"],
         };
         let code = crate::emit::format_rust(&supervisor_module(&logic, &names)).unwrap();
-        for expected in ["let w0 = false;", "A => true,", "B => false,", "let _ = e;"] {
+        for expected in ["let _ = (q, e);", "A => true,", "B => false,"] {
             assert!(code.contains(expected), "missing `{expected}` in\n{code}");
         }
     }
@@ -778,6 +1014,9 @@ mod tests {
         let main = format!(
             "{code}\nfn main() {{\n    for q in 0..4u32 {{\n        for e in 0..6u16 {{\n            \
              println!(\"{{q}} {{e}} {{:?}} {{}}\", sup_mach_1::sup_mach_1_step(q, e), sup_mach_1::sup_mach_1_next(q, e));\n        \
+             }}\n        \
+             for (from, len) in [(0, 0), (0, 5), (0, 32), (1, 3), (3, 32), (5, 1), (40, 32)] {{\n            \
+             println!(\"{{q}} row {{from}} {{len}} {{:#b}}\", sup_mach_1::sup_mach_1_enabled(q, from, len));\n        \
              }}\n    }}\n}}\n"
         );
         let exe = rustc(dir.path(), "emitted_main", &main, &[]);
@@ -794,6 +1033,23 @@ mod tests {
                     logic.next_state(q, e),
                     logic.next_code(q, input)
                 );
+            }
+            for (from, len) in [
+                (0u16, 0u8),
+                (0, 5),
+                (0, 32),
+                (1, 3),
+                (3, 32),
+                (5, 1),
+                (40, 32),
+            ] {
+                let row = (0..u16::from(len))
+                    .filter(|&k| {
+                        let e = from + k;
+                        usize::from(e) < events.len() && logic.is_defined(q, e)
+                    })
+                    .fold(0u32, |row, k| row | 1 << k);
+                let _ = writeln!(expected, "{q} row {from} {len} {row:#b}");
             }
         }
         assert_eq!(printed, expected);
