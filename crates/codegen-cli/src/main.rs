@@ -12,6 +12,7 @@ mod convert;
 mod dot;
 mod error;
 mod gen;
+mod image;
 mod info;
 mod key;
 mod lang;
@@ -146,6 +147,9 @@ enum Command {
     /// A project as PLCopen XML (TC6 v2.01) with ST bodies, for PLC tools
     /// that import it.
     Plcopen(plc::PlcArgs),
+    /// A project's program image (table backend) as a slot file for a
+    /// field update: what `codegen load` sends (docs/field-update.md).
+    Image(image::ImageArgs),
     /// A slot file (`codegen image`) into a running PLC over a serial
     /// port, checked by the PLC before it runs; without a file, what the
     /// PLC runs (docs/field-update.md).
@@ -193,6 +197,7 @@ fn main() -> ExitCode {
         Command::Petri(command) => petri::run(&command, json, &mut out),
         Command::St(args) => plc::run(&args, plc::Flavour::St, json, &mut out),
         Command::Plcopen(args) => plc::run(&args, plc::Flavour::PlcOpen, json, &mut out),
+        Command::Image(args) => image::run(&args, json, &mut out),
         Command::Load(args) => load::run(&args, json, &mut out),
     };
     let code = match &result {

@@ -9,7 +9,8 @@
 
 use crate::image::{HEADER_WORDS, TABLE_HEADER_WORDS};
 use crate::program::{Config, Guards, Index, Span, UnexpectedPolicy};
-use crate::table::{Rows, SupervisorTable};
+use crate::table::{Rows, SupervisorTable, TableProgram};
+use crate::validate::{validate_generated, Flaw, Invalid, Part};
 use core::fmt;
 
 /// Why words are not a program image.
@@ -86,6 +87,95 @@ impl<'a> Blob<'a> {
         let mut rest = self.tables;
         (0..self.count).map_while(move |_| parse_table(&mut rest).ok())
     }
+}
+
+/// Why a loaded image may not run ([`load`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Refusal {
+    /// Its words are not a program image.
+    Parse(ParseError),
+    /// More tables than the room given for them.
+    Tables {
+        /// Tables in the image.
+        count: usize,
+        /// Room for tables.
+        room: usize,
+    },
+    /// The structure check, what a generator proves included, refused it.
+    Structure(Invalid),
+}
+
+impl Refusal {
+    /// A number for the refusal: `0x100 +` the parse error's kind (0
+    /// short, 1 trailing, 2 header, 3 name), `0x200` too many tables,
+    /// `0x300 +` [`Flaw::code`].
+    pub const fn code(&self) -> u16 {
+        match self {
+            Refusal::Parse(e) => {
+                0x100
+                    + match e {
+                        ParseError::Short => 0,
+                        ParseError::Trailing => 1,
+                        ParseError::Header { .. } => 2,
+                        ParseError::Name => 3,
+                    }
+            }
+            Refusal::Tables { .. } => 0x200,
+            Refusal::Structure(invalid) => 0x300 + invalid.flaw.code(),
+        }
+    }
+}
+
+impl fmt::Display for Refusal {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Refusal::Parse(e) => write!(f, "not a program image: {e}"),
+            Refusal::Tables { count, room } => {
+                write!(f, "{count} tables, room for {room}")
+            }
+            Refusal::Structure(invalid) => write!(f, "{invalid}"),
+        }
+    }
+}
+
+/// A program image loaded from outside the build (a field update), made
+/// into a program once it passes every check a generator makes
+/// ([`validate_generated`]): one table per supervisor, whose entries are
+/// its states, memberships, alphabets and sets that agree. `name` holds
+/// the name's bytes, `tables` the tables (its length is the most a
+/// program may have); `crc` is the image CRC the program reports.
+pub fn load<'a>(
+    words: &'a [u32],
+    name: &'a mut [u8],
+    tables: &'a mut [SupervisorTable<'a>],
+    crc: u32,
+) -> Result<TableProgram<'a>, Refusal> {
+    let blob = Blob::parse(words, name).map_err(Refusal::Parse)?;
+    let count = blob.table_count();
+    if count > tables.len() {
+        return Err(Refusal::Tables {
+            count,
+            room: tables.len(),
+        });
+    }
+    if count != blob.config.supervisors.len() {
+        return Err(Refusal::Structure(Invalid {
+            part: Part::Tables,
+            flaw: Flaw::TableCount,
+        }));
+    }
+    for (slot, table) in tables.iter_mut().zip(blob.tables()) {
+        *slot = table;
+    }
+    let tables: &'a [SupervisorTable<'a>] = tables;
+    let program = TableProgram {
+        config: blob.config,
+        tables: &tables[..count],
+        crc,
+    };
+    validate_generated(&program).map_err(Refusal::Structure)?;
+    Ok(program)
 }
 
 /// The header run of `words`.

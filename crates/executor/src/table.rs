@@ -149,6 +149,18 @@ fn ones_between(words: &[u32], from: usize, to: usize) -> usize {
     count
 }
 
+impl SupervisorTable<'static> {
+    /// A table of no events and no words: what a buffer of tables holds
+    /// before [`crate::parse::load`] fills it.
+    pub const EMPTY: SupervisorTable<'static> = SupervisorTable {
+        events: 0,
+        state_bits: 1,
+        defined: &[],
+        targets: &[],
+        rows: Rows::Dense,
+    };
+}
+
 impl SupervisorTable<'_> {
     /// δ(state, local), `None` when undefined.
     #[inline]

@@ -170,6 +170,39 @@ pub struct Invalid {
     pub flaw: Flaw,
 }
 
+impl Flaw {
+    /// A number per kind of flaw (1 to 23, in declaration order): how a
+    /// refusal names it in a byte-sized report (`field_update`'s
+    /// `Rejected::Structure`).
+    pub const fn code(&self) -> u16 {
+        match self {
+            Flaw::TooMany => 1,
+            Flaw::SpanPastPool => 2,
+            Flaw::SetLength => 3,
+            Flaw::StrayBits => 4,
+            Flaw::OutOfRange { .. } => 5,
+            Flaw::Preset => 6,
+            Flaw::Period => 7,
+            Flaw::Membership => 8,
+            Flaw::Outside => 9,
+            Flaw::Commands => 10,
+            Flaw::TableCount => 11,
+            Flaw::TableEvents => 12,
+            Flaw::StateBits => 13,
+            Flaw::TableLength => 14,
+            Flaw::RowStart { .. } => 15,
+            Flaw::StateMask => 16,
+            Flaw::Fields => 17,
+            Flaw::Arcs { .. } => 18,
+            Flaw::Guarded => 19,
+            Flaw::GuardNode { .. } => 20,
+            Flaw::Shift => 21,
+            Flaw::AllowedIndex => 22,
+            Flaw::AllowedSet { .. } => 23,
+        }
+    }
+}
+
 impl fmt::Display for Part {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {

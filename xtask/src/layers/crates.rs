@@ -124,6 +124,7 @@ pub(super) const LAYERS: &[Layer] = &[
             "codegen",
             "des",
             "des-symbolic",
+            "executor",
             "field-update",
             "iec-export",
             "plc-project",

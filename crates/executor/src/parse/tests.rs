@@ -79,3 +79,49 @@ fn a_blob_that_is_not_an_image_is_refused_without_a_panic() {
     flag[6] = 2;
     assert_eq!(parse(&flag), Err(ParseError::Header { word: 6 }));
 }
+
+#[test]
+fn a_loaded_image_runs_only_after_every_generator_check() {
+    use super::{load, Refusal};
+    use crate::table::SupervisorTable;
+    let program = ring(16);
+    let words = words_of(&program);
+    let (mut name, mut tables) = ([0u8; 32], [SupervisorTable::EMPTY; 4]);
+    let loaded = load(&words, &mut name, &mut tables, program.crc).expect("the ring loads");
+    assert_eq!(words_of(&loaded), words);
+    assert_eq!(image::crc(&loaded), image::crc(&program));
+
+    // No room for its table.
+    let (mut name, mut none) = ([0u8; 32], [SupervisorTable::EMPTY; 0]);
+    let refused = load(&words, &mut name, &mut none, 0).map(|_| ());
+    assert_eq!(refused, Err(Refusal::Tables { count: 1, room: 0 }));
+    assert_eq!(Refusal::Tables { count: 1, room: 0 }.code(), 0x200);
+
+    // Words that are no image.
+    let (mut name, mut tables) = ([0u8; 32], [SupervisorTable::EMPTY; 4]);
+    let refused = load(&words[..5], &mut name, &mut tables, 0).map(|_| ());
+    assert_eq!(refused, Err(Refusal::Parse(ParseError::Short)));
+
+    // Every word's lowest and highest bit flipped, one at a time: refused,
+    // or a program that every generator check accepts (flipped words of a
+    // table's targets can still name states), never a panic.
+    let mut accepted = 0;
+    for k in 0..words.len() {
+        for bit in [0, 31] {
+            let mut flipped = words.clone();
+            flipped[k] ^= 1 << bit;
+            let (mut name, mut tables) = ([0u8; 32], [SupervisorTable::EMPTY; 4]);
+            match load(&flipped, &mut name, &mut tables, 0) {
+                Ok(p) => {
+                    accepted += 1;
+                    assert_eq!(crate::validate::validate_generated(&p), Ok(()));
+                }
+                Err(Refusal::Structure(invalid)) => {
+                    assert!((1..=23).contains(&invalid.flaw.code()), "{invalid:?}");
+                }
+                Err(_) => {}
+            }
+        }
+    }
+    assert!(accepted < 2 * words.len(), "some flips are refused");
+}
