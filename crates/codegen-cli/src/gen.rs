@@ -2,7 +2,7 @@
 
 use super::error::CliError;
 use super::output::{outln, Out};
-use super::progress::Spinner;
+use super::progress::load_project;
 use super::Outcome;
 use codegen::backend::table::EncodedTable;
 use codegen::backend::Backend;
@@ -10,7 +10,6 @@ use codegen::emit::{generate_with_progress, SupervisorStats};
 use codegen::lower::ImageCheck;
 use des::formats;
 use des::Error;
-use plc_project as project;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `codegen gen`.
@@ -51,16 +50,7 @@ pub fn run(args: &GenArgs, json: bool, out: &mut Out) -> Result<Outcome, CliErro
     if !is_project(&args.project) {
         return automaton_stats(args, json, out);
     }
-    let spinner = Spinner::new(&format!("loading {}", args.project.display()));
-    let project = project::load(&args.project)?;
-    for w in &project.warnings {
-        spinner.warn(format_args!(
-            "warning: {}:{}: {}",
-            args.project.display(),
-            w.line,
-            w.message
-        ));
-    }
+    let (project, spinner) = load_project(&args.project)?;
     let (backend, name) = match args.backend {
         BackendArg::Table => (Backend::Table, "table"),
         BackendArg::Logic => (Backend::Logic, "logic"),

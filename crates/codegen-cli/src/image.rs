@@ -5,7 +5,7 @@
 
 use super::error::CliError;
 use super::output::Out;
-use super::progress::Spinner;
+use super::progress::load_project;
 use super::Outcome;
 use codegen::backend::Backend;
 use codegen::lower::Lowered;
@@ -14,7 +14,6 @@ use executor::table::SupervisorTable;
 use field_update::header::{version_parts, SlotHeader};
 use field_update::host::SlotFile;
 use field_update::{crc_of_words, CRC_ALGORITHM};
-use plc_project as project;
 use std::path::PathBuf;
 
 /// The CRC of slot headers and images.
@@ -54,16 +53,7 @@ fn parse_version(text: &str) -> Result<u32, String> {
 }
 
 pub fn run(args: &ImageArgs, json: bool, out: &mut Out) -> Result<Outcome, CliError> {
-    let spinner = Spinner::new(&format!("loading {}", args.project.display()));
-    let project = project::load(&args.project)?;
-    for w in &project.warnings {
-        spinner.warn(format_args!(
-            "warning: {}:{}: {}",
-            args.project.display(),
-            w.line,
-            w.message
-        ));
-    }
+    let (project, spinner) = load_project(&args.project)?;
     spinner.phase("generating");
     let lowered = Lowered::new(&project, Backend::Table, &spinner)?;
     drop(spinner);

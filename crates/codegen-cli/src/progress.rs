@@ -56,6 +56,22 @@ impl Drop for Spinner {
     }
 }
 
+/// Loads the project at `path` behind a spinner, its warnings printed
+/// with their file and line; the spinner is returned for the next phases.
+pub fn load_project(path: &std::path::Path) -> Result<(plc_project::Project, Spinner), des::Error> {
+    let spinner = Spinner::new(&format!("loading {}", path.display()));
+    let project = plc_project::load(path)?;
+    for w in &project.warnings {
+        spinner.warn(format_args!(
+            "warning: {}:{}: {}",
+            path.display(),
+            w.line,
+            w.message
+        ));
+    }
+    Ok((project, spinner))
+}
+
 #[cfg(test)]
 mod tests {
     use codegen::backend::logic::{self, Encoding, LogicSupervisor, Minimisation, Settings};
