@@ -136,8 +136,16 @@ impl<P: Program, M: Memory> Controller<P, M> {
         ScanRecord {
             scan: self.scan.saturating_sub(1),
             time_ms: self.time_ms,
-            executed: &self.memory.executed()[..self.executed_len],
-            unexpected: &self.memory.unexpected()[..self.unexpected_len],
+            executed: self
+                .memory
+                .executed()
+                .get(..self.executed_len)
+                .unwrap_or_default(),
+            unexpected: self
+                .memory
+                .unexpected()
+                .get(..self.unexpected_len)
+                .unwrap_or_default(),
             states: self.memory.states(),
             outputs: self.memory.outputs(),
             fault: self.fault,
@@ -371,11 +379,15 @@ impl<P: Program, M: Memory> Controller<P, M> {
                         return self.fault_corrupt(executed, unexpected, now_ms);
                     };
                     timers_changed |= timers;
-                    self.memory.ram().executed[executed] = e as Index;
+                    if let Some(slot) = self.memory.ram().executed.get_mut(executed) {
+                        *slot = e as Index;
+                    }
                     executed += 1;
                     continue;
                 }
-                self.memory.ram().unexpected[unexpected] = e as Index;
+                if let Some(slot) = self.memory.ram().unexpected.get_mut(unexpected) {
+                    *slot = e as Index;
+                }
                 unexpected += 1;
                 match config.unexpected {
                     UnexpectedPolicy::Ignore => {
@@ -414,7 +426,9 @@ impl<P: Program, M: Memory> Controller<P, M> {
                     return self.fault_corrupt(executed, unexpected, now_ms);
                 };
                 timers_changed |= timers;
-                self.memory.ram().executed[executed] = e as Index;
+                if let Some(slot) = self.memory.ram().executed.get_mut(executed) {
+                    *slot = e as Index;
+                }
                 executed += 1;
                 commands += 1;
             }
@@ -712,21 +726,22 @@ fn execute<P: Program, M: Memory>(
     for m in config.members_of(spec.members) {
         let j = m.supervisor as usize;
         let sup = &config.supervisor(j);
-        if ram.states[j] >= sup.states {
+        let state = *ram.states.get(j)?;
+        if state >= sup.states {
             return None;
         }
-        let next = program.next_state(m.supervisor, ram.states[j], m.local)?;
+        let next = program.next_state(m.supervisor, state, m.local)?;
         // Validated tables hold states in range; a word flipped since
         // is caught here before the state is stored.
         if next >= sup.states {
             return None;
         }
-        if next != ram.states[j] {
+        if next != state {
             let spec = sup;
             let ew = ram.feasible.len();
             let allowed = allowed_of(ram.allowed, ew, j);
             match (
-                config.stored_set(spec, ram.states[j]),
+                config.stored_set(spec, state),
                 config.stored_set(spec, next),
             ) {
                 // Most moves keep the set: nothing to copy or AND.
@@ -740,7 +755,9 @@ fn execute<P: Program, M: Memory>(
                     moved = true;
                 }
             }
-            ram.states[j] = next;
+            if let Some(x) = ram.states.get_mut(j) {
+                *x = next;
+            }
         }
     }
     if moved {

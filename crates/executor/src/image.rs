@@ -294,8 +294,11 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
     /// Feeds words `from..to` of `run`.
     fn feed(&self, run: &Run<'_>, from: usize, to: usize, feeder: &mut Feeder) {
         match *run {
-            Run::Words(words) => feeder.push(&words[from..to]),
-            Run::TableHeader(ref header) => feeder.push(&header[from..to]),
+            // In range by construction (`to` is at most the run's length);
+            // `get` keeps the panic path, and its formatting, out of the
+            // target's flash.
+            Run::Words(words) => feeder.push(words.get(from..to).unwrap_or_default()),
+            Run::TableHeader(ref header) => feeder.push(header.get(from..to).unwrap_or_default()),
             Run::Header => (from..to).for_each(|k| feeder.push(&[self.header_word(k)])),
             Run::Name(bytes) => (from..to).for_each(|k| feeder.push(&[name_word(bytes, k)])),
         }

@@ -724,7 +724,7 @@ fn allowed_index(part: Part, spec: &SupervisorSpec, c: &Config<'_>) -> Result<()
     let named = |x: u32| {
         let k = read_bits(index, x as usize, sets.bits) as usize;
         let set = c.event_masks.get(k * w..k * w + w).unwrap_or_default();
-        set.len() == w && (spare == 0 || set[w - 1] >> (32 - spare) == 0)
+        set.len() == w && (spare == 0 || set.last().is_some_and(|&last| last >> (32 - spare) == 0))
     };
     let fits = (1..=16).contains(&sets.bits)
         && index.len() as u64 == entries.div_ceil(32)
