@@ -136,16 +136,8 @@ impl<P: Program, M: Memory> Controller<P, M> {
         ScanRecord {
             scan: self.scan.saturating_sub(1),
             time_ms: self.time_ms,
-            executed: self
-                .memory
-                .executed()
-                .get(..self.executed_len)
-                .unwrap_or_default(),
-            unexpected: self
-                .memory
-                .unexpected()
-                .get(..self.unexpected_len)
-                .unwrap_or_default(),
+            executed: prefix(self.memory.executed(), self.executed_len),
+            unexpected: prefix(self.memory.unexpected(), self.unexpected_len),
             states: self.memory.states(),
             outputs: self.memory.outputs(),
             fault: self.fault,
@@ -379,15 +371,11 @@ impl<P: Program, M: Memory> Controller<P, M> {
                         return self.fault_corrupt(executed, unexpected, now_ms);
                     };
                     timers_changed |= timers;
-                    if let Some(slot) = self.memory.ram().executed.get_mut(executed) {
-                        *slot = e as Index;
-                    }
+                    *slot(self.memory.ram().executed, executed) = e as Index;
                     executed += 1;
                     continue;
                 }
-                if let Some(slot) = self.memory.ram().unexpected.get_mut(unexpected) {
-                    *slot = e as Index;
-                }
+                *slot(self.memory.ram().unexpected, unexpected) = e as Index;
                 unexpected += 1;
                 match config.unexpected {
                     UnexpectedPolicy::Ignore => {
@@ -426,9 +414,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
                     return self.fault_corrupt(executed, unexpected, now_ms);
                 };
                 timers_changed |= timers;
-                if let Some(slot) = self.memory.ram().executed.get_mut(executed) {
-                    *slot = e as Index;
-                }
+                *slot(self.memory.ram().executed, executed) = e as Index;
                 executed += 1;
                 commands += 1;
             }
@@ -463,6 +449,30 @@ impl<P: Program, M: Memory> Controller<P, M> {
     fn finish(&mut self, now_ms: u32) {
         self.time_ms = now_ms;
         self.scan = self.scan.wrapping_add(1);
+    }
+}
+
+/// Entry `k` of an event list in RAM (executed or unexpected events),
+/// which holds one entry per event: an event is executed or found
+/// unexpected at most once a scan, so `k` is in range. Indexing would
+/// link the formatting of its panic message (about 1.5 KB of the
+/// target's flash); this panic's message is a constant.
+#[inline(always)]
+fn slot(list: &mut [Index], k: usize) -> &mut Index {
+    match list.get_mut(k) {
+        Some(entry) => entry,
+        None => panic!("more events in a scan than the program has"),
+    }
+}
+
+/// The first `len` entries of an event list in RAM (`len` counts entries
+/// written this scan, so it is in range): slicing with a constant panic
+/// message, as [`slot`] does.
+#[inline(always)]
+fn prefix(list: &[Index], len: usize) -> &[Index] {
+    match list.get(..len) {
+        Some(entries) => entries,
+        None => panic!("more events in a scan than the program has"),
     }
 }
 
