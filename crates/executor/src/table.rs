@@ -205,7 +205,7 @@ impl SupervisorTable<'_> {
     /// [`SupervisorTable::enabled`]) straight into the set, without rows
     /// of 32 transitions to build and scatter.
     #[inline]
-    pub fn insert_enabled_net(&self, state: u32, alphabet: &[Index], allowed: &mut [u32]) -> bool {
+    pub fn insert_enabled_net(&self, state: u32, alphabet: &[u32], allowed: &mut [u32]) -> bool {
         let Rows::Net { fields } = self.rows else {
             return false;
         };
@@ -213,13 +213,13 @@ impl SupervisorTable<'_> {
         if fields.len() == usize::from(self.state_bits) {
             for ((&pre, &post), &e) in transitions {
                 if state & (pre | post) == pre {
-                    bit_insert(allowed, usize::from(e));
+                    bit_insert(allowed, e as usize);
                 }
             }
         } else {
             for ((&pre, &post), &e) in transitions {
                 if fire(fields, state, pre, post).is_some() {
-                    bit_insert(allowed, usize::from(e));
+                    bit_insert(allowed, e as usize);
                 }
             }
         }
@@ -469,7 +469,7 @@ mod tests {
             for arcs in pairs.chunks(40) {
                 let defined: Vec<u32> = arcs.iter().map(|a| a.0).collect();
                 let targets: Vec<u32> = arcs.iter().map(|a| a.1).collect();
-                let alphabet: Vec<Index> = (0..arcs.len() as Index).map(|k| 70 - k).collect();
+                let alphabet: Vec<u32> = (0..arcs.len() as u32).map(|k| 70 - k).collect();
                 let table = SupervisorTable {
                     events: arcs.len() as Index,
                     state_bits: 4,
@@ -484,7 +484,7 @@ mod tests {
                         let fires = table.next_state(x, k as Index).is_some();
                         let row = table.enabled(x, k as Index / 32 * 32, 32);
                         assert_eq!(row >> (k % 32) & 1 == 1, fires, "row, x={x:#b} t={k}");
-                        assert_eq!(bit(&set, usize::from(e)), fires, "set, x={x:#b} t={k}");
+                        assert_eq!(bit(&set, e as usize), fires, "set, x={x:#b} t={k}");
                     }
                     let others = set.iter().map(|w| w.count_ones()).sum::<u32>() as usize;
                     let fired = (0..arcs.len())
