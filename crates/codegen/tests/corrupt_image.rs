@@ -281,6 +281,22 @@ fn what_generation_proves_is_refused_by_the_host_check_and_caught_by_the_scan() 
             flaw: Flaw::Membership
         })
     );
+    // An alphabet marked consecutive that is not: the scan would shift
+    // the enabled row onto the wrong events.
+    let unordered = rewritten(|p| {
+        let sup = &mut p.pools.supervisors[0];
+        sup.contiguous = true;
+        let start = usize::from(sup.alphabet.start);
+        p.pools.event_lists.swap(start, start + 1);
+    });
+    assert_eq!(validate(&unordered), Ok(()));
+    assert_eq!(
+        validate_generated(&unordered),
+        Err(Invalid {
+            part: Part::Supervisor(0),
+            flaw: Flaw::Contiguous
+        })
+    );
     // 3 bits hold 7, the press has 6 states: the entry of state 0 on
     // `auto`, the first move of `armed`.
     let far = rewritten(|p| p.tables[0].targets[0] |= 0b111);

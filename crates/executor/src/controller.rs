@@ -529,6 +529,20 @@ fn refresh_allowed<P: Program>(
     for (chunk, events) in alphabet.chunks(32).enumerate() {
         let from = (chunk * 32) as Index;
         let mut row = program.enabled(j as Index, state, from, events.len() as u8);
+        // Consecutive event numbers: the row shifted into place.
+        if spec.contiguous {
+            let first = events.first().map_or(0, |&e| e as usize);
+            let (k, shift) = (first / 32, first % 32);
+            if let Some(word) = allowed.get_mut(k) {
+                *word |= row << shift;
+            }
+            if shift != 0 {
+                if let Some(word) = allowed.get_mut(k + 1) {
+                    *word |= row >> (32 - shift);
+                }
+            }
+            continue;
+        }
         while row != 0 {
             let k = row.trailing_zeros() as usize;
             row &= row - 1;

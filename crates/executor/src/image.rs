@@ -30,7 +30,7 @@
 //! | outputs | 2 | `safe \| initial << 1`; `state_map` |
 //! | timers | 2 | `preset_ms`; `raises` |
 //! | events | 7 | trigger (0 command, 1 rising, 2 falling, 3 expired); its mask span or timer (0 for a command); `when`; `unless`; `request`; `actions`; `members` |
-//! | supervisors | 6 | `states`; `initial`; `alphabet`; `outside`; `allowed.index`; `allowed.bits` |
+//! | supervisors | 6 | `states`; `initial`; `alphabet`; `outside`; `allowed.index`; `allowed.bits \| contiguous << 8` |
 //! | input masks | 1 | the word as stored |
 //! | event lists | 1 | the event |
 //! | event masks | 1 | the word as stored |

@@ -83,6 +83,7 @@
 //!         // Computed from `next_state` as it moves (a generator may store
 //!         // them: `AllowedSets`).
 //!         allowed: AllowedSets::COMPUTED,
+//!         contiguous: false,
 //!     }
 //!     .to_words()],
 //!     // One word per mask (32 inputs per word): the button alone.

@@ -538,11 +538,18 @@ pub struct SupervisorSpec {
     /// Its allowed set in each state, stored ([`AllowedSets`]), or
     /// [`AllowedSets::COMPUTED`] from its program when it moves.
     pub allowed: AllowedSets,
+    /// Its alphabet is consecutive event numbers in increasing order
+    /// (local event `k` is event `event_lists[alphabet.start] + k`): an
+    /// enabled row then maps to its events by one shift (and an OR per
+    /// word) instead of a loop over its bits. Computed at generation
+    /// (`false` is always correct) and proved by
+    /// [`crate::validate::validate_generated`].
+    pub contiguous: bool,
 }
 
 impl SupervisorSpec {
     /// Its record: `states`; `initial`; `alphabet`; `outside`;
-    /// `allowed.index`; `allowed.bits`.
+    /// `allowed.index`; `allowed.bits | contiguous << 8`.
     pub const fn to_words(&self) -> [u32; 6] {
         [
             self.states,
@@ -550,7 +557,7 @@ impl SupervisorSpec {
             self.alphabet.to_word(),
             self.outside.to_word(),
             self.allowed.index.to_word(),
-            self.allowed.bits as u32,
+            self.allowed.bits as u32 | (self.contiguous as u32) << 8,
         ]
     }
 
@@ -566,6 +573,7 @@ impl SupervisorSpec {
                 index: Span::from_word(w[4]),
                 bits: w[5] as u8,
             },
+            contiguous: w[5] >> 8 & 1 != 0,
         }
     }
 }

@@ -130,9 +130,15 @@ impl<'a> Config<'a> {
 pub use crate::bits::contains as bit;
 use crate::bits::insert as bit_insert;
 
-/// Number of set bits in `from..to`.
+/// Number of set bits in `from..to`: one count of at most 32 bits read
+/// at once (a sparse table's row prefix, when its supervisor has at most
+/// 33 events), else word by word.
 #[inline]
 fn ones_between(words: &[u32], from: usize, to: usize) -> usize {
+    let len = to.saturating_sub(from);
+    if len <= 32 {
+        return read_bits_at(words, from, len as u8).count_ones() as usize;
+    }
     let mut count = 0;
     let mut i = from;
     while i < to {

@@ -155,6 +155,7 @@ fn config(debounce: u8, policy: UnexpectedPolicy, request: Option<Index>) -> Con
             alphabet: Span { start: 3, len: 4 },
             outside: Span { start: 0, len: 1 },
             allowed: AllowedSets::COMPUTED,
+            contiguous: false,
         }]),
         input_masks: &INPUT_MASKS,
         event_lists: &EVENT_LISTS,

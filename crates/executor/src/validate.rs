@@ -14,9 +14,10 @@
 //! What a generator proves of its own output is [`validate_generated`],
 //! run at generation and by host tools, not by the controller: that the
 //! memberships and the alphabets agree, that each `outside` set and the
-//! command sets are the ones the events give, that every defined table
-//! entry is a state of its supervisor (the scan checks each state it
-//! moves to as well, so a flipped table word is a `Corrupt` fault, never
+//! command sets are the ones the events give, that an alphabet marked
+//! `contiguous` is consecutive event numbers in increasing order, that
+//! every defined table entry is a state of its supervisor (the scan
+//! checks each state it moves to as well, so a flipped table word is a `Corrupt` fault, never
 //! a state out of range) and that stored allowed sets are their
 //! supervisors' ([`validate_allowed_sets`]). Host tools call both to print
 //! where an image is wrong.
@@ -108,6 +109,9 @@ pub enum Flaw {
     Membership,
     /// A supervisor's `outside` set is not the events outside its alphabet.
     Outside,
+    /// A supervisor marked `contiguous` whose alphabet is not consecutive
+    /// event numbers in increasing order.
+    Contiguous,
     /// `commands` or `requested` holds an event that does not belong there
     /// or leaves out one that does.
     Commands,
@@ -243,6 +247,7 @@ impl fmt::Display for Flaw {
             Flaw::Period => f.write_str("a period outside 1 ms .. 2^31 ms"),
             Flaw::Membership => f.write_str("memberships and alphabet disagree"),
             Flaw::Outside => f.write_str("`outside` is not the events outside the alphabet"),
+            Flaw::Contiguous => f.write_str("an alphabet marked contiguous that is not"),
             Flaw::Commands => f.write_str("the command sets disagree with the events"),
             Flaw::TableCount => f.write_str("tables for some supervisors only"),
             Flaw::TableEvents => f.write_str("local events differ from the alphabet's"),
@@ -462,6 +467,7 @@ pub fn validate_config(c: &Config<'_>) -> Result<(), Invalid> {
 /// The agreement [`validate_generated`] adds to [`validate_config`]: each
 /// alphabet entry with exactly one membership, its own; each membership
 /// its alphabet's; each `outside` set the events outside the alphabet;
+/// an alphabet marked `contiguous` consecutive and increasing;
 /// the command sets exactly the controllable events without and with a
 /// request input. Assumes a configuration that passes
 /// [`validate_config`].
@@ -470,6 +476,11 @@ fn agreement(c: &Config<'_>) -> Result<(), Invalid> {
         let part = Part::Supervisor(j);
         let alphabet = spec.alphabet.of(c.event_lists);
         let outside = spec.outside.of(c.event_masks);
+        let first = alphabet.first().copied().unwrap_or(0);
+        let consecutive = (alphabet.iter().enumerate()).all(|(k, &e)| e == first + k as u32);
+        if spec.contiguous && !consecutive {
+            return fail(part, Flaw::Contiguous);
+        }
         for (local, &e) in alphabet.iter().enumerate() {
             let mut theirs = members(&c.event(e as usize), c).filter(|m| m.0 == j);
             match (theirs.next(), theirs.next()) {

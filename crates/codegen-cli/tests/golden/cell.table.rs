@@ -982,7 +982,7 @@ const EVENTS: [[u32; 7]; 28] = EventSpec::records(
     ],
 );
 
-/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), and whether an alphabet is consecutive event numbers (`contiguous`), by supervisor:
 /// - 0 `cell.1`: 2147483648 states, initial `0`
 /// - 1 `cell.2`: 65536 states, initial `ra13 + rb13 + c1 + c2 + c3 + c4 + c5`
 const SUPERVISORS: [[u32; 6]; 2] = SupervisorSpec::records(
@@ -993,6 +993,7 @@ const SUPERVISORS: [[u32; 6]; 2] = SupervisorSpec::records(
             alphabet: Span::new(6, 24),
             outside: Span::new(0, 1),
             allowed: AllowedSets::COMPUTED,
+            contiguous: false,
         },
         SupervisorSpec {
             states: 65536,
@@ -1000,6 +1001,7 @@ const SUPERVISORS: [[u32; 6]; 2] = SupervisorSpec::records(
             alphabet: Span::new(30, 18),
             outside: Span::new(1, 1),
             allowed: AllowedSets::COMPUTED,
+            contiguous: false,
         },
     ],
 );

@@ -344,7 +344,7 @@ const EVENTS: [[u32; 7]; 8] = EventSpec::records(
     ],
 );
 
-/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), and whether an alphabet is consecutive event numbers (`contiguous`), by supervisor:
 /// - 0 `sup_crane1`: 3 states, initial `idle`
 /// - 1 `sup_section`: 3 states, initial `free`
 const SUPERVISORS: [[u32; 6]; 2] = SupervisorSpec::records(
@@ -358,6 +358,7 @@ const SUPERVISORS: [[u32; 6]; 2] = SupervisorSpec::records(
                 index: Span::new(0, 1),
                 bits: 2,
             },
+            contiguous: false,
         },
         SupervisorSpec {
             states: 3,
@@ -368,6 +369,7 @@ const SUPERVISORS: [[u32; 6]; 2] = SupervisorSpec::records(
                 index: Span::new(1, 1),
                 bits: 3,
             },
+            contiguous: false,
         },
     ],
 );

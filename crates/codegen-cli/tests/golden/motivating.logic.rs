@@ -312,7 +312,7 @@ const EVENTS: [[u32; 7]; 9] = EventSpec::records(
     ],
 );
 
-/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor:
+/// Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), and whether an alphabet is consecutive event numbers (`contiguous`), by supervisor:
 /// - 0 `motivating`: 10 states, initial `0`
 const SUPERVISORS: [[u32; 6]; 1] = SupervisorSpec::records(
     &[
@@ -325,6 +325,7 @@ const SUPERVISORS: [[u32; 6]; 1] = SupervisorSpec::records(
                 index: Span::new(0, 1),
                 bits: 3,
             },
+            contiguous: true,
         },
     ],
 );
@@ -500,7 +501,7 @@ pub const CONFIG: Config<'static> = Config {
 /// CRC of the configuration alone (the program image without tables): how recorded
 /// scenarios name the project they belong to.
 #[allow(dead_code)]
-pub const CONFIG_CRC: u32 = 0x686d5b07;
+pub const CONFIG_CRC: u32 = 0x86d691d2;
 
 /// Words of an event set (32 events per word).
 #[allow(dead_code)]
@@ -856,7 +857,7 @@ pub mod logic {
 /// 11 scans, a flipped bit found within 21 scans (210 ms at 10 ms a scan).
 /// See `executor::image`.
 #[allow(dead_code)]
-pub const IMAGE_CRC: u32 = 0x686d5b07;
+pub const IMAGE_CRC: u32 = 0x86d691d2;
 
 /// The program's data: the configuration above, and the supervisors as
 /// minimised boolean functions (`executor::compiled`).

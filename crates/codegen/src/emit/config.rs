@@ -728,18 +728,19 @@ pub mod places {{"
                     "AllowedSets::COMPUTED".to_owned()
                 };
                 format!(
-                    "SupervisorSpec {{ states: {}, initial: {}, alphabet: {}, outside: {}, allowed: {allowed} }}",
+                    "SupervisorSpec {{ states: {}, initial: {}, alphabet: {}, outside: {}, allowed: {allowed}, contiguous: {} }}",
                     s.states,
                     s.initial,
                     self.span(s.alphabet),
-                    self.span(s.outside)
+                    self.span(s.outside),
+                    s.contiguous
                 )
             })
             .collect();
         self.pool(
             "SUPERVISORS",
             "SupervisorSpec",
-            "Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), by supervisor",
+            "Supervisor sizes, initial states, alphabets (`EVENT_LISTS`, in local order), the events outside them (`EVENT_MASKS`) and their allowed sets (stored: `ALLOWED_INDEX`), and whether an alphabet is consecutive event numbers (`contiguous`), by supervisor",
             &doc,
             &sups,
         );

@@ -697,12 +697,17 @@ impl<'p> Layout<'p> {
             };
             let outside = self.event_masks.span(&outside)?;
             let alphabet = to_indices(&shape.alphabet, "events")?;
+            // Consecutive and increasing (not so for a Petri-net group,
+            // whose local order is its transitions'): the scan shifts an
+            // enabled row into place rather than scattering its bits.
+            let contiguous = alphabet.windows(2).all(|w| w[1] == w[0].wrapping_add(1));
             supervisors.push(ex::SupervisorSpec {
                 states: shape.states,
                 initial: shape.initial,
                 alphabet: push_span(&mut self.event_lists, &alphabet, "event lists")?,
                 outside,
                 allowed,
+                contiguous,
             });
         }
         Ok(supervisors)

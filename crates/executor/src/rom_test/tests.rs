@@ -100,6 +100,7 @@ const SUPERVISORS: [SupervisorSpec; 1] = [SupervisorSpec {
     alphabet: Span::new(1, 1),
     outside: Span::EMPTY,
     allowed: AllowedSets::COMPUTED,
+    contiguous: false,
 }];
 /// The event's binding: `step` alone.
 const INPUT_MASKS: [u32; 1] = [mask_word(0, &[STEP as Index])];
@@ -328,6 +329,7 @@ pub(crate) fn every_pool() -> TableProgram<'static> {
                 index: Span::new(0, 1),
                 bits: 19,
             },
+            contiguous: false,
         }]),
         input_masks: &[0x11, 0x22],
         event_lists: &[5, 6, 7, 8],
