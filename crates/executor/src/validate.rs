@@ -175,7 +175,7 @@ pub struct Invalid {
 }
 
 impl Flaw {
-    /// A number per kind of flaw (1 to 23, in declaration order): how a
+    /// A number per kind of flaw, 1 to 24, fixed once given: how a
     /// refusal names it in a byte-sized report (`field_update`'s
     /// `Rejected::Structure`).
     pub const fn code(&self) -> u16 {
@@ -203,6 +203,7 @@ impl Flaw {
             Flaw::Shift => 21,
             Flaw::AllowedIndex => 22,
             Flaw::AllowedSet { .. } => 23,
+            Flaw::Contiguous => 24,
         }
     }
 }
