@@ -513,9 +513,9 @@ fn emit(collections: &[Collection]) -> String {
         let states = list(c.vectors.iter().flatten().map(u32::to_string).collect());
         let _ = writeln!(
             s,
-            "static GUARDS_{k}: [GuardSpec; {}] = [{guards}];\n\
-             static BITS_{k}: [StateBit; {}] = [{bits}];\n\
-             static NODES_{k}: [GuardNode; {}] = [{nodes}];\n\
+            "static GUARDS_{k}: [[u32; 3]; {}] = GuardSpec::records(&[{guards}]);\n\
+             static BITS_{k}: [[u32; 1]; {}] = StateBit::records(&[{bits}]);\n\
+             static NODES_{k}: [[u32; 2]; {}] = GuardNode::records(&[{nodes}]);\n\
              static SOPS_{k}: [SopGuard; {}] = [{}];\n\
              static GATHERS_{k}: [Gather; {}] = [{}];\n\
              static CUBES_{k}: [Cube; {}] = [{}];\n\

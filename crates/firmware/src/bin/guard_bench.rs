@@ -174,7 +174,7 @@ fn main() -> ! {
 
     let call = {
         let c = &COLLECTIONS[0];
-        let spec = &c.guards.events[0];
+        let spec = &GuardSpec::from_words(&c.guards.events[0]);
         let t0 = SYST::get_current();
         let _ = no_guard(black_box(&c.guards), black_box(spec), black_box(c.states));
         cost(t0, SYST::get_current())
@@ -190,6 +190,7 @@ fn main() -> ! {
         for v in 0..vectors {
             let states = &c.states[v * c.components..(v + 1) * c.components];
             for (spec, sg) in c.guards.events.iter().zip(c.sop.guards) {
+                let spec = &GuardSpec::from_words(spec);
                 let t0 = SYST::get_current();
                 let a = bdd_holds(black_box(&c.guards), black_box(spec), black_box(states));
                 let t1 = SYST::get_current();
@@ -230,7 +231,9 @@ fn main() -> ! {
         let kept_nodes: usize = (g.events.iter().zip(s.guards))
             .filter(|(_, sg)| sg.nodes)
             .map(|(spec, _)| {
-                size_of::<GuardSpec>() + usize::from(spec.nodes.len) * size_of::<GuardNode>()
+                // As stored: a guard's record and its nodes' records.
+                size_of_val(spec)
+                    + usize::from(GuardSpec::from_words(spec).nodes.len) * size_of::<[u32; 2]>()
             })
             .sum();
         let kept_bits = if as_nodes > 0 { size_of_val(g.bits) } else { 0 };
