@@ -11,9 +11,9 @@ use codegen::backend::Backend;
 use codegen::lower::Lowered;
 use executor::program::Program;
 use executor::table::SupervisorTable;
-use field_update::header::{version_parts, SlotHeader};
+use field_update::header::version_parts;
 use field_update::host::SlotFile;
-use field_update::{crc_of_words, CRC_ALGORITHM};
+use field_update::CRC_ALGORITHM;
 use std::path::PathBuf;
 
 /// The CRC of slot headers and images.
@@ -61,29 +61,21 @@ pub fn run(args: &ImageArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
     let crc = lowered.recorded_crc();
     // What the PLC will check, checked here first: a refusal is a bug of
     // the generator, not of the project.
-    let mut name = vec![0u8; words.len() * 4];
-    let mut tables = vec![SupervisorTable::EMPTY; lowered.config().supervisors.len()];
-    if crc_of_words(&CRC, &words) != crc {
+    let file = SlotFile::new(words, args.sequence, args.version, &CRC);
+    if file.header.image_crc != crc {
         return Err(CliError::Usage(format!(
             "{}: the image's words do not give its recorded CRC (a generator bug)",
             args.project.display()
         )));
     }
-    if let Err(refusal) = executor::parse::load(&words, &mut name, &mut tables, crc) {
+    let mut name = vec![0u8; file.image.len() * 4];
+    let mut tables = vec![SupervisorTable::EMPTY; lowered.config().supervisors.len()];
+    if let Err(refusal) = executor::parse::load(&file.image, &mut name, &mut tables, crc) {
         return Err(CliError::Usage(format!(
             "{}: the image read back is refused ({refusal}; a generator bug)",
             args.project.display()
         )));
     }
-    let file = SlotFile {
-        header: SlotHeader {
-            sequence: args.sequence,
-            version: args.version,
-            words: words.len() as u32,
-            image_crc: crc,
-        },
-        image: words,
-    };
     let bytes = file.to_bytes(&CRC);
     std::fs::write(&args.output, &bytes).map_err(|e| des::Error::io(&args.output, e))?;
     let (major, minor, patch) = version_parts(args.version);

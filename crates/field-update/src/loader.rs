@@ -11,7 +11,7 @@
 use crate::frame::{decode, encode, FrameReader, MAX_FRAME};
 use crate::header::{SlotHeader, HEADER_WORDS};
 use crate::protocol::{Refusal, Request, Response, Status, MAX_DATA};
-use crate::slot::{image_of, Check, Rejected, Slot, SlotStore, Valid};
+use crate::slot::{accept, image_of, Check, Slot, SlotStore, Valid};
 use crc::Crc;
 
 /// Where a load stands.
@@ -276,16 +276,9 @@ impl<'c> Loader<'c> {
         header: SlotHeader,
         found: u32,
     ) -> Outcome {
-        let refused = |why| Outcome::Refused(Refusal::Rejected(why));
-        if found != header.image_crc {
-            return refused(Rejected::ImageCrc {
-                found,
-                recorded: header.image_crc,
-            });
-        }
         let image = image_of(store.contents(slot), &header);
-        if let Err(code) = check.check(image) {
-            return refused(Rejected::Structure(code));
+        if let Err(why) = accept(image, &header, found, check) {
+            return Outcome::Refused(Refusal::Rejected(why));
         }
         if store.program(slot, 0, &header.to_words(self.crc)).is_err() {
             return Outcome::Refused(Refusal::Flash);

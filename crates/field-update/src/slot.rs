@@ -113,15 +113,26 @@ pub fn verify(
     let words = store.contents(slot);
     let header = SlotHeader::read(words, crc)?;
     let image = image_of(words, &header);
-    let found = crc_of_words(crc, image);
+    accept(image, &header, crc_of_words(crc, image), check)?;
+    Ok(Valid { slot, header })
+}
+
+/// The verdict on an image whose CRC, `found`, is computed: the header's
+/// CRC, then the firmware's check. What start-up ([`verify`]) and a load
+/// ([`crate::loader::Loader::poll`]) both ask.
+pub(crate) fn accept(
+    image: &[u32],
+    header: &SlotHeader,
+    found: u32,
+    check: &mut impl Check,
+) -> Result<(), Rejected> {
     if found != header.image_crc {
         return Err(Rejected::ImageCrc {
             found,
             recorded: header.image_crc,
         });
     }
-    check.check(image).map_err(Rejected::Structure)?;
-    Ok(Valid { slot, header })
+    check.check(image).map_err(Rejected::Structure)
 }
 
 /// The image words of a slot whose header was read from it.
