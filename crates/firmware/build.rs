@@ -6,6 +6,9 @@
 //!   or `match` (the baseline).
 //! - `PLC_SCENARIO` (feature `qemu`): the recorded scenario to replay
 //!   (`host-sim record`); `cargo xtask qemu` sets it.
+//! - `PLC_UPDATE_SCENARIO`, `PLC_UPDATE_IMAGE` (feature `qemu-update`):
+//!   the loaded project's scenario and slot file (`codegen image`);
+//!   `cargo xtask qemu-update` sets them.
 //! - `PLC_GUARD_BENCH` (feature `guard-bench`): the data of the guard-form
 //!   benchmark (Rust source); `cargo xtask guard-bench` writes and sets it.
 //!
@@ -116,6 +119,20 @@ fn main() {
             std::process::exit(1);
         };
         copy(&root.join(scenario), &out.join("scenario.bin"));
+    }
+    if std::env::var_os("CARGO_FEATURE_QEMU_UPDATE").is_some() {
+        for (var, file) in [
+            ("PLC_UPDATE_SCENARIO", "update-scenario.bin"),
+            ("PLC_UPDATE_IMAGE", "update.slot"),
+        ] {
+            let Some(path) = env(var) else {
+                eprintln!(
+                    "error: the qemu-update harness needs {var}; `cargo xtask qemu-update` sets it"
+                );
+                std::process::exit(1);
+            };
+            copy(&root.join(path), &out.join(file));
+        }
     }
     if guard_bench {
         let Some(data) = env("PLC_GUARD_BENCH") else {

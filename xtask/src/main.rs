@@ -8,6 +8,9 @@
 //! - `qemu [PROJECT] [SCENARIO]`: the firmware replay harness in QEMU for
 //!   every model (zero mismatches against host-sim, instructions per scan,
 //!   budgets, ratios to a `match` baseline).
+//! - `qemu-update`: field update in QEMU: images loaded over a simulated
+//!   serial link while the PLC scans, switched in, refused (corrupt,
+//!   hostile), rolled back at restart; every scan against host-sim.
 //! - `reduction [MODEL…]`: the synthesised supervisors of models in full,
 //!   reduced and localized form, measured as `qemu` measures a model
 //!   (tables, flash, instructions per scan): a report, no budgets.
@@ -41,6 +44,7 @@ mod iec;
 mod layers;
 mod matiec;
 mod qemu;
+mod qemu_update;
 mod reduction;
 mod size;
 mod sysdeps;
@@ -51,6 +55,7 @@ fn main() -> ExitCode {
         Some("ci") => ci(),
         Some("bench-faudes") => bench::run(&args[1..]),
         Some("qemu") => qemu::run_task(&args[1..]),
+        Some("qemu-update") => qemu_update::run_task(&args[1..]),
         Some("reduction") => reduction::run_task(&args[1..]),
         Some("size") => size::run_task(&args[1..]),
         Some("deps") => deps::run_task(&args[1..]),
@@ -67,6 +72,7 @@ fn main() -> ExitCode {
                  ci                         fmt, clippy, all tests, differential tests vs libFAUDES\n  \
                  bench-faudes [--runs N] [MODEL|FAMILY:N…]  supcon (explicit, symbolic) vs libFAUDES\n  \
                  qemu [PROJECT] [SCENARIO]  replay in QEMU: zero mismatches, instructions per scan, budgets\n  \
+                 qemu-update                field update in QEMU: loads over a serial link, switch, refusals, rollback\n  \
                  reduction [MODEL…]         full, reduced and localized supervisors in QEMU: flash, instructions per scan\n  \
                  size [MODEL…]              flash and static RAM of the board firmware, budgets\n  \
                  deps                       the README's commands and the firmware build without libclang (cargo tree)\n  \
@@ -306,6 +312,9 @@ fn ci() -> Result {
     // (Nucleo-F411RE and Raspberry Pi Pico), then clippy on the firmware
     // builds for their targets.
     qemu::run_task(&[])?;
+    // Field update in QEMU: loads, refusals, switches and rollbacks while
+    // the PLC scans (about a minute once built).
+    qemu_update::run_task(&[])?;
     // The guard forms on the target: node tables and sums of products
     // must agree on every evaluation (15 s once built).
     guard_bench::run_task(&[])?;
@@ -334,14 +343,14 @@ fn ci() -> Result {
             "firmware",
             "--no-default-features",
             "--features",
-            "qemu",
+            "qemu-update",
             "--target",
             "thumbv7em-none-eabihf",
             "--",
             "-D",
             "warnings",
         ])
-        .env("PLC_SCENARIO", target_dir().join("qemu/press.scenario")))?;
+        .envs(qemu_update::harness_env()))?;
     eprintln!("xtask: ci passed");
     Ok(())
 }

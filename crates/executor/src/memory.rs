@@ -278,6 +278,215 @@ impl<
     }
 }
 
+/// Memory with room for any program up to the sizes of its parameters
+/// (those of [`StaticMemory`]), sized for one configuration at run time:
+/// the memory of a program loaded in the field ([`crate::parse::load`]),
+/// whose sizes the firmware does not know when it is built.
+///
+/// ```
+/// use executor::memory::BoundedMemory;
+///
+/// /// Room for up to 64 inputs (2 words), 8 debounced, 16 outputs,
+/// /// 8 timers, 4 supervisors and 64 events (2 words, 8 for the sets).
+/// type Room = BoundedMemory<2, 8, 16, 8, 4, 64, 2, 8>;
+/// let mut memory = Room::new();
+/// // `memory.size_for(&loaded.config())` before `Controller::new`:
+/// // `false` when the loaded program needs more room.
+/// # let _ = &mut memory;
+/// ```
+#[derive(Debug, Clone)]
+pub struct BoundedMemory<
+    const IW: usize,
+    const D: usize,
+    const O: usize,
+    const T: usize,
+    const S: usize,
+    const E: usize,
+    const EW: usize,
+    const SEW: usize,
+> {
+    arrays: StaticMemory<IW, D, O, T, S, E, EW, SEW>,
+    len: Lengths,
+}
+
+/// The lengths a [`BoundedMemory`] gives its arrays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Lengths {
+    input_words: usize,
+    debounced: usize,
+    outputs: usize,
+    timers: usize,
+    supervisors: usize,
+    events: usize,
+    event_words: usize,
+}
+
+impl Lengths {
+    const ZERO: Lengths = Lengths {
+        input_words: 0,
+        debounced: 0,
+        outputs: 0,
+        timers: 0,
+        supervisors: 0,
+        events: 0,
+        event_words: 0,
+    };
+
+    fn of(config: &Config<'_>) -> Lengths {
+        Lengths {
+            input_words: words(config.inputs.len()),
+            debounced: config.debounced.len(),
+            outputs: config.outputs.len(),
+            timers: config.timers.len(),
+            supervisors: config.supervisors.len(),
+            events: config.events.len(),
+            event_words: words(config.events.len()),
+        }
+    }
+}
+
+/// The first `len` items of `array`, all of it when `len` is larger
+/// (never: [`BoundedMemory::size_for`] keeps every length in its array).
+fn first<T>(array: &mut [T], len: usize) -> &mut [T] {
+    let len = len.min(array.len());
+    &mut array[..len]
+}
+
+impl<
+        const IW: usize,
+        const D: usize,
+        const O: usize,
+        const T: usize,
+        const S: usize,
+        const E: usize,
+        const EW: usize,
+        const SEW: usize,
+    > Default for BoundedMemory<IW, D, O, T, S, E, EW, SEW>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<
+        const IW: usize,
+        const D: usize,
+        const O: usize,
+        const T: usize,
+        const S: usize,
+        const E: usize,
+        const EW: usize,
+        const SEW: usize,
+    > BoundedMemory<IW, D, O, T, S, E, EW, SEW>
+{
+    /// Zeroed memory sized for nothing yet (call [`Self::size_for`]).
+    pub const fn new() -> Self {
+        BoundedMemory {
+            arrays: StaticMemory::new(),
+            len: Lengths::ZERO,
+        }
+    }
+
+    /// `true` when every array has room for what `config` needs.
+    pub fn has_room(config: &Config<'_>) -> bool {
+        let len = Lengths::of(config);
+        len.input_words <= IW
+            && len.debounced <= D
+            && len.outputs <= O
+            && len.timers <= T
+            && len.supervisors <= S
+            && len.events <= E
+            && len.event_words <= EW
+            && len.supervisors * len.event_words <= SEW
+    }
+
+    /// Sizes the memory for `config` and zeroes it; `false`, and the
+    /// memory unchanged, when one of its arrays is too small.
+    pub fn size_for(&mut self, config: &Config<'_>) -> bool {
+        let room = Self::has_room(config);
+        if room {
+            self.arrays = StaticMemory::new();
+            self.len = Lengths::of(config);
+        }
+        room
+    }
+}
+
+impl<
+        const IW: usize,
+        const D: usize,
+        const O: usize,
+        const T: usize,
+        const S: usize,
+        const E: usize,
+        const EW: usize,
+        const SEW: usize,
+    > sealed::Storage for BoundedMemory<IW, D, O, T, S, E, EW, SEW>
+{
+    fn ram(&mut self) -> Ram<'_> {
+        let len = self.len;
+        let a = &mut self.arrays;
+        let (iw, ew) = (len.input_words, len.event_words);
+        Ram {
+            raw: first(&mut a.raw, iw),
+            filtered: first(&mut a.filtered, iw),
+            previous: first(&mut a.previous, iw),
+            debounce: first(&mut a.debounce, len.debounced),
+            timer_running: first(&mut a.timer_running, len.timers),
+            timer_deadline: first(&mut a.timer_deadline, len.timers),
+            latched: first(&mut a.latched, len.outputs),
+            outputs: first(&mut a.outputs, len.outputs),
+            states: first(&mut a.states, len.supervisors),
+            occurred: first(&mut a.occurred, ew),
+            done: first(&mut a.done, ew),
+            allowed: first(&mut a.allowed, len.supervisors * ew),
+            feasible: first(&mut a.feasible, ew),
+            executed: first(&mut a.executed, len.events),
+            unexpected: first(&mut a.unexpected, len.events),
+        }
+    }
+
+    fn states(&self) -> &[u32] {
+        &self.arrays.states[..self.len.supervisors.min(S)]
+    }
+
+    fn outputs(&self) -> &[bool] {
+        &self.arrays.outputs[..self.len.outputs.min(O)]
+    }
+
+    fn executed(&self) -> &[u16] {
+        &self.arrays.executed[..self.len.events.min(E)]
+    }
+
+    fn unexpected(&self) -> &[u16] {
+        &self.arrays.unexpected[..self.len.events.min(E)]
+    }
+
+    fn timers(&self) -> (&[bool], &[u32]) {
+        let t = self.len.timers.min(T);
+        (
+            &self.arrays.timer_running[..t],
+            &self.arrays.timer_deadline[..t],
+        )
+    }
+}
+
+impl<
+        const IW: usize,
+        const D: usize,
+        const O: usize,
+        const T: usize,
+        const S: usize,
+        const E: usize,
+        const EW: usize,
+        const SEW: usize,
+    > Memory for BoundedMemory<IW, D, O, T, S, E, EW, SEW>
+{
+    fn fits(&self, config: &Config<'_>) -> bool {
+        self.len == Lengths::of(config)
+    }
+}
+
 #[cfg(feature = "alloc")]
 pub use heap::HeapMemory;
 

@@ -449,6 +449,68 @@ fn memory_of_the_wrong_size_is_refused() {
     .is_err());
 }
 
+#[test]
+fn bounded_memory_runs_a_program_that_fits_as_memory_of_its_exact_size() {
+    use crate::memory::BoundedMemory;
+    let config = config(0, UnexpectedPolicy::Fault, None);
+    let mut room: BoundedMemory<2, 1, 4, 2, 2, 40, 2, 4> = BoundedMemory::new();
+    // Not sized yet: refused like memory of the wrong size.
+    assert!(Controller::new(
+        Conveyor {
+            config,
+            intact: true
+        },
+        room.clone()
+    )
+    .is_err());
+    assert!(room.size_for(&config));
+    let mut bounded = Controller::new(
+        Conveyor {
+            config,
+            intact: true,
+        },
+        room,
+    )
+    .unwrap();
+    let mut exact = plain();
+    for (k, (ls, reset)) in [(false, false), (true, false), (true, false), (false, false)]
+        .into_iter()
+        .cycle()
+        .take(40)
+        .enumerate()
+    {
+        let t = 10 * k as u32;
+        let want = exact.scan(t, &io(ls, reset));
+        let want = (
+            want.executed.to_vec(),
+            want.states.to_vec(),
+            want.outputs.to_vec(),
+            want.fault,
+        );
+        let got = bounded.scan(t, &io(ls, reset));
+        let got = (
+            got.executed.to_vec(),
+            got.states.to_vec(),
+            got.outputs.to_vec(),
+            got.fault,
+        );
+        assert_eq!(got, want, "scan {k}");
+    }
+}
+
+#[test]
+fn bounded_memory_refuses_a_program_larger_than_its_room() {
+    use crate::memory::{BoundedMemory, Memory};
+    let config = config(0, UnexpectedPolicy::Fault, None);
+    // Room for 4 events: the conveyor has 5.
+    let mut room: BoundedMemory<1, 0, 2, 1, 1, 4, 1, 1> = BoundedMemory::new();
+    assert!(!room.size_for(&config));
+    assert!(!room.fits(&config));
+    // Room for every size but the outputs.
+    let mut room: BoundedMemory<1, 0, 1, 1, 1, 5, 1, 1> = BoundedMemory::new();
+    assert!(!room.size_for(&config));
+}
+
 /// Memory corruption (a flipped RAM bit) is simulated by writing the
 /// sealed arrays from inside the crate.
 #[test]

@@ -14,6 +14,21 @@ pub fn elapsed(before: u32, after: u32) -> u32 {
     before.wrapping_sub(after) & 0x00ff_ffff
 }
 
+/// Starts SysTick as the instruction counter (core clock, the whole
+/// 24-bit range) and returns the ticks that reading it twice costs, which
+/// every sample subtracts.
+#[cfg(any(feature = "qemu", feature = "guard-bench"))]
+pub fn start(syst: &mut cortex_m::peripheral::SYST) -> u32 {
+    use cortex_m::peripheral::{syst::SystClkSource, SYST};
+    syst.set_clock_source(SystClkSource::Core);
+    syst.set_reload(0x00ff_ffff);
+    syst.clear_current();
+    syst.enable_counter();
+    let a = SYST::get_current();
+    let b = SYST::get_current();
+    elapsed(a, b)
+}
+
 /// Ends a QEMU run with `code` (semihosting exit); on a debugger without
 /// semihosting exit, parks.
 #[cfg(any(feature = "qemu", feature = "guard-bench"))]

@@ -10,7 +10,9 @@
 //! - [`edges`]: change counts of edge-latched inputs, lost edges, the EXTI
 //!   line map;
 //! - [`levels`]: active-low pins;
-//! - [`icount`]: instruction counts in QEMU (SysTick under `-icount`).
+//! - [`icount`]: instruction counts in QEMU (SysTick under `-icount`);
+//! - [`update`]: field update, what a loaded image must pass and the
+//!   memory it runs in.
 //!
 //! No control logic lives here or in the binaries: every decision is the
 //! executor's, including when scans start (`executor::pacing`: the fixed
@@ -24,6 +26,7 @@
 pub mod edges;
 pub mod icount;
 pub mod levels;
+pub mod update;
 
 /// The chip the board firmware is built for (feature `pico`: the RP2040;
 /// otherwise the STM32F411, the default board's): the pins it keeps for

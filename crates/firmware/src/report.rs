@@ -43,10 +43,16 @@ pub fn startup(startup: &Startup, watchdog_ms: u32) {
     );
 }
 
-/// The program image check of `Controller::new`.
-pub fn image_check(fault: Option<Fault>) {
+/// The program image check of `Controller::new`, and which program runs:
+/// the built-in one (version 0), its image CRC (what a field update's
+/// `Status` reports, `codegen image` prints).
+pub fn image_check(fault: Option<Fault>, image_crc: u32) {
     match fault {
-        None => defmt::info!("program image intact (CRC checked)"),
+        None => defmt::info!(
+            "program `{=str}` built-in, image CRC {=u32:#010x}: intact",
+            CONFIG.name,
+            image_crc
+        ),
         Some(f) => defmt::error!(
             "program image check failed ({}): fault mode, outputs at their safe levels",
             f

@@ -28,7 +28,7 @@ use core::cell::Cell;
 use critical_section::Mutex;
 use embedded_hal::digital::{InputPin, OutputPin, PinState};
 use executor::pacing::Pacer;
-use executor::Controller;
+use executor::{Controller, Program};
 use firmware::edges::{ChangeCounts, LineMap};
 use firmware::levels;
 use firmware::program::board::{SignalPin, EDGE_LATCHED, INPUT_PINS, OUTPUT_PINS};
@@ -227,7 +227,7 @@ pub fn run<B: Board>(mut board: B, startup: Startup) -> ! {
         Ok(c) => c,
         Err(e) => defmt::panic!("the generated memory does not fit the program: {}", e),
     };
-    report::image_check(controller.fault());
+    report::image_check(controller.fault(), program::PROGRAM.recorded_crc());
 
     board.start_watchdog(WATCHDOG_MS);
     let now = board.now_ms();

@@ -142,7 +142,7 @@ pub(super) const LAYERS: &[Layer] = &[
     Layer {
         name: "firmware",
         stage: Stage::Top,
-        normal: &["boards", "executor"],
+        normal: &["boards", "executor", "field-update"],
         build: &["codegen"],
         dev: &[],
     },

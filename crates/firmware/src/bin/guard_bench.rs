@@ -30,12 +30,11 @@
 
 use core::hint::black_box;
 use core::mem::{size_of, size_of_val};
-use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::SYST;
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
 use executor::program::{GuardNode, GuardSpec, Guards, Span, StateBit};
-use firmware::icount::{elapsed, exit, finish, instructions};
+use firmware::icount::{elapsed, exit, finish, instructions, start};
 use panic_semihosting as _;
 
 /// A run of state bits copied into the packed word:
@@ -158,15 +157,7 @@ fn main() -> ! {
         hprintln!("error: core peripherals taken twice");
         exit(debug::EXIT_FAILURE)
     };
-    core.SYST.set_clock_source(SystClkSource::Core);
-    core.SYST.set_reload(0x00ff_ffff);
-    core.SYST.clear_current();
-    core.SYST.enable_counter();
-    let overhead = {
-        let a = SYST::get_current();
-        let b = SYST::get_current();
-        elapsed(a, b)
-    };
+    let overhead = start(&mut core.SYST);
     let cost = |before, after| {
         let i = instructions(elapsed(before, after).saturating_sub(overhead));
         u16::try_from(i).unwrap_or(u16::MAX)

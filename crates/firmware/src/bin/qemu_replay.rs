@@ -27,13 +27,12 @@
 #![no_main]
 
 use core::sync::atomic::{AtomicU32, Ordering};
-use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::SYST;
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
 use executor::replay::{unpack_words, RecordedScan, ScenarioHeader};
 use executor::{Controller, Program};
-use firmware::icount::{elapsed, exit, finish, instructions};
+use firmware::icount::{elapsed, exit, finish, instructions, start};
 use firmware::program;
 use panic_semihosting as _;
 
@@ -106,10 +105,8 @@ fn main() -> ! {
     let Some(mut core) = cortex_m::Peripherals::take() else {
         fail("core peripherals taken twice");
     };
-    core.SYST.set_clock_source(SystClkSource::Core);
-    core.SYST.set_reload(0x00ff_ffff);
-    core.SYST.clear_current();
-    core.SYST.enable_counter();
+    // The cost of reading the counter twice, subtracted from every sample.
+    let overhead = start(&mut core.SYST);
 
     let Ok((header, mut rest)) = postcard::take_from_bytes::<ScenarioHeader>(SCENARIO) else {
         fail("the scenario has no valid header");
@@ -146,13 +143,6 @@ fn main() -> ! {
         per_scan,
         bytes.div_ceil(per_scan)
     );
-
-    // The cost of reading the counter twice, subtracted from every sample.
-    let overhead = {
-        let a = SYST::get_current();
-        let b = SYST::get_current();
-        elapsed(a, b)
-    };
 
     // Packed as a board reads its input ports, before the scan is timed.
     let mut raw = [0u32; program::INPUT_WORDS];
