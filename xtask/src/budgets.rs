@@ -66,6 +66,9 @@ pub struct ModelBudget {
     pub pico_flash: Option<u64>,
     /// Static RAM of the RP2040 firmware.
     pub pico_ram: Option<u64>,
+    /// Code bytes of the board firmware (Nucleo-F411RE) whose source is
+    /// the executor crate, inlined code included (`code_share`).
+    pub executor_code: Option<u64>,
 }
 
 fn yes() -> bool {
@@ -120,6 +123,7 @@ impl ModelBudget {
             pico_project: None,
             pico_flash: None,
             pico_ram: None,
+            executor_code: None,
         }
     }
 

@@ -37,6 +37,7 @@ use std::process::{Command, ExitCode};
 mod bench;
 mod browser;
 mod budgets;
+mod code_share;
 mod deps;
 mod example;
 mod guard_bench;

@@ -2,10 +2,14 @@
 //! every model of `budgets.toml`, checked against the board budgets: the
 //! Nucleo-F411RE build (STM32F411, `thumbv7em-none-eabihf`) of every model
 //! with a board, and the Raspberry Pi Pico build (RP2040, feature `pico`,
-//! `thumbv6m-none-eabi`) of every model with a `pico_project`.
+//! `thumbv6m-none-eabi`) of every model with a `pico_project`. Per
+//! Nucleo image also the executor's code (`code_share`: inlined code
+//! counted by its source), checked against `executor_code`; and the
+//! first image's code by source in full.
 
-use crate::budgets::Budgets;
-use crate::{cargo, root, run, Result};
+use crate::budgets::{self, Budgets};
+use crate::{cargo, code_share, root, run, Result};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -104,9 +108,9 @@ impl Firmware {
         cmd
     }
 
-    /// Builds the board binary of `project` (table backend): the board's
-    /// name, whether it is the Pico, and the ELF's flash and static RAM.
-    fn build(&self, project: &str) -> Result<(&'static str, bool, u64, u64)> {
+    /// Builds the board binary of `project` (table backend): what
+    /// `cargo xtask size` reports of it.
+    fn build(&self, project: &str) -> Result<Built> {
         run(self
             .cargo("build")
             .args(["--bin", "firmware"])
@@ -114,7 +118,37 @@ impl Firmware {
             .env("PLC_BACKEND", "table"))?;
         let elf = crate::target_dir().join(format!("{}/release/firmware", self.target));
         let (flash, ram) = llvm_size(&elf)?;
-        Ok((self.board, self.features == "pico", flash, ram))
+        Ok(Built {
+            board: self.board,
+            pico: self.features == "pico",
+            flash,
+            ram,
+            code: code_share::by_source(&elf)?,
+        })
+    }
+}
+
+/// A board firmware built.
+struct Built {
+    board: &'static str,
+    pico: bool,
+    flash: u64,
+    ram: u64,
+    /// Code bytes by source (`code_share`).
+    code: BTreeMap<String, u64>,
+}
+
+impl Built {
+    /// Code bytes of the executor's functions and of what they inline,
+    /// wherever the compiler put them.
+    fn executor(&self) -> u64 {
+        let key = code_share::EXECUTOR_WITH_INLINED;
+        self.code.get(key).copied().unwrap_or(0)
+    }
+
+    /// Code bytes whose source lines are the executor's.
+    fn executor_lines(&self) -> u64 {
+        self.code.get("executor").copied().unwrap_or(0)
     }
 }
 
@@ -133,26 +167,62 @@ pub fn run_task(args: &[String]) -> Result {
         if let Some(project) = &model.pico_project {
             builds.push(Firmware::PICO.build(project)?);
         }
-        for (board, pico, flash, ram) in builds {
-            failures.extend(model.check_board(name, pico, flash, ram));
-            let (bf, br) = if pico {
-                (model.pico_flash, model.pico_ram)
+        for built in builds {
+            failures.extend(model.check_board(name, built.pico, built.flash, built.ram));
+            let (bf, br, bx) = if built.pico {
+                (model.pico_flash, model.pico_ram, None)
             } else {
-                (model.board_flash, model.board_ram)
+                let over =
+                    budgets::over(name, "executor code", built.executor(), model.executor_code);
+                failures.extend(over);
+                (model.board_flash, model.board_ram, model.executor_code)
             };
-            rows.push((name.clone(), board, flash, ram, bf, br));
+            rows.push((name.clone(), built, bf, br, bx));
         }
     }
     println!(
-        "\n{:<14} {:<14} {:>10} {:>10} {:>12} {:>12}",
-        "model", "board", "flash", "ram", "flash budget", "ram budget"
+        "\n{:<14} {:<14} {:>10} {:>10} {:>12} {:>12} {:>9} {:>8} {:>6}",
+        "model",
+        "board",
+        "flash",
+        "ram",
+        "flash budget",
+        "ram budget",
+        "executor",
+        "budget",
+        "lines"
     );
     let show = |v: Option<u64>| v.map_or("-".to_owned(), |v| v.to_string());
-    for (name, board, flash, ram, bf, br) in rows {
+    for (name, built, bf, br, bx) in &rows {
         println!(
-            "{name:<14} {board:<14} {flash:>10} {ram:>10} {:>12} {:>12}",
-            show(bf),
-            show(br)
+            "{name:<14} {:<14} {:>10} {:>10} {:>12} {:>12} {:>9} {:>8} {:>6}",
+            built.board,
+            built.flash,
+            built.ram,
+            show(*bf),
+            show(*br),
+            built.executor(),
+            show(*bx),
+            built.executor_lines()
+        );
+    }
+    println!(
+        "(executor: code bytes of the executor's functions and of what they inline, wherever inlined; lines: of those, the bytes of its own source lines)"
+    );
+    // The first board image in full: where its code comes from.
+    if let Some((name, built, ..)) = rows.first() {
+        let mut code: Vec<_> = built
+            .code
+            .iter()
+            .filter(|(s, _)| *s != code_share::EXECUTOR_WITH_INLINED)
+            .collect();
+        code.sort_by(|a, b| b.1.cmp(a.1).then(a.0.cmp(b.0)));
+        let total: u64 = code.iter().map(|(_, b)| **b).sum();
+        let list: Vec<String> = code.iter().map(|(s, b)| format!("{s} {b}")).collect();
+        println!(
+            "\ncode of {name} on {} by source ({total} bytes of .text; inlined code counted where its source is): {}",
+            built.board,
+            list.join(", ")
         );
     }
     if failures.is_empty() {
