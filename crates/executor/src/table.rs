@@ -180,20 +180,41 @@ impl SupervisorTable<'_> {
             let (pre, post) = (*self.defined.get(local)?, *self.targets.get(local)?);
             return self.fire(fields, state, pre, post);
         }
-        let pair = state as usize * m + local;
-        if !bit(self.defined, pair) {
-            return None;
-        }
-        let entry = match self.rows {
-            Rows::Dense => pair,
-            Rows::Net { .. } => return None,
-            Rows::Sparse {
-                row_starts,
-                start_bits,
-            } => {
-                let row = state as usize * m;
-                read_bits(row_starts, state as usize, start_bits) as usize
-                    + ones_between(self.defined, row, pair)
+        let row = state as usize * m;
+        let pair = row + local;
+        let entry = if m <= 32 {
+            // The state's whole row of defined-bits in one read: the
+            // event's bit, and for a sparse row the count before it.
+            let bits = read_bits_at(self.defined, row, m as u8);
+            if bits >> local & 1 == 0 {
+                return None;
+            }
+            match self.rows {
+                Rows::Dense => pair,
+                Rows::Net { .. } => return None,
+                Rows::Sparse {
+                    row_starts,
+                    start_bits,
+                } => {
+                    let before = bits & ((1u32 << local) - 1);
+                    read_bits(row_starts, state as usize, start_bits) as usize
+                        + before.count_ones() as usize
+                }
+            }
+        } else {
+            if !bit(self.defined, pair) {
+                return None;
+            }
+            match self.rows {
+                Rows::Dense => pair,
+                Rows::Net { .. } => return None,
+                Rows::Sparse {
+                    row_starts,
+                    start_bits,
+                } => {
+                    read_bits(row_starts, state as usize, start_bits) as usize
+                        + ones_between(self.defined, row, pair)
+                }
             }
         };
         Some(read_bits(self.targets, entry, self.state_bits))
