@@ -180,20 +180,41 @@ impl SupervisorTable<'_> {
             let (pre, post) = (*self.defined.get(local)?, *self.targets.get(local)?);
             return self.fire(fields, state, pre, post);
         }
-        let pair = state as usize * m + local;
-        if !bit(self.defined, pair) {
-            return None;
-        }
-        let entry = match self.rows {
-            Rows::Dense => pair,
-            Rows::Net { .. } => return None,
-            Rows::Sparse {
-                row_starts,
-                start_bits,
-            } => {
-                let row = state as usize * m;
-                read_bits(row_starts, state as usize, start_bits) as usize
-                    + ones_between(self.defined, row, pair)
+        let row = state as usize * m;
+        let pair = row + local;
+        let entry = if m <= 32 {
+            // The state's whole row of defined-bits in one read: the
+            // event's bit, and for a sparse row the count before it.
+            let bits = read_bits_at(self.defined, row, m as u8);
+            if bits >> local & 1 == 0 {
+                return None;
+            }
+            match self.rows {
+                Rows::Dense => pair,
+                Rows::Net { .. } => return None,
+                Rows::Sparse {
+                    row_starts,
+                    start_bits,
+                } => {
+                    let before = bits & ((1u32 << local) - 1);
+                    read_bits(row_starts, state as usize, start_bits) as usize
+                        + before.count_ones() as usize
+                }
+            }
+        } else {
+            if !bit(self.defined, pair) {
+                return None;
+            }
+            match self.rows {
+                Rows::Dense => pair,
+                Rows::Net { .. } => return None,
+                Rows::Sparse {
+                    row_starts,
+                    start_bits,
+                } => {
+                    read_bits(row_starts, state as usize, start_bits) as usize
+                        + ones_between(self.defined, row, pair)
+                }
             }
         };
         Some(read_bits(self.targets, entry, self.state_bits))
@@ -516,6 +537,75 @@ mod tests {
         let mut set = [0u32; 1];
         assert!(!DENSE.insert_enabled_net(0, &[0, 1], &mut set), "not a net");
         assert_eq!(set, [0]);
+    }
+
+    /// Rows of exactly 32 and of 31 local events (read whole, one count
+    /// per lookup): the sparse layout gives the dense layout's targets,
+    /// events 30 and 31 included, and undefined pairs stay undefined.
+    #[test]
+    fn sparse_rows_of_a_whole_word_agree_with_dense() {
+        extern crate std;
+        use std::vec;
+        fn put(words: &mut [u32], index: usize, width: usize, value: u32) {
+            for b in 0..width {
+                if value >> b & 1 == 1 {
+                    let bit = index * width + b;
+                    words[bit / 32] |= 1 << (bit % 32);
+                }
+            }
+        }
+        for m in [31usize, 32] {
+            let (n, width) = (7usize, 3usize);
+            let defined_at = |s: usize, e: usize| !(s * 7 + e * 3).is_multiple_of(5) || e >= 30;
+            let target = |s: usize, e: usize| ((s + e) % n) as u32;
+            let mut defined = vec![0u32; (n * m).div_ceil(32)];
+            let mut dense = vec![0u32; (n * m * width).div_ceil(32)];
+            let mut sparse = vec![0u32; (n * m * width).div_ceil(32)];
+            let mut row_starts = vec![0u32; (n * 8).div_ceil(32)];
+            let mut k = 0;
+            for s in 0..n {
+                put(&mut row_starts, s, 8, k as u32);
+                for e in 0..m {
+                    if defined_at(s, e) {
+                        put(&mut defined, s * m + e, 1, 1);
+                        put(&mut dense, s * m + e, width, target(s, e));
+                        put(&mut sparse, k, width, target(s, e));
+                        k += 1;
+                    }
+                }
+            }
+            let table = |targets, rows| SupervisorTable {
+                events: m as Index,
+                state_bits: width as u8,
+                defined: &defined,
+                targets,
+                rows,
+            };
+            let dense = table(&dense, Rows::Dense);
+            let sparse = table(
+                &sparse,
+                Rows::Sparse {
+                    row_starts: &row_starts,
+                    start_bits: 8,
+                },
+            );
+            for s in 0..n {
+                for e in 0..m {
+                    let expected = defined_at(s, e).then(|| target(s, e));
+                    let (state, local) = (s as u32, e as Index);
+                    assert_eq!(
+                        dense.next_state(state, local),
+                        expected,
+                        "dense {m} {s} {e}"
+                    );
+                    assert_eq!(
+                        sparse.next_state(state, local),
+                        expected,
+                        "sparse {m} {s} {e}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
