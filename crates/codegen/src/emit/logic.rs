@@ -73,8 +73,10 @@ fn code_literal(code: u32, bits: usize) -> String {
 /// executor's `Program::enabled`: φ's rows looked up by state code),
 /// `<name>_move(q, e) -> u32` (Ω on an event `q` defines: per event, only
 /// the terms 1 on some state code defining it, so that a move evaluates no
-/// other event's terms; past [`MOVE_TERMS_MAX`] terms, by state code) and `<name>_step(q, e) -> Option<u32>` (φ and that
-/// Ω, as its `Program::next_state`), where `q` is a state code. Its doc
+/// other event's terms; past [`MOVE_TERMS_MAX`] terms, by state code) and
+/// `<name>_step(q, e) -> Option<u32>` (φ, read from its row once some φ has
+/// more than [`MOVE_TERMS_MAX`] terms, and that Ω, as its
+/// `Program::next_state`), where `q` is a state code. Its doc
 /// comment gives the state codes, the reset code
 /// and the transitions of the first states. Names are sanitised into
 /// identifiers, or into one-line text in doc comments, so no name can
@@ -90,7 +92,10 @@ pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
 /// than the terms: the compiler lays such a `match` out as a jump table or
 /// a binary search, so a move costs a few comparisons instead of one per
 /// term (the boiler's 1,272-state sequence evaluated up to 1,600 terms on
-/// one move). φ is the same either way, so is every trace.
+/// one move). φ is the same either way, so is every trace. The same bound
+/// decides how `_step` asks φ: a supervisor with a φ of more than this many
+/// terms reads it from its row by state code (`_enabled`), a lookup,
+/// instead of evaluating the sum of products.
 pub const MOVE_TERMS_MAX: usize = 32;
 
 /// [`supervisor_module`], with the events of more than `lookup_above`
@@ -518,16 +523,33 @@ fn module_with(logic: &LogicSupervisor, names: &Names<'_>, lookup_above: usize) 
         let _ = writeln!(out, "    w\n}}\n");
     }
 
-    // Both, as the executor wants them.
+    // Both, as the executor wants them. φ as a sum of products while its
+    // functions are small, as its row by state code once one has more
+    // terms than a move may evaluate.
+    let by_row = logic
+        .defined_covers()
+        .iter()
+        .any(|phi| phi.cubes.len() > lookup_above);
+    let (defined, how) = if by_row {
+        (
+            format!("{prefix}_enabled(q, e, 1) != 0"),
+            format!(
+                "\n/// φ read from its row by state code (`_enabled`): some φ has more than\n\
+                 /// {lookup_above} terms."
+            ),
+        )
+    } else {
+        (format!("{prefix}_defined(q, e)"), String::new())
+    };
     let _ = writeln!(
         out,
         "/// `{prefix}`: the code reached from `q` on local event `e`, `None` when the\n\
-         /// event is not defined there."
+         /// event is not defined there.{how}"
     );
     let _ = writeln!(
         out,
         "pub fn {prefix}_step(q: u32, e: u16) -> Option<u32> {{\n    \
-         if {prefix}_defined(q, e) {{\n        \
+         if {defined} {{\n        \
          Some({prefix}_move(q, e))\n    \
          }} else {{\n        \
          None\n    \
