@@ -73,13 +73,35 @@ fn code_literal(code: u32, bits: usize) -> String {
 /// executor's `Program::enabled`: φ's rows looked up by state code),
 /// `<name>_move(q, e) -> u32` (Ω on an event `q` defines: per event, only
 /// the terms 1 on some state code defining it, so that a move evaluates no
-/// other event's terms) and `<name>_step(q, e) -> Option<u32>` (φ and that
-/// Ω, as its `Program::next_state`), where `q` is a state code. Its doc
+/// other event's terms; past [`MOVE_TERMS_MAX`] terms, by state code) and
+/// `<name>_step(q, e) -> Option<u32>` (φ, read from its row once some φ has
+/// more than [`MOVE_TERMS_MAX`] terms, and that Ω, as its
+/// `Program::next_state`), where `q` is a state code. Its doc
 /// comment gives the state codes, the reset code
 /// and the transitions of the first states. Names are sanitised into
 /// identifiers, or into one-line text in doc comments, so no name can
 /// inject code; the functions use neither `std`, allocation nor `unsafe`.
 pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
+    module_with(logic, names, MOVE_TERMS_MAX)
+}
+
+/// The most product terms an event's arm of `_move` evaluates. An event
+/// whose terms (those of ω that are 1 on some state code defining it) are
+/// more is moved by a `match` on the state code instead, its arms the codes
+/// the event leaves and the code each reaches, when those arms are fewer
+/// than the terms: the compiler lays such a `match` out as a jump table or
+/// a binary search, so a move costs a few comparisons instead of one per
+/// term (the boiler's 1,272-state sequence evaluated up to 1,600 terms on
+/// one move). φ is the same either way, so is every trace. The same bound
+/// decides how `_step` asks φ: a supervisor with a φ of more than this many
+/// terms reads it from its row by state code (`_enabled`), a lookup,
+/// instead of evaluating the sum of products.
+pub const MOVE_TERMS_MAX: usize = 32;
+
+/// [`supervisor_module`], with the events of more than `lookup_above`
+/// terms in `_move` moved by state code (0: every event that has terms,
+/// even where the codes it leaves are not fewer; for tests).
+fn module_with(logic: &LogicSupervisor, names: &Names<'_>, lookup_above: usize) -> String {
     let prefix = supervisor_item(names.supervisor);
     let l = usize::from(logic.bits());
     let m = logic.events();
@@ -363,15 +385,9 @@ pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
     // Ω on a move the state defines, what the executor asks: per event,
     // only the terms of ω that are 1 on some state code defining it (the
     // others are 0 on every such code, so the result is ω's).
-    let _ = writeln!(
-        out,
-        "/// `{prefix}`: the code reached from `q` on local event `e` when `q` is the code of\n\
-         /// a state that defines `e` (what `_step` asks; otherwise unspecified): per event,\n\
-         /// the terms of ω that are 1 on some state code defining it."
-    );
-    let _ = writeln!(out, "pub fn {prefix}_move(q: u32, e: u16) -> u32 {{");
+    let mut doc = "/// the terms of ω that are 1 on some state code defining it.".to_owned();
     let codes = logic.encoding().codes();
-    let moves: Vec<Vec<Term>> = (0..m)
+    let mut moves: Vec<Vec<Term>> = (0..m)
         .map(|i| {
             let defining: Vec<u32> = codes
                 .iter()
@@ -396,10 +412,104 @@ pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
             terms
         })
         .collect();
-    if moves.iter().all(Vec::is_empty) {
+    // The events of too many terms, by state code: (event, arms of
+    // (codes, target)), the codes the event leaves, grouped by target.
+    let mut lookups: Vec<(usize, Lookup)> = Vec::new();
+    for (i, terms) in moves.iter_mut().enumerate() {
+        if terms.len() <= lookup_above {
+            continue;
+        }
+        let mut arms: Lookup = Vec::new();
+        let mut sorted: Vec<u32> = codes.to_vec();
+        sorted.sort_unstable();
+        for code in sorted {
+            let Some(target) = logic.next_state(code, i as u16) else {
+                continue;
+            };
+            if target == code {
+                continue;
+            }
+            match arms.iter_mut().find(|(_, t)| *t == target) {
+                Some((from, _)) => from.push(code),
+                None => arms.push((vec![code], target)),
+            }
+        }
+        let listed: usize = arms.iter().map(|(from, _)| from.len()).sum();
+        if listed < terms.len() || lookup_above == 0 {
+            terms.clear();
+            lookups.push((i, arms));
+        }
+    }
+    if !lookups.is_empty() {
+        doc = format!(
+            "/// the terms of ω that are 1 on some state code defining it; an event of more than\n\
+             /// {lookup_above} such terms by state code instead, when the codes it leaves are fewer\n\
+             /// (each arm: the codes it leaves for one code, that code; others keep theirs)."
+        );
+    }
+    let _ = writeln!(
+        out,
+        "/// `{prefix}`: the code reached from `q` on local event `e` when `q` is the code of\n\
+         /// a state that defines `e` (what `_step` asks; otherwise unspecified): per event,\n\
+         {doc}"
+    );
+    let _ = writeln!(out, "pub fn {prefix}_move(q: u32, e: u16) -> u32 {{");
+    let lookup_expr = |arms: &[(Vec<u32>, u32)]| {
+        if arms.is_empty() {
+            return "q".to_owned();
+        }
+        let mut text = "match q {\n".to_owned();
+        for (from, target) in arms {
+            let from: Vec<String> = from.iter().map(|c| format!("{c:#x}")).collect();
+            let _ = writeln!(text, "            {} => {target:#x},", from.join(" | "));
+        }
+        text.push_str("            _ => q,\n        }");
+        text
+    };
+    let pla = !moves.iter().all(Vec::is_empty);
+    match lookups.as_slice() {
+        [] => {}
+        [(i, arms)] if pla => {
+            let _ = writeln!(
+                out,
+                "    if e == {} {{\n        return {};\n    }}",
+                constants[*i],
+                lookup_expr(arms)
+            );
+        }
+        [(i, arms)] => {
+            let _ = writeln!(
+                out,
+                "    if e == {} {{\n        {}\n    }} else {{\n        0\n    }}\n}}\n",
+                constants[*i],
+                lookup_expr(arms)
+            );
+        }
+        _ => {
+            let _ = writeln!(out, "    match e {{");
+            for (i, arms) in &lookups {
+                let ret = if pla { "return " } else { "" };
+                let _ = writeln!(
+                    out,
+                    "        {} => {ret}{},",
+                    constants[*i],
+                    lookup_expr(arms)
+                );
+            }
+            if pla {
+                let _ = writeln!(out, "        _ => {{}}\n    }}");
+            } else {
+                // The other events have no terms: ω is 0 there.
+                let _ = writeln!(out, "        _ => 0,\n    }}\n}}\n");
+            }
+        }
+    }
+    if !lookups.is_empty() && !pla {
+        // Every event moves by state code: the function is written.
+    } else if !pla {
         let _ = writeln!(out, "    let _ = (q, e);\n    0\n}}\n");
     } else {
-        if !moves.iter().flatten().any(|t| t.0 != 0) {
+        if lookups.is_empty() && !moves.iter().flatten().any(|t| t.0 != 0) {
             let _ = writeln!(out, "    let _ = q;");
         }
         let _ = writeln!(out, "    let mut w = 0;");
@@ -413,16 +523,33 @@ pub fn supervisor_module(logic: &LogicSupervisor, names: &Names<'_>) -> String {
         let _ = writeln!(out, "    w\n}}\n");
     }
 
-    // Both, as the executor wants them.
+    // Both, as the executor wants them. φ as a sum of products while its
+    // functions are small, as its row by state code once one has more
+    // terms than a move may evaluate.
+    let by_row = logic
+        .defined_covers()
+        .iter()
+        .any(|phi| phi.cubes.len() > lookup_above);
+    let (defined, how) = if by_row {
+        (
+            format!("{prefix}_enabled(q, e, 1) != 0"),
+            format!(
+                "\n/// φ read from its row by state code (`_enabled`): some φ has more than\n\
+                 /// {lookup_above} terms."
+            ),
+        )
+    } else {
+        (format!("{prefix}_defined(q, e)"), String::new())
+    };
     let _ = writeln!(
         out,
         "/// `{prefix}`: the code reached from `q` on local event `e`, `None` when the\n\
-         /// event is not defined there."
+         /// event is not defined there.{how}"
     );
     let _ = writeln!(
         out,
         "pub fn {prefix}_step(q: u32, e: u16) -> Option<u32> {{\n    \
-         if {prefix}_defined(q, e) {{\n        \
+         if {defined} {{\n        \
          Some({prefix}_move(q, e))\n    \
          }} else {{\n        \
          None\n    \
@@ -496,6 +623,10 @@ fn write_arms<'a>(out: &mut String, events: impl Iterator<Item = (&'a str, Vec<T
         }
     }
 }
+
+/// An event's moves by state code: `(codes, target)`, the codes it leaves
+/// for `target`, in increasing order of their first code.
+type Lookup = Vec<(Vec<u32>, u32)>;
 
 /// A product term of a PLA over the code bits: `(mask, value, outputs)`,
 /// 1 where `q & mask == value`, setting the bits `outputs`.
@@ -1002,8 +1133,21 @@ mod tests {
             events: &events,
             states: &["idle", "working", "down", "other"],
         };
-        let code = supervisor_module(&logic, &names);
+        // As written, and with every event moved by state code.
+        for lookup_above in [MOVE_TERMS_MAX, 0] {
+            agrees(&logic, &names, &events, lookup_above);
+        }
+    }
+
+    /// Compiles the module of `logic` with `lookup_above` no_std and as a
+    /// program printing `_step`, `_next` and `_enabled` for every code and
+    /// event; what it prints is what `logic` computes.
+    fn agrees(logic: &LogicSupervisor, names: &Names<'_>, events: &[&str], lookup_above: usize) {
+        let code = module_with(logic, names, lookup_above);
         println!("{code}");
+        if lookup_above == 0 {
+            assert!(code.contains("match q {"), "{code}");
+        }
         let dir = tempfile::tempdir().unwrap();
 
         // As a no_std, unsafe-free library.
