@@ -404,9 +404,10 @@ impl<P: Program, M: Memory> Controller<P, M> {
             };
             let mut commands = 0usize;
             self.idle = false;
+            let choosable = Commands::now(config, &self.memory.ram());
             while commands < limit {
-                let Some(e) = next_command(config, &mut self.memory) else {
-                    self.idle = !any_command(config, &mut self.memory);
+                let Some(e) = next_command(config, &mut self.memory, &choosable) else {
+                    self.idle = !any_command(config, &mut self.memory, &choosable);
                     break;
                 };
                 let Some(timers) = execute(&self.program, config, &mut self.memory, e, now_ms)
@@ -634,9 +635,61 @@ fn unguarded(config: &Config<'_>, states: &[u32], k: usize, mut candidates: u32)
     candidates
 }
 
-/// Word `k` of the commands the controller may choose now: those without
-/// a request input, and those whose request input is 1.
+/// Event words whose commands the controllable phase works out once per
+/// scan ([`Commands::now`]); a program with more events works out the
+/// words past these at each choice.
+const CACHED_COMMAND_WORDS: usize = 8;
+
+/// The commands the controller may choose in this scan: those without a
+/// request input, and those whose request input is 1. Requests are
+/// inputs, fixed for the scan, so the set is worked out once, before the
+/// first choice, not at every choice (the batch cell's 19 requested
+/// commands were read again for each of up to 11 commands a scan).
+struct Commands {
+    words: [u32; CACHED_COMMAND_WORDS],
+}
+
+impl Commands {
+    /// The commands that may be chosen now.
+    #[inline]
+    fn now(config: &Config<'_>, ram: &Ram<'_>) -> Commands {
+        let mut words = [0u32; CACHED_COMMAND_WORDS];
+        for (word, &mask) in words.iter_mut().zip(config.commands.of(config.event_masks)) {
+            *word = mask;
+        }
+        for &e in config.requested.of(config.event_lists) {
+            let e = e as usize;
+            if let Some(word) = words.get_mut(e / 32) {
+                if requested_now(config, ram, e) {
+                    *word |= 1 << (e % 32);
+                }
+            }
+        }
+        Commands { words }
+    }
+
+    /// Word `k` of the commands that may be chosen now.
+    #[inline]
+    fn word(&self, config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
+        match self.words.get(k) {
+            Some(&word) => word,
+            None => commands_word(config, ram, k),
+        }
+    }
+}
+
+/// Command `e` has a request input, and it is 1.
 #[inline]
+fn requested_now(config: &Config<'_>, ram: &Ram<'_>, e: usize) -> bool {
+    config
+        .event(e)
+        .request
+        .is_some_and(|r| inputs::input_on(usize::from(r), ram))
+}
+
+/// Word `k` of the commands the controller may choose now, worked out
+/// from the configuration (words past [`CACHED_COMMAND_WORDS`]).
+#[inline(never)]
 fn commands_word(config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
     let mut word = config
         .commands
@@ -646,12 +699,7 @@ fn commands_word(config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
         .unwrap_or(0);
     for &e in config.requested.of(config.event_lists) {
         let e = e as usize;
-        if e / 32 == k
-            && config
-                .event(e)
-                .request
-                .is_some_and(|r| inputs::input_on(usize::from(r), ram))
-        {
+        if e / 32 == k && requested_now(config, ram, e) {
             word |= 1 << (e % 32);
         }
     }
@@ -661,13 +709,17 @@ fn commands_word(config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
 /// The first command in declaration order that is feasible, may be
 /// chosen now and has not run in this scan.
 #[inline]
-fn next_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> Option<usize> {
+fn next_command<M: Memory>(
+    config: &Config<'_>,
+    memory: &mut M,
+    commands: &Commands,
+) -> Option<usize> {
     if !config.guards.events.is_empty() {
-        return next_guarded_command(config, memory);
+        return next_guarded_command(config, memory, commands);
     }
     let ram = &memory.ram();
     (0..ram.feasible.len()).find_map(|k| {
-        let candidates = ram.feasible[k] & commands_word(config, ram, k) & !ram.done[k];
+        let candidates = ram.feasible[k] & commands.word(config, ram, k) & !ram.done[k];
         (candidates != 0).then(|| k * 32 + candidates.trailing_zeros() as usize)
     })
 }
@@ -676,10 +728,14 @@ fn next_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> Option<usize>
 /// asked too. Out of line, so that a program without guards keeps its
 /// scan's code as it was before guards.
 #[inline(never)]
-fn next_guarded_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> Option<usize> {
+fn next_guarded_command<M: Memory>(
+    config: &Config<'_>,
+    memory: &mut M,
+    commands: &Commands,
+) -> Option<usize> {
     let ram = &memory.ram();
     (0..ram.feasible.len()).find_map(|k| {
-        let mut candidates = ram.feasible[k] & commands_word(config, ram, k) & !ram.done[k];
+        let mut candidates = ram.feasible[k] & commands.word(config, ram, k) & !ram.done[k];
         if candidates != 0 {
             candidates = unguarded(config, ram.states, k, candidates);
         }
@@ -689,20 +745,24 @@ fn next_guarded_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> Optio
 
 /// Some command is feasible and may be chosen now, executed in this scan
 /// or not.
-fn any_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> bool {
+fn any_command<M: Memory>(config: &Config<'_>, memory: &mut M, commands: &Commands) -> bool {
     if !config.guards.events.is_empty() {
-        return any_guarded_command(config, memory);
+        return any_guarded_command(config, memory, commands);
     }
     let ram = &memory.ram();
-    (0..ram.feasible.len()).any(|k| ram.feasible[k] & commands_word(config, ram, k) != 0)
+    (0..ram.feasible.len()).any(|k| ram.feasible[k] & commands.word(config, ram, k) != 0)
 }
 
 /// [`any_command`] of a program with guards.
 #[inline(never)]
-fn any_guarded_command<M: Memory>(config: &Config<'_>, memory: &mut M) -> bool {
+fn any_guarded_command<M: Memory>(
+    config: &Config<'_>,
+    memory: &mut M,
+    commands: &Commands,
+) -> bool {
     let ram = &memory.ram();
     (0..ram.feasible.len()).any(|k| {
-        let candidates = ram.feasible[k] & commands_word(config, ram, k);
+        let candidates = ram.feasible[k] & commands.word(config, ram, k);
         candidates != 0 && unguarded(config, ram.states, k, candidates) != 0
     })
 }
