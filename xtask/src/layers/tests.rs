@@ -115,7 +115,7 @@ fn a_build_dependency_is_not_a_normal_one() {
     // The firmware's build script may use codegen; its code may not.
     let failure = one_failure("firmware", "codegen", None);
     assert!(
-        failure.contains("there it may use boards, executor."),
+        failure.contains("there it may use boards, executor, field-update."),
         "{failure}"
     );
 }
