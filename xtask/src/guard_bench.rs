@@ -11,7 +11,7 @@
 
 use crate::qemu::{firmware_build, run_elf};
 use crate::size::llvm_tool;
-use crate::{cargo, run, sysdeps, Result};
+use crate::{codegen_cli, run, sysdeps, Result};
 use std::path::Path;
 use std::process::Command;
 
@@ -57,17 +57,7 @@ pub fn run_task(args: &[String]) -> Result {
     // The test profile's build (`cargo test` builds the same crates, with
     // Espresso and the BDD library optimised): 11 s here, 8 s in release,
     // and no second build of its dependencies in `cargo xtask ci`.
-    run(cargo()
-        .args([
-            "run",
-            "-q",
-            "-p",
-            "codegen-cli",
-            "--example",
-            "guard_bench",
-            "--",
-        ])
-        .arg(&data))?;
+    run(codegen_cli(&["--example", "guard_bench"]).arg(&data))?;
     run(firmware_build("guard-bench", "guard-bench", TARGET).env("PLC_GUARD_BENCH", &data))?;
     let elf = crate::target_dir().join(format!("{TARGET}/release/guard-bench"));
     let copy = dir.join("guard-bench.elf");

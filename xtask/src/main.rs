@@ -123,6 +123,16 @@ pub fn cargo() -> Command {
     cmd
 }
 
+/// `cargo run -q -p codegen-cli OPTIONS --`: the generator's CLI (or,
+/// with `--example NAME`, one of its examples), its arguments to follow.
+pub fn codegen_cli(options: &[&str]) -> Command {
+    let mut cmd = cargo();
+    cmd.args(["run", "-q", "-p", "codegen-cli"])
+        .args(options)
+        .arg("--");
+    cmd
+}
+
 /// Runs `cmd`, echoing it, and fails on a non-zero exit.
 pub fn run(cmd: &mut Command) -> Result {
     eprintln!("$ {}", describe(cmd));

@@ -10,7 +10,7 @@
 //! every replayed scan matches host-sim.
 
 use crate::qemu::{firmware_build, record, run_elf};
-use crate::{cargo, run, sysdeps, Result};
+use crate::{codegen_cli, run, sysdeps, Result};
 
 /// The built-in project and the update's.
 const BUILT_IN: &str = "models/press.plc.toml";
@@ -23,17 +23,8 @@ pub fn run_task(_args: &[String]) -> Result {
     let built_in = record("press", BUILT_IN, None, &dir)?;
     let update = record("press7", UPDATE, None, &dir)?;
     let slot = dir.join("press7.slot");
-    run(cargo()
-        .args([
-            "run",
-            "-q",
-            "-p",
-            "codegen-cli",
-            "--",
-            "image",
-            UPDATE,
-            "-o",
-        ])
+    run(codegen_cli(&[])
+        .args(["image", UPDATE, "-o"])
         .arg(&slot)
         .args(["--version", "1.1.0"]))?;
     let mut cmd = firmware_build("qemu-update", "qemu-update", "thumbv7em-none-eabihf");

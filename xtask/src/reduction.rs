@@ -22,7 +22,7 @@
 
 use crate::budgets::{Budgets, ModelBudget};
 use crate::qemu::{self, Figures};
-use crate::{cargo, root, sysdeps, target_dir, Result};
+use crate::{codegen_cli, root, sysdeps, target_dir, Result};
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 use toml::{Table, Value};
@@ -225,10 +225,8 @@ fn variant(project: &Table, path: &Path, form: Form) -> Result<String> {
 
 /// `codegen gen --stats` of `file`: its figures, or the loader's refusal.
 fn gen_stats(file: &str) -> Result<std::result::Result<Stats, String>> {
-    let mut cmd = cargo();
-    cmd.args(["run", "-q", "--release", "-p", "codegen-cli", "--"])
-        .args(["gen", "--stats", file])
-        .stdin(Stdio::null());
+    let mut cmd = codegen_cli(&["--release"]);
+    cmd.args(["gen", "--stats", file]).stdin(Stdio::null());
     eprintln!("$ codegen gen --stats {file}");
     let out = cmd
         .output()

@@ -654,17 +654,7 @@ impl Commands {
     #[inline]
     fn now(config: &Config<'_>, ram: &Ram<'_>) -> Commands {
         let mut words = [0u32; CACHED_COMMAND_WORDS];
-        for (word, &mask) in words.iter_mut().zip(config.commands.of(config.event_masks)) {
-            *word = mask;
-        }
-        for &e in config.requested.of(config.event_lists) {
-            let e = e as usize;
-            if let Some(word) = words.get_mut(e / 32) {
-                if requested_now(config, ram, e) {
-                    *word |= 1 << (e % 32);
-                }
-            }
-        }
+        choosable_commands(config, ram, 0, &mut words);
         Commands { words }
     }
 
@@ -678,32 +668,40 @@ impl Commands {
     }
 }
 
-/// Command `e` has a request input, and it is 1.
-#[inline]
-fn requested_now(config: &Config<'_>, ram: &Ram<'_>, e: usize) -> bool {
-    config
-        .event(e)
-        .request
-        .is_some_and(|r| inputs::input_on(usize::from(r), ram))
-}
-
-/// Word `k` of the commands the controller may choose now, worked out
-/// from the configuration (words past [`CACHED_COMMAND_WORDS`]).
+/// Word `k` of the commands the controller may choose now (words past
+/// [`CACHED_COMMAND_WORDS`], worked out at each choice).
 #[inline(never)]
 fn commands_word(config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
-    let mut word = config
-        .commands
-        .of(config.event_masks)
-        .get(k)
-        .copied()
-        .unwrap_or(0);
+    let mut word = [0u32];
+    choosable_commands(config, ram, k, &mut word);
+    word[0]
+}
+
+/// Words `first..first + words.len()` of the commands that may be chosen
+/// now: the commands' mask, and each requested command whose request
+/// input is 1.
+#[inline]
+pub(crate) fn choosable_commands(
+    config: &Config<'_>,
+    ram: &Ram<'_>,
+    first: usize,
+    words: &mut [u32],
+) {
+    words.fill(0);
+    let masks = config.commands.of(config.event_masks);
+    for (word, &mask) in words.iter_mut().zip(masks.get(first..).unwrap_or_default()) {
+        *word = mask;
+    }
     for &e in config.requested.of(config.event_lists) {
         let e = e as usize;
-        if e / 32 == k && requested_now(config, ram, e) {
-            word |= 1 << (e % 32);
+        let Some(word) = (e / 32).checked_sub(first).and_then(|k| words.get_mut(k)) else {
+            continue;
+        };
+        let requested = config.event(e).request;
+        if requested.is_some_and(|r| inputs::input_on(usize::from(r), ram)) {
+            *word |= 1 << (e % 32);
         }
     }
-    word
 }
 
 /// The first command in declaration order that is feasible, may be

@@ -181,6 +181,17 @@ impl<
         const SEW: usize,
     > StaticMemory<IW, D, O, T, S, E, EW, SEW>
 {
+    /// The lengths of its arrays (its parameters but `SEW`).
+    const LENGTHS: Lengths = Lengths {
+        input_words: IW,
+        debounced: D,
+        outputs: O,
+        timers: T,
+        supervisors: S,
+        events: E,
+        event_words: EW,
+    };
+
     /// Zeroed memory (the controller initialises it).
     pub const fn new() -> Self {
         StaticMemory {
@@ -267,14 +278,7 @@ impl<
     > Memory for StaticMemory<IW, D, O, T, S, E, EW, SEW>
 {
     fn fits(&self, config: &Config<'_>) -> bool {
-        words(config.inputs.len()) == IW
-            && config.debounced.len() == D
-            && config.outputs.len() == O
-            && config.timers.len() == T
-            && config.supervisors.len() == S
-            && config.events.len() == E
-            && words(config.events.len()) == EW
-            && config.supervisors.len() * EW == SEW
+        Lengths::of(config) == Self::LENGTHS && S * EW == SEW
     }
 }
 
@@ -309,8 +313,10 @@ pub struct BoundedMemory<
     len: Lengths,
 }
 
-/// The lengths a [`BoundedMemory`] gives its arrays.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// The lengths of a memory's arrays that a configuration asks for: the
+/// one place that works them out, for every kind of memory (the allowed
+/// sets take `supervisors × event_words` words).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 struct Lengths {
     input_words: usize,
     debounced: usize,
@@ -332,6 +338,7 @@ impl Lengths {
         event_words: 0,
     };
 
+    /// What `config` needs.
     fn of(config: &Config<'_>) -> Lengths {
         Lengths {
             input_words: words(config.inputs.len()),
@@ -342,6 +349,24 @@ impl Lengths {
             events: config.events.len(),
             event_words: words(config.events.len()),
         }
+    }
+
+    /// Words of the allowed sets: one set of `event_words` per supervisor.
+    const fn allowed_words(&self) -> usize {
+        self.supervisors * self.event_words
+    }
+
+    /// `true` when every length is at most `room`'s, and the allowed sets
+    /// at most `allowed_words`.
+    fn within(&self, room: &Lengths, allowed_words: usize) -> bool {
+        self.input_words <= room.input_words
+            && self.debounced <= room.debounced
+            && self.outputs <= room.outputs
+            && self.timers <= room.timers
+            && self.supervisors <= room.supervisors
+            && self.events <= room.events
+            && self.event_words <= room.event_words
+            && self.allowed_words() <= allowed_words
     }
 }
 
@@ -389,26 +414,23 @@ impl<
 
     /// `true` when every array has room for what `config` needs.
     pub fn has_room(config: &Config<'_>) -> bool {
-        let len = Lengths::of(config);
-        len.input_words <= IW
-            && len.debounced <= D
-            && len.outputs <= O
-            && len.timers <= T
-            && len.supervisors <= S
-            && len.events <= E
-            && len.event_words <= EW
-            && len.supervisors * len.event_words <= SEW
+        Self::holds(&Lengths::of(config))
     }
 
     /// Sizes the memory for `config` and zeroes it; `false`, and the
     /// memory unchanged, when one of its arrays is too small.
     pub fn size_for(&mut self, config: &Config<'_>) -> bool {
-        let room = Self::has_room(config);
+        let len = Lengths::of(config);
+        let room = Self::holds(&len);
         if room {
             self.arrays = StaticMemory::new();
-            self.len = Lengths::of(config);
+            self.len = len;
         }
         room
+    }
+
+    fn holds(len: &Lengths) -> bool {
+        len.within(&StaticMemory::<IW, D, O, T, S, E, EW, SEW>::LENGTHS, SEW)
     }
 }
 
@@ -439,7 +461,7 @@ impl<
             states: first(&mut a.states, len.supervisors),
             occurred: first(&mut a.occurred, ew),
             done: first(&mut a.done, ew),
-            allowed: first(&mut a.allowed, len.supervisors * ew),
+            allowed: first(&mut a.allowed, len.allowed_words()),
             feasible: first(&mut a.feasible, ew),
             executed: first(&mut a.executed, len.events),
             unexpected: first(&mut a.unexpected, len.events),
@@ -492,14 +514,15 @@ pub use heap::HeapMemory;
 
 #[cfg(feature = "alloc")]
 mod heap {
-    use super::{sealed, Memory, Ram};
-    use crate::program::{words, Config};
+    use super::{sealed, Lengths, Memory, Ram};
+    use crate::program::Config;
     use alloc::vec;
     use alloc::vec::Vec;
 
     /// Memory sized at run time from a [`Config`] (hosts only).
     #[derive(Debug, Clone, Default)]
     pub struct HeapMemory {
+        len: Lengths,
         raw: Vec<u32>,
         filtered: Vec<u32>,
         previous: Vec<u32>,
@@ -520,26 +543,25 @@ mod heap {
     impl HeapMemory {
         /// Memory for `config`.
         pub fn for_config(config: &Config<'_>) -> Self {
-            let iw = words(config.inputs.len());
-            let (o, t) = (config.outputs.len(), config.timers.len());
-            let (s, e) = (config.supervisors.len(), config.events.len());
-            let ew = words(e);
+            let len = Lengths::of(config);
+            let (iw, ew) = (len.input_words, len.event_words);
             HeapMemory {
+                len,
                 raw: vec![0; iw],
                 filtered: vec![0; iw],
                 previous: vec![0; iw],
-                debounce: vec![0; config.debounced.len()],
-                timer_running: vec![false; t],
-                timer_deadline: vec![0; t],
-                latched: vec![false; o],
-                outputs: vec![false; o],
-                states: vec![0; s],
+                debounce: vec![0; len.debounced],
+                timer_running: vec![false; len.timers],
+                timer_deadline: vec![0; len.timers],
+                latched: vec![false; len.outputs],
+                outputs: vec![false; len.outputs],
+                states: vec![0; len.supervisors],
                 occurred: vec![0; ew],
                 done: vec![0; ew],
-                allowed: vec![0; s * ew],
+                allowed: vec![0; len.allowed_words()],
                 feasible: vec![0; ew],
-                executed: vec![0; e],
-                unexpected: vec![0; e],
+                executed: vec![0; len.events],
+                unexpected: vec![0; len.events],
             }
         }
     }
@@ -588,14 +610,7 @@ mod heap {
 
     impl Memory for HeapMemory {
         fn fits(&self, config: &Config<'_>) -> bool {
-            words(config.inputs.len()) == self.filtered.len()
-                && config.debounced.len() == self.debounce.len()
-                && config.outputs.len() == self.outputs.len()
-                && config.timers.len() == self.timer_running.len()
-                && config.supervisors.len() == self.states.len()
-                && config.events.len() == self.executed.len()
-                && words(config.events.len()) == self.occurred.len()
-                && config.supervisors.len() * self.occurred.len() == self.allowed.len()
+            self.len == Lengths::of(config)
         }
     }
 }

@@ -151,6 +151,23 @@ pub fn load<'a>(
     tables: &'a mut [SupervisorTable<'a>],
     crc: u32,
 ) -> Result<TableProgram<'a>, Refusal> {
+    let program = reload(words, name, tables, crc)?;
+    validate_generated(&program).map_err(Refusal::Structure)?;
+    Ok(program)
+}
+
+/// [`load`] without [`validate_generated`], for words `load` accepted
+/// before with this `crc` (a field update's slot, judged when it was
+/// written, switched in later): the image is parsed again, not judged
+/// again. Run it only through [`crate::Controller::new`], which checks
+/// the image's structure and starts in fault mode unless its CRC is `crc`
+/// (other words than those judged).
+pub fn reload<'a>(
+    words: &'a [u32],
+    name: &'a mut [u8],
+    tables: &'a mut [SupervisorTable<'a>],
+    crc: u32,
+) -> Result<TableProgram<'a>, Refusal> {
     let blob = Blob::parse(words, name).map_err(Refusal::Parse)?;
     let count = blob.table_count();
     if count > tables.len() {
@@ -169,13 +186,11 @@ pub fn load<'a>(
         *slot = table;
     }
     let tables: &'a [SupervisorTable<'a>] = tables;
-    let program = TableProgram {
+    Ok(TableProgram {
         config: blob.config,
         tables: &tables[..count],
         crc,
-    };
-    validate_generated(&program).map_err(Refusal::Structure)?;
-    Ok(program)
+    })
 }
 
 /// The header run of `words`.

@@ -364,6 +364,44 @@ fn a_command_with_a_request_input_waits_for_it() {
 }
 
 #[test]
+fn commands_of_any_word_are_worked_out_alike_one_word_or_all_at_once() {
+    use crate::controller::choosable_commands;
+    // 300 commands (10 words: past the 8 a scan caches), those of word 9
+    // and of word 0 requested by `auto`; the unrequested commands' mask.
+    let mut specs = std::vec![event(Trigger::Command, Span::EMPTY, Span::EMPTY); 300];
+    for e in [3, 290, 299] {
+        specs[e].request = Some(AUTO);
+    }
+    let masks: std::vec::Vec<u32> = (0..10).map(|k| 0x8000_0001 >> (k % 2)).collect();
+    let config = Config {
+        events: records(&specs),
+        event_masks: Box::leak(masks.into_boxed_slice()),
+        event_lists: &[3, 290, 299],
+        commands: Span::new(0, 10),
+        requested: Span::new(0, 3),
+        ..config(0, UnexpectedPolicy::Fault, None)
+    };
+    for auto in [false, true] {
+        let mut memory = StaticMemory::<1, 0, 0, 0, 0, 0, 0, 0>::new();
+        let ram = crate::memory::sealed::Storage::ram(&mut memory);
+        ram.filtered[0] = u32::from(auto) << AUTO;
+        let mut all = [0u32; 10];
+        choosable_commands(&config, &ram, 0, &mut all);
+        let requested = |bits: u32| if auto { bits } else { 0 };
+        assert_eq!(all[0], 0x8000_0001 | requested(1 << 3));
+        assert_eq!(all[9], 0x4000_0000 | requested(1 << 2 | 1 << 11));
+        for (k, &word) in all.iter().enumerate() {
+            let mut one = [u32::MAX];
+            choosable_commands(&config, &ram, k, &mut one);
+            assert_eq!(one[0], word, "word {k}, auto {auto}");
+        }
+        let mut past = [u32::MAX; 2];
+        choosable_commands(&config, &ram, 10, &mut past);
+        assert_eq!(past, [0, 0]);
+    }
+}
+
+#[test]
 fn a_corrupt_image_starts_in_fault_mode_and_reset_cannot_clear_it() {
     let config = config(0, UnexpectedPolicy::Fault, None);
     let mut c = Controller::new(

@@ -101,15 +101,19 @@ impl<'a> Loaded<'a> {
         }
     }
 
-    /// The program of `image` (whose CRC, `crc`, the slot header records)
-    /// and its memory, after the same checks as [`ImageCheck`].
+    /// The program of `image` and its memory: `image` holds the words
+    /// [`ImageCheck`] accepted in a slot whose header records `crc`,
+    /// parsed again but not judged again (`executor::parse::reload`); the
+    /// controller made of it checks their CRC against `crc` and starts in
+    /// fault mode on other words. The board's part of the check is
+    /// repeated (a few comparisons).
     pub fn program(
         &'a mut self,
         image: &'a [u32],
         crc: u32,
         check: &ImageCheck,
     ) -> Result<(TableProgram<'a>, Room), u16> {
-        let program = parse::load(image, &mut self.name, &mut self.tables, crc)
+        let program = parse::reload(image, &mut self.name, &mut self.tables, crc)
             .map_err(|r: Refusal| r.code())?;
         let config = program.config();
         check.fits(&config)?;
@@ -144,6 +148,27 @@ mod tests {
         let (program, _room) = loaded.program(&image, crc, &check).expect("loads");
         assert_eq!(program.config().name, config.name);
         assert_eq!(executor::image::crc(&program), crc);
+    }
+
+    #[test]
+    fn words_changed_after_the_check_start_the_controller_in_fault_mode() {
+        let config = program::PROGRAM.config();
+        let mut check = ImageCheck::new(&config);
+        let image = own_image();
+        assert_eq!(check.check(&image), Ok(()));
+        let crc = program::PROGRAM.recorded_crc();
+        // The last word (a table's) flipped between the check and the
+        // switch: parsed again, not judged again, caught by the CRC.
+        let mut changed = image.clone();
+        *changed.last_mut().expect("words") ^= 1;
+        let mut loaded = Loaded::new();
+        let (program, room) = loaded.program(&changed, crc, &check).expect("parses");
+        let controller = executor::Controller::new(program, room).expect("fits");
+        assert_eq!(controller.fault(), Some(executor::Fault::Corrupt));
+        let mut loaded = Loaded::new();
+        let (program, room) = loaded.program(&image, crc, &check).expect("parses");
+        let controller = executor::Controller::new(program, room).expect("fits");
+        assert_eq!(controller.fault(), None);
     }
 
     #[test]

@@ -28,7 +28,8 @@
 //!
 //! Exit code 0 only when every step gives what it should. The last line
 //! is `update: loads=L switched=S refused=R rollbacks=B mismatches=M
-//! switch_instr=X poll_max=P check_scans=C`.
+//! switch_instr=X poll_max=P check_scans=C failures=F` (F: the steps that
+//! did not give what they should).
 
 #![no_std]
 #![no_main]
@@ -382,7 +383,7 @@ fn main() -> ! {
     poll_max = poll_max.max(end.poll_max);
     check_scans = check_scans.max(end.check_scans);
     hprintln!(
-        "  switch-in: {} instructions (copy, parse, check, controller); {} scans, {} compared, {} mismatches",
+        "  switch-in: {} instructions (copy, parse, the board's check, controller and its start-up check); {} scans, {} compared, {} mismatches",
         instr,
         end.scans,
         end.replayed,
