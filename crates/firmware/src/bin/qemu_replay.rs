@@ -32,14 +32,14 @@ use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
 use executor::replay::{unpack_words, RecordedScan, ScenarioHeader};
 use executor::{Controller, Program};
-use firmware::icount::{elapsed, exit, finish, instructions, start};
+use firmware::icount::{elapsed, exit, finish, instructions, kth_smallest, start};
 use firmware::program;
 use panic_semihosting as _;
 
 /// The scenario, recorded by `host-sim record`.
 static SCENARIO: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/scenario.bin"));
 
-/// Most scans whose instruction counts are kept to sort them (the median
+/// Most scans whose instruction counts are kept (the median
 /// and p99 are of the first this many; the maximum is of every scan).
 const MAX_SCANS: usize = 8192;
 
@@ -197,22 +197,12 @@ fn main() -> ! {
         fail("the scenario's scan count does not match its header");
     }
 
-    let measured = &mut samples[..scans.min(MAX_SCANS)];
-    measured.sort_unstable();
-    let at = |q: usize| {
-        measured
-            .get((measured.len().max(1) - 1) * q / 100)
-            .copied()
-            .unwrap_or(0)
-    };
+    let measured = &samples[..scans.min(MAX_SCANS)];
+    let at = |q: usize| kth_smallest(measured, measured.len().saturating_sub(1) * q / 100);
     let (median, p99, max) = (at(50), at(99), worst);
-    let quiet = &mut quiet[..quiet_scans];
-    quiet.sort_unstable();
-    let quiet_median = quiet
-        .get(quiet.len().saturating_sub(1) / 2)
-        .copied()
-        .unwrap_or(0);
-    let quiet_max = quiet.last().copied().unwrap_or(0);
+    let quiet = &quiet[..quiet_scans];
+    let quiet_median = kth_smallest(quiet, quiet.len().saturating_sub(1) / 2);
+    let quiet_max = kth_smallest(quiet, quiet.len());
     let (flash, ram) = image_sizes();
     let flash = flash - SCENARIO.len() as u32;
     hprintln!(
