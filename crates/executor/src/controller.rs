@@ -54,16 +54,41 @@ impl<P: Program, M: Memory> Controller<P, M> {
     /// and after a flaw of structure nothing of the image is run and no
     /// reset leaves fault mode. From the first scan on, the CRC is checked
     /// again in the background, a share per scan.
-    pub fn new(program: P, mut memory: M) -> Result<Self, SizeMismatch> {
+    pub fn new(program: P, memory: M) -> Result<Self, SizeMismatch> {
+        Self::start::<true>(program, memory)
+    }
+
+    /// [`Controller::new`] for a program whose image was proven when its
+    /// CRC was recorded: a generated program (the generator runs
+    /// [`crate::validate::validate_generated`] before it records the CRC)
+    /// or words [`crate::parse::load`] accepted. Its structure is not
+    /// checked again, so that check's code (3.7 KB of a Cortex-M4 board
+    /// image) is not linked; the CRC is: nothing of the image runs before
+    /// it matches the recorded one, and then the image is the one proven.
+    /// A mismatch is a `Corrupt` fault, whose scans read the image only
+    /// through bounds-checked accessors (sampling, the reset input, the
+    /// safe output levels), as after a flaw of structure. For a program
+    /// built any other way, use [`Controller::new`].
+    pub fn new_proven(program: P, memory: M) -> Result<Self, SizeMismatch> {
+        Self::start::<false>(program, memory)
+    }
+
+    /// A controller in its initial state once its image is checked: its
+    /// structure when `CHECK_STRUCTURE`, and its CRC.
+    #[inline]
+    fn start<const CHECK_STRUCTURE: bool>(program: P, mut memory: M) -> Result<Self, SizeMismatch> {
         if !memory.fits(&program.config()) {
             return Err(SizeMismatch);
         }
-        let well_formed = crate::validate::validate(&program).is_ok();
-        if well_formed {
+        let well_formed = !CHECK_STRUCTURE || crate::validate::validate(&program).is_ok();
+        let rom_test = RomTest::new(&program);
+        let verified = rom_test.status().verified;
+        // A proven image is run only once its CRC matched; a checked one
+        // as soon as its structure is sound.
+        if well_formed && (CHECK_STRUCTURE || verified) {
             initialise(&program, &program.config(), &mut memory);
         }
-        let rom_test = RomTest::new(&program);
-        let fault = (!well_formed || !rom_test.status().verified).then_some(Fault::Corrupt);
+        let fault = (!well_formed || !verified).then_some(Fault::Corrupt);
         let mut controller = Controller {
             program,
             memory,
@@ -638,29 +663,39 @@ fn unguarded(config: &Config<'_>, states: &[u32], k: usize, mut candidates: u32)
 /// Event words whose commands the controllable phase works out once per
 /// scan ([`Commands::now`]); a program with more events works out the
 /// words past these at each choice.
-const CACHED_COMMAND_WORDS: usize = 8;
+pub(crate) const CACHED_COMMAND_WORDS: usize = 8;
 
 /// The commands the controller may choose in this scan: those without a
 /// request input, and those whose request input is 1. Requests are
 /// inputs, fixed for the scan, so the set is worked out once, before the
 /// first choice, not at every choice (the batch cell's 19 requested
 /// commands were read again for each of up to 11 commands a scan).
-struct Commands {
+pub(crate) struct Commands {
     words: [u32; CACHED_COMMAND_WORDS],
 }
 
 impl Commands {
     /// The commands that may be chosen now.
     #[inline]
-    fn now(config: &Config<'_>, ram: &Ram<'_>) -> Commands {
+    pub(crate) fn now(config: &Config<'_>, ram: &Ram<'_>) -> Commands {
         let mut words = [0u32; CACHED_COMMAND_WORDS];
-        choosable_commands(config, ram, 0, &mut words);
+        for (word, &mask) in words.iter_mut().zip(config.commands.of(config.event_masks)) {
+            *word = mask;
+        }
+        for &e in config.requested.of(config.event_lists) {
+            let e = e as usize;
+            if let Some(word) = words.get_mut(e / 32) {
+                if requested_now(config, ram, e) {
+                    *word |= 1 << (e % 32);
+                }
+            }
+        }
         Commands { words }
     }
 
     /// Word `k` of the commands that may be chosen now.
     #[inline]
-    fn word(&self, config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
+    pub(crate) fn word(&self, config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
         match self.words.get(k) {
             Some(&word) => word,
             None => commands_word(config, ram, k),
@@ -668,40 +703,35 @@ impl Commands {
     }
 }
 
-/// Word `k` of the commands the controller may choose now (words past
-/// [`CACHED_COMMAND_WORDS`], worked out at each choice).
-#[inline(never)]
-fn commands_word(config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
-    let mut word = [0u32];
-    choosable_commands(config, ram, k, &mut word);
-    word[0]
+/// Command `e` has a request input, and it is 1.
+#[inline]
+fn requested_now(config: &Config<'_>, ram: &Ram<'_>, e: usize) -> bool {
+    config
+        .event(e)
+        .request
+        .is_some_and(|r| inputs::input_on(usize::from(r), ram))
 }
 
-/// Words `first..first + words.len()` of the commands that may be chosen
-/// now: the commands' mask, and each requested command whose request
-/// input is 1.
-#[inline]
-pub(crate) fn choosable_commands(
-    config: &Config<'_>,
-    ram: &Ram<'_>,
-    first: usize,
-    words: &mut [u32],
-) {
-    words.fill(0);
-    let masks = config.commands.of(config.event_masks);
-    for (word, &mask) in words.iter_mut().zip(masks.get(first..).unwrap_or_default()) {
-        *word = mask;
-    }
+/// Word `k` of the commands the controller may choose now, worked out
+/// from the configuration (words past [`CACHED_COMMAND_WORDS`]). The
+/// same set as [`Commands::now`], one word at a time (a test compares
+/// them word by word): one function with a word range for both cost the
+/// batch cell 450 instructions at its p99 and max (QEMU, 2026-11-28).
+#[inline(never)]
+pub(crate) fn commands_word(config: &Config<'_>, ram: &Ram<'_>, k: usize) -> u32 {
+    let mut word = config
+        .commands
+        .of(config.event_masks)
+        .get(k)
+        .copied()
+        .unwrap_or(0);
     for &e in config.requested.of(config.event_lists) {
         let e = e as usize;
-        let Some(word) = (e / 32).checked_sub(first).and_then(|k| words.get_mut(k)) else {
-            continue;
-        };
-        let requested = config.event(e).request;
-        if requested.is_some_and(|r| inputs::input_on(usize::from(r), ram)) {
-            *word |= 1 << (e % 32);
+        if e / 32 == k && requested_now(config, ram, e) {
+            word |= 1 << (e % 32);
         }
     }
+    word
 }
 
 /// The first command in declaration order that is feasible, may be

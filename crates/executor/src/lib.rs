@@ -249,7 +249,9 @@
 //! has it (control equivalence with the supervisors, modular or not; the
 //! product is never built). An image whose structure is wrong (an index
 //! out of range, a span past its pool: [`validate`], checked once at
-//! start-up, so that no index in the scan can panic), a supervisor state
+//! start-up by [`Controller::new`], so that no index in the scan can
+//! panic; [`Controller::new_proven`] leaves it to the generator and runs
+//! nothing of the image before its CRC matches), a supervisor state
 //! out of range or a program image whose CRC does not match is a `Corrupt`
 //! fault: the whole image is
 //! checked at start-up, then again in the background, pass after pass,

@@ -364,40 +364,127 @@ fn a_command_with_a_request_input_waits_for_it() {
 }
 
 #[test]
-fn commands_of_any_word_are_worked_out_alike_one_word_or_all_at_once() {
-    use crate::controller::choosable_commands;
+fn commands_of_any_word_are_worked_out_alike_cached_or_one_word_at_a_time() {
+    use crate::controller::{commands_word, Commands, CACHED_COMMAND_WORDS};
     // 300 commands (10 words: past the 8 a scan caches), those of word 9
     // and of word 0 requested by `auto`; the unrequested commands' mask.
     let mut specs = std::vec![event(Trigger::Command, Span::EMPTY, Span::EMPTY); 300];
-    for e in [3, 290, 299] {
+    for e in [3, 40, 290, 299] {
         specs[e].request = Some(AUTO);
     }
     let masks: std::vec::Vec<u32> = (0..10).map(|k| 0x8000_0001 >> (k % 2)).collect();
     let config = Config {
         events: records(&specs),
         event_masks: Box::leak(masks.into_boxed_slice()),
-        event_lists: &[3, 290, 299],
+        event_lists: &[3, 40, 290, 299],
         commands: Span::new(0, 10),
-        requested: Span::new(0, 3),
+        requested: Span::new(0, 4),
         ..config(0, UnexpectedPolicy::Fault, None)
     };
     for auto in [false, true] {
         let mut memory = StaticMemory::<1, 0, 0, 0, 0, 0, 0, 0>::new();
         let ram = crate::memory::sealed::Storage::ram(&mut memory);
         ram.filtered[0] = u32::from(auto) << AUTO;
-        let mut all = [0u32; 10];
-        choosable_commands(&config, &ram, 0, &mut all);
         let requested = |bits: u32| if auto { bits } else { 0 };
-        assert_eq!(all[0], 0x8000_0001 | requested(1 << 3));
-        assert_eq!(all[9], 0x4000_0000 | requested(1 << 2 | 1 << 11));
-        for (k, &word) in all.iter().enumerate() {
-            let mut one = [u32::MAX];
-            choosable_commands(&config, &ram, k, &mut one);
-            assert_eq!(one[0], word, "word {k}, auto {auto}");
+        let cached = Commands::now(&config, &ram);
+        let words: std::vec::Vec<u32> = (0..11).map(|k| cached.word(&config, &ram, k)).collect();
+        assert_eq!(words[0], 0x8000_0001 | requested(1 << 3));
+        assert_eq!(words[1], 0x4000_0000 | requested(1 << 8));
+        assert_eq!(words[9], 0x4000_0000 | requested(1 << 2 | 1 << 11));
+        assert_eq!(words[10], 0);
+        for (k, &word) in words.iter().enumerate() {
+            assert_eq!(
+                commands_word(&config, &ram, k),
+                word,
+                "word {k}, auto {auto}"
+            );
         }
-        let mut past = [u32::MAX; 2];
-        choosable_commands(&config, &ram, 10, &mut past);
-        assert_eq!(past, [0, 0]);
+        assert!(words.len() > CACHED_COMMAND_WORDS);
+    }
+}
+
+/// `new_proven` of the conveyor, its CRC recorded as `intact` says.
+fn proven(config: Config<'static>, intact: bool) -> Controller<Conveyor, Mem> {
+    Controller::new_proven(Conveyor { config, intact }, Mem::new()).unwrap()
+}
+
+#[test]
+fn a_proven_image_whose_crc_matches_runs_as_a_checked_one() {
+    let config = config(0, UnexpectedPolicy::Fault, Some(AUTO));
+    let (mut checked, mut trusted) = (controller(config), proven(config, true));
+    assert_eq!(trusted.fault(), None);
+    for k in 0..64u32 {
+        let io = [k % 3 == 1, k % 17 == 9, k % 5 != 0];
+        let now = 10 * k;
+        let want = checked.scan(now, &io);
+        let (fault, outputs, executed) =
+            (want.fault, want.outputs.to_vec(), want.executed.to_vec());
+        let got = trusted.scan(now, &io);
+        assert_eq!(
+            (got.fault, got.outputs, got.executed),
+            (fault, &outputs[..], &executed[..]),
+            "scan {k}"
+        );
+    }
+}
+
+#[test]
+fn a_proven_image_whose_crc_does_not_match_never_runs_even_malformed() {
+    // Flaws the structure check would refuse, each in an image whose CRC
+    // does not match: nothing of it may run, no scan may panic, and the
+    // outputs stay at their safe levels through resets.
+    let base = || config(2, UnexpectedPolicy::Fault, Some(AUTO));
+    let mut flawed: std::vec::Vec<Config<'static>> = std::vec![base()];
+    flawed.push(Config {
+        reset: Some(40),
+        ..base()
+    });
+    flawed.push(Config {
+        debounced: &[77],
+        ..base()
+    });
+    flawed.push(Config {
+        actions: words(&[Action::Start(9), Action::Set(7), Action::Clear(0)]),
+        ..base()
+    });
+    flawed.push(Config {
+        memberships: words(
+            &[Membership {
+                supervisor: 5,
+                local: 9,
+            }; 4],
+        ),
+        ..base()
+    });
+    flawed.push(Config {
+        commands: Span::new(9, 4),
+        requested: Span::new(30, 2),
+        ..base()
+    });
+    flawed.push(Config {
+        supervisors: records(&[SupervisorSpec {
+            states: 0,
+            initial: 9,
+            alphabet: Span::new(6, 9),
+            outside: Span::new(8, 3),
+            allowed: AllowedSets::COMPUTED,
+            contiguous: true,
+        }]),
+        ..base()
+    });
+    for (n, config) in flawed.into_iter().enumerate() {
+        let conveyor = Conveyor {
+            config,
+            intact: false,
+        };
+        let mut c = Controller::new_proven(conveyor, DebouncedMem::new()).unwrap();
+        assert_eq!(c.fault(), Some(Fault::Corrupt), "image {n}");
+        for k in 0..48u32 {
+            let r = c.scan(10 * k, &[k % 2 == 1, k % 4 >= 2, k % 8 >= 4]);
+            assert_eq!(r.fault, Some(Fault::Corrupt), "image {n}, scan {k}");
+            assert!(r.executed.is_empty(), "image {n}, scan {k}");
+            assert_eq!(r.outputs, [false, true], "image {n}, scan {k}");
+        }
     }
 }
 

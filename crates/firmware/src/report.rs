@@ -43,7 +43,7 @@ pub fn startup(startup: &Startup, watchdog_ms: u32) {
     );
 }
 
-/// The program image check of `Controller::new`, and which program runs:
+/// The program image check of `Controller::new_proven`, and which program runs:
 /// the built-in one (version 0), its image CRC (what a field update's
 /// `Status` reports, `codegen image` prints).
 pub fn image_check(fault: Option<Fault>, image_crc: u32) {

@@ -223,7 +223,7 @@ pub trait Board {
 /// Runs the project's scan cycle on `board` forever.
 pub fn run<B: Board>(mut board: B, startup: Startup) -> ! {
     report::startup(&startup, WATCHDOG_MS);
-    let mut controller = match Controller::new(&program::PROGRAM, program::Memory::new()) {
+    let mut controller = match Controller::new_proven(&program::PROGRAM, program::Memory::new()) {
         Ok(c) => c,
         Err(e) => defmt::panic!("the generated memory does not fit the program: {}", e),
     };

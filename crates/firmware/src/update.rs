@@ -163,11 +163,11 @@ mod tests {
         *changed.last_mut().expect("words") ^= 1;
         let mut loaded = Loaded::new();
         let (program, room) = loaded.program(&changed, crc, &check).expect("parses");
-        let controller = executor::Controller::new(program, room).expect("fits");
+        let controller = executor::Controller::new_proven(program, room).expect("fits");
         assert_eq!(controller.fault(), Some(executor::Fault::Corrupt));
         let mut loaded = Loaded::new();
         let (program, room) = loaded.program(&image, crc, &check).expect("parses");
-        let controller = executor::Controller::new(program, room).expect("fits");
+        let controller = executor::Controller::new_proven(program, room).expect("fits");
         assert_eq!(controller.fault(), None);
     }
 

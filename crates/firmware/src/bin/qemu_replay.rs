@@ -123,7 +123,8 @@ fn main() -> ! {
         );
         fail("the scenario was recorded for another project (configuration CRC differs)");
     }
-    let Ok(mut controller) = Controller::new(&program::PROGRAM, program::Memory::new()) else {
+    let Ok(mut controller) = Controller::new_proven(&program::PROGRAM, program::Memory::new())
+    else {
         fail("generated memory does not fit the program");
     };
     // The whole-image CRC, as at start-up (scans check the image in the

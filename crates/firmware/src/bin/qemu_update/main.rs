@@ -285,7 +285,7 @@ fn main() -> ! {
             version: file_header.version,
         },
     ];
-    let Ok(mut controller) = Controller::new(built_in, program::Memory::new()) else {
+    let Ok(mut controller) = Controller::new_proven(built_in, program::Memory::new()) else {
         fail("generated memory does not fit the program");
     };
     let own_running = Running {
@@ -482,7 +482,7 @@ fn main() -> ! {
         "restart: both slots refused, the built-in program runs: rolled back",
     );
     rollbacks += u32::from(to_built_in);
-    let Ok(mut controller) = Controller::new(built_in, program::Memory::new()) else {
+    let Ok(mut controller) = Controller::new_proven(built_in, program::Memory::new()) else {
         fail("generated memory does not fit the program");
     };
     let end = phase(

@@ -195,7 +195,7 @@ pub fn run_slot(
     let Ok((program, room)) = loaded.program(image, valid.header.image_crc, &plc.check) else {
         fail("a slot that passed its check does not load");
     };
-    let Ok(mut controller) = Controller::new(&program, room) else {
+    let Ok(mut controller) = Controller::new_proven(&program, room) else {
         fail("a loaded program does not fit its memory");
     };
     let after = SYST::get_current();
