@@ -15,13 +15,20 @@
 //! The program goes to `OUT_DIR/program.rs`. The memory layout (the
 //! board's, `stm32f411re.x` or with feature `pico` `rp2040.x`, or QEMU's,
 //! from `layout/`) is copied to `OUT_DIR/plc-layout.x`,
-//! which the workspace root's `memory.x` includes.
+//! which the workspace root's `memory.x` includes. With feature
+//! `field-update` the Nucleo's layout is written from `src/slots.rs`
+//! instead: `FLASH` ends where the first field-update slot begins.
 //!
 //! Feature `board` (the default): the board binary links defmt's linker
 //! script (`-Tdefmt.x`, for that binary only), and for a bare-metal target
 //! the project must have a `[board]` section (its pin map).
 
 use std::path::{Path, PathBuf};
+
+/// The field-update slots' addresses, shared with the firmware.
+#[allow(dead_code)]
+#[path = "src/slots.rs"]
+mod slots;
 
 fn env(name: &str) -> Option<String> {
     println!("cargo:rerun-if-env-changed={name}");
@@ -93,14 +100,27 @@ fn main() {
 
     // The root memory.x (found first by the linker) includes plc-layout.x.
     let pico = std::env::var_os("CARGO_FEATURE_PICO").is_some();
-    let layout = manifest.join(if qemu || guard_bench {
-        "layout/mps2-an386.x"
-    } else if pico {
-        "layout/rp2040.x"
+    // Feature `field-update` (the Nucleo's): FLASH ends where slot A
+    // begins, written from src/slots.rs.
+    let field_update = std::env::var_os("CARGO_FEATURE_FIELD_UPDATE").is_some();
+    if field_update && !(qemu || guard_bench || pico) {
+        let mut script = String::new();
+        slots::write_linker_layout(&mut script).expect("formats");
+        if let Err(e) = std::fs::write(out.join("plc-layout.x"), script) {
+            eprintln!("error: writing plc-layout.x: {e}");
+            std::process::exit(1);
+        }
+        println!("cargo:rerun-if-changed=src/slots.rs");
     } else {
-        "layout/stm32f411re.x"
-    });
-    copy(&layout, &out.join("plc-layout.x"));
+        let layout = manifest.join(if qemu || guard_bench {
+            "layout/mps2-an386.x"
+        } else if pico {
+            "layout/rp2040.x"
+        } else {
+            "layout/stm32f411re.x"
+        });
+        copy(&layout, &out.join("plc-layout.x"));
+    }
     println!(
         "cargo:rerun-if-changed={}",
         printable(&root.join("memory.x"))

@@ -341,6 +341,12 @@ fn ci() -> Result {
         "-D",
         "warnings",
     ]))?;
+    // The Nucleo's firmware with field update (slots in flash, the serial
+    // link), on the press.
+    run(size::Firmware::NUCLEO_FIELD_UPDATE
+        .cargo("clippy")
+        .args(["--", "-D", "warnings"])
+        .env("PLC_PROJECT", "models/press.plc.toml"))?;
     // The Raspberry Pi Pico's firmware (RP2040, thumbv6m), on its press.
     run(size::Firmware::PICO
         .cargo("clippy")

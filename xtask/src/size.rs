@@ -5,7 +5,9 @@
 //! `thumbv6m-none-eabi`) of every model with a `pico_project`. Per
 //! Nucleo image also the executor's code (`code_share`: inlined code
 //! counted by its source), checked against `executor_code`; and the
-//! first image's code by source in full.
+//! first image's code by source in full. The press is also built with
+//! feature `field-update` (board `nucleo+update`), reported without
+//! budgets.
 
 use crate::budgets::{self, Budgets};
 use crate::{cargo, code_share, root, run, Result};
@@ -83,6 +85,14 @@ impl Firmware {
         features: "nucleo-f411re",
         target: "thumbv7em-none-eabihf",
     };
+    /// The Nucleo-F411RE with field update (feature `field-update`:
+    /// the slots in flash sectors 6 and 7, the serial link). Built for
+    /// [`FIELD_UPDATE_MODEL`] and reported, not checked against a budget.
+    pub const NUCLEO_FIELD_UPDATE: Firmware = Firmware {
+        board: "nucleo+update",
+        features: "field-update",
+        target: "thumbv7em-none-eabihf",
+    };
     /// The Raspberry Pi Pico (RP2040).
     pub const PICO: Firmware = Firmware {
         board: "pico",
@@ -128,6 +138,10 @@ impl Firmware {
     }
 }
 
+/// The model whose Nucleo image is also built with feature
+/// `field-update` (its row has no budgets).
+pub const FIELD_UPDATE_MODEL: &str = "press";
+
 /// A board firmware built.
 struct Built {
     board: &'static str,
@@ -167,6 +181,11 @@ pub fn run_task(args: &[String]) -> Result {
         if let Some(project) = &model.pico_project {
             builds.push(Firmware::PICO.build(project)?);
         }
+        let field_update = if model.board && name == FIELD_UPDATE_MODEL {
+            Some(Firmware::NUCLEO_FIELD_UPDATE.build(&model.project)?)
+        } else {
+            None
+        };
         for built in builds {
             failures.extend(model.check_board(name, built.pico, built.flash, built.ram));
             let (bf, br, bx) = if built.pico {
@@ -178,6 +197,9 @@ pub fn run_task(args: &[String]) -> Result {
                 (model.board_flash, model.board_ram, model.executor_code)
             };
             rows.push((name.clone(), built, bf, br, bx));
+        }
+        if let Some(built) = field_update {
+            rows.push((name.clone(), built, None, None, None));
         }
     }
     println!(

@@ -11,6 +11,8 @@
 //!   line map;
 //! - [`levels`]: active-low pins;
 //! - [`icount`]: instruction counts in QEMU (SysTick under `-icount`);
+//! - [`slots`]: where the field-update slots are in the STM32F411's
+//!   flash (feature `field-update`);
 //! - [`update`]: field update, what a loaded image must pass and the
 //!   memory it runs in.
 //!
@@ -26,6 +28,7 @@
 pub mod edges;
 pub mod icount;
 pub mod levels;
+pub mod slots;
 pub mod update;
 
 /// The chip the board firmware is built for (feature `pico`: the RP2040;

@@ -11,6 +11,10 @@
 //!   `thumbv7em-none-eabihf`;
 //! - `pico`: the RP2040 on a Raspberry Pi Pico, `thumbv6m-none-eabi`.
 //!
+//! With feature `field-update` (Nucleo-F411RE only) the program may come
+//! from a flash slot and be replaced over the serial link while the PLC
+//! scans (`field`, docs/field-update.md).
+//!
 //! The program image is checked when the controller starts (a mismatch
 //! starts it in fault mode, `Corrupt`), which the log reports.
 //!
@@ -37,6 +41,8 @@ use nucleo_f411re as board;
 mod pico;
 #[cfg(all(target_os = "none", feature = "pico", not(feature = "nucleo-f411re")))]
 use pico as board;
+#[cfg(all(target_os = "none", feature = "field-update"))]
+mod field;
 #[cfg(target_os = "none")]
 mod panic;
 #[cfg(target_os = "none")]
@@ -52,7 +58,14 @@ fn main() -> ! {
     use defmt_rtt as _;
 
     let (board, startup) = board::init();
-    scan::run(board, startup)
+    #[cfg(feature = "field-update")]
+    {
+        field::run(board, startup)
+    }
+    #[cfg(not(feature = "field-update"))]
+    {
+        scan::run(board, startup)
+    }
 }
 
 /// On a host: the firmware only runs on the board.

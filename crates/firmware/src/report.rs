@@ -14,9 +14,60 @@ use executor::program::Index;
 use executor::{Controller, Fault, Program, ScanRecord};
 use firmware::program::{event, input, supervisor, CONFIG};
 
-/// The name of event `e`.
-fn event_name(e: Index) -> &'static str {
-    event::NAMES.get(usize::from(e)).copied().unwrap_or("?")
+/// The names the log gives a program's events and inputs: the built-in
+/// program's ([`BuiltIn`]); a program loaded into a field-update slot
+/// has none in its image, and its log gives numbers ([`Numbered`]).
+pub trait Names {
+    /// Whether events and inputs are logged by number.
+    const NUMBERED: bool;
+    /// The name of event `e`.
+    fn event(&self, e: Index) -> &'static str;
+    /// The name of input `i`.
+    fn input(&self, i: usize) -> &'static str;
+    /// The reset input, if the program has one.
+    fn reset(&self) -> Option<Index>;
+}
+
+/// The built-in program's names.
+pub struct BuiltIn;
+
+impl Names for BuiltIn {
+    const NUMBERED: bool = false;
+
+    fn event(&self, e: Index) -> &'static str {
+        event::NAMES.get(usize::from(e)).copied().unwrap_or("?")
+    }
+
+    fn input(&self, i: usize) -> &'static str {
+        input::NAMES.get(i).copied().unwrap_or("?")
+    }
+
+    fn reset(&self) -> Option<Index> {
+        CONFIG.reset
+    }
+}
+
+/// A loaded program's: numbers only.
+#[cfg_attr(not(feature = "field-update"), allow(dead_code))]
+pub struct Numbered {
+    /// The program's reset input.
+    pub reset: Option<Index>,
+}
+
+impl Names for Numbered {
+    const NUMBERED: bool = true;
+
+    fn event(&self, _: Index) -> &'static str {
+        "event"
+    }
+
+    fn input(&self, _: usize) -> &'static str {
+        "input"
+    }
+
+    fn reset(&self) -> Option<Index> {
+        self.reset
+    }
 }
 
 /// The start-up line.
@@ -72,25 +123,45 @@ pub fn overrun(scan: u32, start: &ScanStart, period_ms: u32) {
 }
 
 /// An input that changed `count` times between two samples.
-pub fn lost_edge(scan: u32, input: usize, count: u8) {
+pub fn lost_edge<N: Names>(names: &N, scan: u32, input: usize, count: u8) {
+    if N::NUMBERED {
+        return defmt::warn!(
+            "scan {=u32}: lost edge on input #{=usize} ({=u8} changes since the last sample)",
+            scan,
+            input,
+            count
+        );
+    }
     defmt::warn!(
         "scan {=u32}: lost edge on `{=str}` ({=u8} changes since the last sample)",
         scan,
-        input::NAMES.get(input).copied().unwrap_or("?"),
+        names.input(input),
         count
     );
 }
 
 /// What scan `record` did, given the fault before it.
-pub fn scan(record: &ScanRecord<'_>, before: Option<Fault>) {
+pub fn scan<N: Names>(names: &N, record: &ScanRecord<'_>, before: Option<Fault>) {
     for &e in record.executed {
-        defmt::info!("scan {=u32}: {=str}", record.scan, event_name(e));
+        if N::NUMBERED {
+            defmt::info!("scan {=u32}: event #{=u16}", record.scan, e);
+        } else {
+            defmt::info!("scan {=u32}: {=str}", record.scan, names.event(e));
+        }
     }
     for &e in record.unexpected {
-        defmt::warn!("scan {=u32}: unexpected {=str}", record.scan, event_name(e));
+        if N::NUMBERED {
+            defmt::warn!("scan {=u32}: unexpected event #{=u16}", record.scan, e);
+        } else {
+            defmt::warn!(
+                "scan {=u32}: unexpected {=str}",
+                record.scan,
+                names.event(e)
+            );
+        }
     }
     match (before, record.fault) {
-        (None, Some(fault)) => entered(record, fault),
+        (None, Some(fault)) => entered(names, record, fault),
         (Some(_), None) => defmt::info!(
             "scan {=u32}: reset: controller re-initialised, states {=[?]}",
             record.scan,
@@ -100,16 +171,16 @@ pub fn scan(record: &ScanRecord<'_>, before: Option<Fault>) {
     }
 }
 
-fn entered(record: &ScanRecord<'_>, fault: Fault) {
-    let until = match CONFIG.reset {
-        Some(r) => input::NAMES.get(usize::from(r)).copied().unwrap_or("?"),
+fn entered<N: Names>(names: &N, record: &ScanRecord<'_>, fault: Fault) {
+    let until = match names.reset() {
+        Some(r) => names.input(usize::from(r)),
         None => "power-on (no reset input)",
     };
     match fault {
         Fault::Unexpected { event } => defmt::error!(
             "scan {=u32}: fault: unexpected {=str} in states {=[?]}; safe outputs until {=str}",
             record.scan,
-            event_name(event),
+            names.event(event),
             record.states,
             until
         ),
@@ -161,4 +232,76 @@ pub fn status<P: Program, M: Memory>(
         times.max / ticks_per_us
     );
     *times = ScanTimes::default();
+}
+
+/// The start-up choice of a field-update slot: which slot runs (or the
+/// built-in program) and why each slot was passed over.
+#[cfg(feature = "field-update")]
+pub fn choice(choice: &field_update::slot::Choice) {
+    match choice.running {
+        Some(v) => defmt::info!(
+            "field update: slot {} chosen (sequence {=u32}); passed over: A {}, B {}",
+            v.slot,
+            v.header.sequence,
+            choice.rejected[0],
+            choice.rejected[1]
+        ),
+        None => defmt::info!(
+            "field update: no valid slot, the built-in program runs; passed over: A {}, B {}",
+            choice.rejected[0],
+            choice.rejected[1]
+        ),
+    }
+}
+
+/// The program of slot `valid` runs (`name`, its version and image CRC),
+/// with its start-up image check.
+#[cfg(feature = "field-update")]
+pub fn slot_runs(valid: &field_update::slot::Valid, name: &str, fault: Option<Fault>) {
+    let (major, minor, patch) = field_update::header::version_parts(valid.header.version);
+    defmt::info!(
+        "program `{=str}` from slot {}, version {=u16}.{=u8}.{=u8}, sequence {=u32}, image CRC {=u32:#010x}: {}",
+        name,
+        valid.slot,
+        major,
+        minor,
+        patch,
+        valid.header.sequence,
+        valid.header.image_crc,
+        if fault.is_none() { "intact" } else { "fault mode" }
+    );
+    if let Some(f) = fault {
+        defmt::error!(
+            "program image check failed ({}): fault mode, outputs at their safe levels",
+            f
+        );
+    }
+}
+
+/// A slot that passed its check at start-up or at a commit but does not
+/// load now (refusal `code`, `firmware::update`): the built-in program
+/// runs.
+#[cfg(feature = "field-update")]
+pub fn slot_refused(slot: field_update::slot::Slot, code: u16) {
+    defmt::error!(
+        "slot {} does not load (code {=u16:#x}): the built-in program runs",
+        slot,
+        code
+    );
+}
+
+/// A committed load's outcome.
+#[cfg(feature = "field-update")]
+pub fn load(outcome: &field_update::loader::Outcome) {
+    match outcome {
+        field_update::loader::Outcome::Switched(v) => defmt::info!(
+            "field update: slot {} written (sequence {=u32}, image CRC {=u32:#010x}); the next scan runs it",
+            v.slot,
+            v.header.sequence,
+            v.header.image_crc
+        ),
+        field_update::loader::Outcome::Refused(r) => {
+            defmt::warn!("field update: load refused: {}", r)
+        }
+    }
 }

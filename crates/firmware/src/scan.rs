@@ -27,8 +27,9 @@ use crate::report;
 use core::cell::Cell;
 use critical_section::Mutex;
 use embedded_hal::digital::{InputPin, OutputPin, PinState};
+use executor::memory::Memory;
 use executor::pacing::Pacer;
-use executor::{Controller, Program};
+use executor::{Config, Controller, Program};
 use firmware::edges::{ChangeCounts, LineMap};
 use firmware::levels;
 use firmware::program::board::{SignalPin, EDGE_LATCHED, INPUT_PINS, OUTPUT_PINS};
@@ -220,18 +221,71 @@ pub trait Board {
     }
 }
 
-/// Runs the project's scan cycle on `board` forever.
-pub fn run<B: Board>(mut board: B, startup: Startup) -> ! {
-    report::startup(&startup, WATCHDOG_MS);
-    let mut controller = match Controller::new_proven(&program::PROGRAM, program::Memory::new()) {
+/// What runs between two scans besides the scan itself: the field-update
+/// link (feature `field-update`), or nothing (`()`, the built-in
+/// program's loop, which it leaves as lean as before).
+pub trait Link<B> {
+    /// What ends the scan loop: the program to switch to.
+    type Switch;
+
+    /// After a scan's outputs are written and the watchdog fed: `Some`
+    /// when the next scan is to run another program.
+    fn after_scan(&mut self, board: &mut B) -> Option<Self::Switch>;
+}
+
+/// No link: the loop never ends.
+impl<B> Link<B> for () {
+    type Switch = core::convert::Infallible;
+
+    #[inline(always)]
+    fn after_scan(&mut self, _board: &mut B) -> Option<core::convert::Infallible> {
+        None
+    }
+}
+
+/// The built-in program's controller; panics (at start-up) when the
+/// generated memory does not fit it.
+#[inline(always)]
+pub fn built_in() -> Controller<impl Program + 'static, program::Memory> {
+    match Controller::new_proven(&program::PROGRAM, program::Memory::new()) {
         Ok(c) => c,
         Err(e) => defmt::panic!("the generated memory does not fit the program: {}", e),
-    };
-    report::image_check(controller.fault(), program::PROGRAM.recorded_crc());
+    }
+}
 
+/// Runs the project's scan cycle on `board` forever (the built-in
+/// program; with feature `field-update` the board runs `crate::field::run`
+/// instead).
+#[cfg_attr(feature = "field-update", allow(dead_code))]
+pub fn run<B: Board>(mut board: B, startup: Startup) -> ! {
+    report::startup(&startup, WATCHDOG_MS);
+    let mut controller = built_in();
+    report::image_check(controller.fault(), program::PROGRAM.recorded_crc());
     board.start_watchdog(WATCHDOG_MS);
+    match scan_loop(
+        &mut board,
+        &mut controller,
+        &CONFIG,
+        &report::BuiltIn,
+        &mut (),
+    ) {}
+}
+
+/// The scan cycle of `controller` (whose configuration is `config`, whose
+/// names for the log are `names`) on `board`, the watchdog running, until
+/// `link` asks for another program. Inlined: each caller has its own
+/// program and memory types, and the built-in program's loop stays one
+/// function as before.
+#[inline(always)]
+pub fn scan_loop<B: Board, P: Program, M: Memory, N: report::Names, L: Link<B>>(
+    board: &mut B,
+    controller: &mut Controller<P, M>,
+    config: &Config<'_>,
+    names: &N,
+    link: &mut L,
+) -> L::Switch {
     let now = board.now_ms();
-    let mut pacer = Pacer::for_config(&CONFIG, now);
+    let mut pacer = Pacer::for_config(config, now);
     let mut status = Pacer::new(now.wrapping_add(STATUS_PERIOD_MS), STATUS_PERIOD_MS, 0);
     let mut stats = report::ScanTimes::default();
     let mut fault = controller.fault();
@@ -254,19 +308,22 @@ pub fn run<B: Board>(mut board: B, startup: Startup) -> ! {
         let (raw, changes) = board.sample();
         for (input, count) in changes.lost() {
             controller.report_lost_edge();
-            report::lost_edge(controller.next_scan(), input, count);
+            report::lost_edge(names, controller.next_scan(), input, count);
         }
 
         controller.step_packed(start.time_ms, &raw);
         let record = controller.record();
         board.pins().write(record.outputs);
-        report::scan(&record, fault);
+        report::scan(names, &record, fault);
         fault = record.fault;
 
         stats.add(board.timer().wrapping_sub(began));
         board.feed_watchdog();
+        if let Some(switch) = link.after_scan(board) {
+            return switch;
+        }
         if status.poll(board.now_ms()).is_some() {
-            report::status(&controller, &mut stats, B::TIMER_TICKS_PER_US);
+            report::status(controller, &mut stats, B::TIMER_TICKS_PER_US);
         }
     }
 }

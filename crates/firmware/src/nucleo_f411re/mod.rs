@@ -7,12 +7,18 @@
 //! - [`edges`]: EXTI change counting for lost-edge detection (the edge
 //!   latch);
 //! - [`watchdog`]: the IWDG and the reset cause;
+//! - with feature `field-update`: [`flash`], the program slots in flash
+//!   sectors 6 and 7, and [`serial`], the link on USART2;
 //! - the millisecond clock is `crate::systick`, scan durations the DWT
 //!   cycle counter.
 
 pub mod clocks;
 pub mod edges;
+#[cfg(feature = "field-update")]
+pub mod flash;
 pub mod pins;
+#[cfg(feature = "field-update")]
+pub mod serial;
 pub mod watchdog;
 
 use crate::scan::{Board, Changes, Startup};
@@ -30,6 +36,10 @@ pub struct Nucleo {
     iwdg: Option<IWDG>,
     dbgmcu: DBGMCU,
     watchdog: Option<IndependentWatchdog>,
+    #[cfg(feature = "field-update")]
+    flash: pac::FLASH,
+    #[cfg(feature = "field-update")]
+    port: serial::Port,
 }
 
 /// Sets the chip up: clocks, pins, edge latch, millisecond clock, cycle
@@ -44,7 +54,8 @@ pub fn init() -> (Nucleo, Startup) {
 
     let mut syscfg = dp.SYSCFG.constrain(&mut rcc);
     let mut exti = dp.EXTI;
-    let mut io = pins::configure(pins::Ports {
+    #[cfg_attr(not(feature = "field-update"), allow(clippy::let_unit_value))]
+    let (mut io, link) = pins::configure(pins::Ports {
         a: dp.GPIOA.split(&mut rcc),
         b: dp.GPIOB.split(&mut rcc),
         c: dp.GPIOC.split(&mut rcc),
@@ -66,13 +77,39 @@ pub fn init() -> (Nucleo, Startup) {
         iwdg: Some(dp.IWDG),
         dbgmcu: dp.DBGMCU,
         watchdog: None,
+        #[cfg(feature = "field-update")]
+        flash: dp.FLASH,
+        #[cfg(feature = "field-update")]
+        port: serial::start(dp.USART2, link.0, link.1, &mut rcc),
     };
+    #[cfg(not(feature = "field-update"))]
+    let () = link;
     let startup = Startup {
         reset,
         sysclk_hz,
         clock_source: source.name(),
     };
     (board, startup)
+}
+
+#[cfg(feature = "field-update")]
+impl Nucleo {
+    /// The field-update parts: the slots (with the watchdog, which an
+    /// erase restarts with a longer timeout) and the serial link.
+    pub fn update_parts(&mut self, watchdog_ms: u32) -> (flash::FlashSlots<'_>, &mut serial::Port) {
+        (
+            flash::FlashSlots::new(&mut self.flash, self.watchdog.as_mut(), watchdog_ms),
+            &mut self.port,
+        )
+    }
+
+    /// Starts the running watchdog again with `timeout_ms` (a switched-in
+    /// program's scan period may differ from the built-in one's).
+    pub fn set_watchdog_timeout(&mut self, timeout_ms: u32) {
+        if let Some(w) = &mut self.watchdog {
+            w.start(stm32f4xx_hal::prelude::_fugit_ExtU32::millis(timeout_ms));
+        }
+    }
 }
 
 impl Board for Nucleo {

@@ -135,19 +135,50 @@ macro_rules! claim_pins {
 /// The configured pins: one slot per input and per output.
 pub type Io = Pins<ErasedPin<Input>, ErasedPin<Output<PushPull>>>;
 
+/// The pins the field-update link keeps (feature `field-update`): USART2's
+/// TX and RX, PA2 and PA3 (the ST-LINK's virtual COM port).
+#[cfg(feature = "field-update")]
+pub type LinkPins = (gpioa::PA2<Input>, gpioa::PA3<Input>);
+/// The pins the field-update link keeps: none without feature
+/// `field-update`.
+#[cfg(not(feature = "field-update"))]
+pub type LinkPins = ();
+
+#[cfg(feature = "field-update")]
+const _: () = assert!(
+    uses('A', 2) == 0 && uses('A', 3) == 0,
+    "the pin map uses PA2 or PA3, which the firmware keeps with feature `field-update`: USART2, the field-update link on the ST-LINK's virtual COM port; wire those signals to other pins or build without the feature"
+);
+
 /// Configures the pins of the pin map: inputs with their pull resistor,
 /// outputs push-pull at the level of signal 0 (the output image before
-/// the first scan).
-pub fn configure(ports: Ports) -> Io {
+/// the first scan). With feature `field-update`, PA2 and PA3 are not
+/// offered but returned for the link.
+pub fn configure(ports: Ports) -> (Io, LinkPins) {
     let mut io = Io::default();
+    let link;
     {
         let Ports { a, b, c, d, e, h } = ports;
         // PA13/PA14 (SWD, `MCU.reserved`) are not offered.
-        claim_pins!(
-            io,
-            a,
-            [pa0, pa1, pa2, pa3, pa4, pa5, pa6, pa7, pa8, pa9, pa10, pa11, pa12, pa15]
-        );
+        #[cfg(not(feature = "field-update"))]
+        {
+            claim_pins!(
+                io,
+                a,
+                [pa0, pa1, pa2, pa3, pa4, pa5, pa6, pa7, pa8, pa9, pa10, pa11, pa12, pa15]
+            );
+            link = ();
+        }
+        // Nor PA2/PA3 (USART2, the field-update link).
+        #[cfg(feature = "field-update")]
+        {
+            claim_pins!(
+                io,
+                a,
+                [pa0, pa1, pa4, pa5, pa6, pa7, pa8, pa9, pa10, pa11, pa12, pa15]
+            );
+            link = (a.pa2, a.pa3);
+        }
         claim_pins!(
             io,
             b,
@@ -183,7 +214,7 @@ pub fn configure(ports: Ports) -> Io {
         // PH0 (HSE input, `MCU.reserved`) is not offered.
         claim_pins!(io, h, [ph1]);
     }
-    io
+    (io, link)
 }
 
 /// Claims pins for [`configure`].

@@ -1,0 +1,133 @@
+//! The field-update slots in the STM32F411RE's flash (feature
+//! `field-update`): sectors 6 and 7 (`firmware::slots`), erased and
+//! programmed through stm32f4xx-hal's `flash` module (the data cache reset
+//! after each through the PAC: the HAL does not), read where they are
+//! mapped.
+//!
+//! Erasing a 128 KiB sector stalls the core for 1–4 s (RM0383 and the
+//! datasheet: typically 2 s, at most 4 s at the HAL's 8-bit parallelism;
+//! every fetch from flash waits). No scan runs meanwhile: outputs keep
+//! the levels the last scan wrote, and the watchdog, whose scan-period
+//! timeout would reset the chip, is started again with
+//! [`ERASE_WATCHDOG_MS`] just before the erase and with its scan timeout
+//! just after. Programming is byte by byte (16 µs a byte at most: 4 ms
+//! for a 256-byte `Data` chunk), inside the scan's link share.
+
+use field_update::slot::{Slot, SlotStore};
+use firmware::slots::{FLASH_ORIGIN, SECTOR_A, SECTOR_B, SLOT_A, SLOT_B, SLOT_BYTES};
+use stm32f4xx_hal::flash::{self, FlashExt};
+use stm32f4xx_hal::pac::FLASH;
+use stm32f4xx_hal::prelude::*;
+use stm32f4xx_hal::watchdog::IndependentWatchdog;
+
+/// The watchdog timeout over a sector erase (ms): twice the longest
+/// 128 KiB erase (4 s), well below the IWDG's 32 s.
+pub const ERASE_WATCHDOG_MS: u32 = 8_000;
+
+/// Words of a slot.
+const SLOT_WORDS: usize = (SLOT_BYTES / 4) as usize;
+
+/// The two slots: the flash controller, and the watchdog while a sector
+/// is erased.
+pub struct FlashSlots<'w> {
+    flash: &'w mut FLASH,
+    watchdog: Option<&'w mut IndependentWatchdog>,
+    watchdog_ms: u32,
+}
+
+impl<'w> FlashSlots<'w> {
+    /// The slots of `flash`; `watchdog` (running with `watchdog_ms`) is
+    /// given the erase's timeout while a sector is erased.
+    pub fn new(
+        flash: &'w mut FLASH,
+        watchdog: Option<&'w mut IndependentWatchdog>,
+        watchdog_ms: u32,
+    ) -> FlashSlots<'w> {
+        FlashSlots {
+            flash,
+            watchdog,
+            watchdog_ms,
+        }
+    }
+}
+
+/// A slot's address.
+const fn address(slot: Slot) -> u32 {
+    match slot {
+        Slot::A => SLOT_A,
+        Slot::B => SLOT_B,
+    }
+}
+
+/// The words of `slot` where the flash is mapped.
+pub fn words(slot: Slot) -> &'static [u32] {
+    // SAFETY: the slot is SLOT_BYTES of the chip's memory-mapped flash
+    // (firmware::slots, checked against the sector map at compile time),
+    // word-aligned, always readable, and outside the linker's FLASH region
+    // (build.rs), so nothing of the firmware lives there. Its contents
+    // change only through `FlashSlots::erase`/`program`, which take the
+    // store mutably: the loader never changes the running slot, whose
+    // words the running program borrows.
+    #[allow(unsafe_code)]
+    unsafe {
+        core::slice::from_raw_parts(address(slot) as *const u32, SLOT_WORDS)
+    }
+}
+
+impl FlashSlots<'_> {
+    /// Empties the flash's data cache (RM0383 §3.4: it may hold words of
+    /// a slot as they were before an erase or a write; the stm32f4xx-hal
+    /// does not reset it), so that the loader reads back what the flash
+    /// holds. The ART's data cache may be reset only while it is off.
+    fn reset_data_cache(&mut self) {
+        self.flash.acr().modify(|_, w| w.dcen().clear_bit());
+        self.flash.acr().modify(|_, w| w.dcrst().set_bit());
+        self.flash.acr().modify(|_, w| w.dcrst().clear_bit());
+        self.flash.acr().modify(|_, w| w.dcen().set_bit());
+    }
+}
+
+impl SlotStore for FlashSlots<'_> {
+    type Error = flash::Error;
+
+    fn slot_words(&self) -> usize {
+        SLOT_WORDS
+    }
+
+    fn contents(&self, slot: Slot) -> &[u32] {
+        words(slot)
+    }
+
+    fn erase(&mut self, slot: Slot) -> Result<(), flash::Error> {
+        let sector = match slot {
+            Slot::A => SECTOR_A,
+            Slot::B => SECTOR_B,
+        };
+        if let Some(w) = self.watchdog.as_deref_mut() {
+            w.start(ERASE_WATCHDOG_MS.millis());
+        }
+        let result = self.flash.unlocked().erase(sector);
+        if let Some(w) = self.watchdog.as_deref_mut() {
+            w.start(self.watchdog_ms.millis());
+        }
+        self.reset_data_cache();
+        result
+    }
+
+    fn program(&mut self, slot: Slot, offset: usize, words: &[u32]) -> Result<(), flash::Error> {
+        if offset.saturating_add(words.len()) > SLOT_WORDS {
+            return Err(flash::Error::ProgrammingSequence);
+        }
+        let start = (address(slot) - FLASH_ORIGIN) as usize + offset * 4;
+        let mut unlocked = self.flash.unlocked();
+        let result = words
+            .iter()
+            .enumerate()
+            .try_for_each(|(i, word)| unlocked.program(start + i * 4, word.to_le_bytes().iter()));
+        drop(unlocked);
+        self.reset_data_cache();
+        result
+    }
+}
+
+const _: () = assert!(FLASH_ORIGIN == 0x0800_0000);
