@@ -159,9 +159,10 @@ pub fn load<'a>(
 /// [`load`] without [`validate_generated`], for words `load` accepted
 /// before with this `crc` (a field update's slot, judged when it was
 /// written, switched in later): the image is parsed again, not judged
-/// again. Run it only through [`crate::Controller::new`], which checks
-/// the image's structure and starts in fault mode unless its CRC is `crc`
-/// (other words than those judged).
+/// again. Run it only through a controller
+/// ([`crate::Controller::new_proven`], as the firmware does, or
+/// [`crate::Controller::new`]): it runs nothing of the words and starts in
+/// fault mode unless their CRC is `crc` (other words than those judged).
 pub fn reload<'a>(
     words: &'a [u32],
     name: &'a mut [u8],
