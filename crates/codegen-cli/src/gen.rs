@@ -192,6 +192,7 @@ fn print_stats(out: &mut Out, project: &Path, stats: &[SupervisorStats], backend
                     s.events,
                     match s.layout {
                         Some(Layout::Sparse) => "sparse",
+                        Some(Layout::Keyed) => "keyed",
                         Some(Layout::Net) => "net",
                         _ => "dense",
                     },

@@ -43,10 +43,12 @@
 //! | allowed index | 1 | the word as stored |
 //!
 //! then, per table in supervisor order, four runs: a 7-word header
-//! (events, state bits, layout (0 dense, 1 sparse, 2 net), row-start bits
-//! (0 when dense or net), and the word counts of `defined`, `targets` and
-//! `row_starts` (a net's `fields`)), then the words of `defined`,
-//! `targets` and `row_starts` (`fields`) as stored.
+//! (events, state bits, layout (0 dense, 1 sparse, 2 net, 3 keyed), the
+//! widths (a sparse table's row-start bits; a keyed table's `start_bits |
+//! key_bits << 8`; 0 when dense or net), and the word counts of
+//! `defined`, `targets` and `row_starts` (a net's `fields`, a keyed
+//! table's `states`)), then the words of `defined`, `targets` and
+//! `row_starts` (`fields`, `states`) as stored.
 //!
 //! # The CRC
 //!
@@ -89,7 +91,7 @@ pub(crate) const CRC_START: u32 = CRC_32_MPEG_2.init;
 
 /// Runs of the configuration, before the tables.
 const CONFIG_RUNS: usize = 18;
-/// Runs per table: header, `defined`, `targets`, `row_starts`.
+/// Runs per table: header, `defined`, `targets`, `row_starts` (`states`).
 const TABLE_RUNS: usize = 4;
 /// Words of the header run.
 pub(crate) const HEADER_WORDS: usize = 29;
@@ -285,6 +287,7 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
                         Rows::Dense => &[],
                         Rows::Sparse { row_starts, .. } => row_starts,
                         Rows::Net { fields } => fields,
+                        Rows::Keyed { states, .. } => states,
                     },
                 }
             }
@@ -355,22 +358,32 @@ fn name_word(bytes: &[u8], k: usize) -> u32 {
 }
 
 /// A table's header run: events, state bits, layout (0 dense, 1 sparse,
-/// 2 net), row-start bits, and the word counts of `defined`, `targets` and
-/// `row_starts` (`fields`).
+/// 2 net, 3 keyed), widths (row-start bits; `start_bits | key_bits << 8`
+/// when keyed), and the word counts of `defined`, `targets` and
+/// `row_starts` (`fields`, `states`).
 fn table_header(t: &SupervisorTable<'_>) -> [u32; TABLE_HEADER_WORDS] {
-    let (layout, start_bits, row_starts) = match t.rows {
+    let (layout, widths, row_starts) = match t.rows {
         Rows::Dense => (0, 0, 0),
         Rows::Net { fields } => (2, 0, fields.len()),
         Rows::Sparse {
             row_starts,
             start_bits,
-        } => (1, start_bits, row_starts.len()),
+        } => (1, u32::from(start_bits), row_starts.len()),
+        Rows::Keyed {
+            states,
+            key_bits,
+            start_bits,
+        } => (
+            3,
+            u32::from(start_bits) | u32::from(key_bits) << 8,
+            states.len(),
+        ),
     };
     [
         t.events.into(),
         t.state_bits.into(),
         layout,
-        start_bits.into(),
+        widths,
         t.defined.len() as u32,
         t.targets.len() as u32,
         row_starts as u32,

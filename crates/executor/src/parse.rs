@@ -22,7 +22,8 @@ pub enum ParseError {
     /// Words left after the last table.
     Trailing,
     /// A header word out of its field's range (a 16-bit field above
-    /// `0xFFFF`, a flag or policy above 1, a table layout above 2).
+    /// `0xFFFF`, a flag or policy above 1, a table layout above 3, a
+    /// keyed table's widths zero or above 32 together).
     Header {
         /// The word's index in its header.
         word: usize,
@@ -309,16 +310,25 @@ fn parse_name<'a>(
 }
 
 /// The next table: its header, then `defined`, `targets` and
-/// `row_starts` (`fields`).
+/// `row_starts` (`fields`, `states`).
 fn parse_table<'a>(words: &mut &'a [u32]) -> Result<SupervisorTable<'a>, ParseError> {
     let h = take(words, TABLE_HEADER_WORDS)?;
     let bits = |k: usize| u8::try_from(h[k]).map_err(|_| ParseError::Header { word: k });
     let events = header(h, 0)?;
     let state_bits = bits(1)?;
-    let start_bits = bits(3)?;
     let defined = take(words, h[4] as usize)?;
     let targets = take(words, h[5] as usize)?;
     let third = take(words, h[6] as usize)?;
+    if h[2] == 3 {
+        return keyed_table(h[3], third).map(|rows| SupervisorTable {
+            events,
+            state_bits,
+            defined,
+            targets,
+            rows,
+        });
+    }
+    let start_bits = bits(3)?;
     let rows = match (h[2], start_bits, third.len()) {
         (0, 0, 0) => Rows::Dense,
         (0, 0, _) => return Err(ParseError::Header { word: 6 }),
@@ -336,6 +346,23 @@ fn parse_table<'a>(words: &mut &'a [u32]) -> Result<SupervisorTable<'a>, ParseEr
         defined,
         targets,
         rows,
+    })
+}
+
+/// The rows of a keyed table from its header's widths word (`start_bits
+/// | key_bits << 8`, both at least 1, at most 32 together) and its
+/// records: refused as header word 3 otherwise. Whether the records'
+/// keys and starts fit the dictionary and targets is the structure
+/// check's, which knows the supervisor's states.
+fn keyed_table(widths: u32, states: &[u32]) -> Result<Rows<'_>, ParseError> {
+    let (start_bits, key_bits) = (widths & 0xFF, widths >> 8);
+    if start_bits == 0 || key_bits == 0 || start_bits + key_bits > 32 {
+        return Err(ParseError::Header { word: 3 });
+    }
+    Ok(Rows::Keyed {
+        states,
+        key_bits: key_bits as u8,
+        start_bits: start_bits as u8,
     })
 }
 

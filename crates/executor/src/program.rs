@@ -941,6 +941,20 @@ pub enum Rows<'a> {
         /// The mask of each place's counter, in place order.
         fields: &'a [u32],
     },
+    /// A dictionary of rows ([`crate::table`], "Keyed rows"): `defined`
+    /// holds the distinct rows of defined-bits, `m` bits each, row `r` at
+    /// bits `r·m .. r·m + m`; `targets` holds only defined pairs, as in
+    /// [`Rows::Sparse`].
+    Keyed {
+        /// `n` packed records of `key_bits + start_bits` bits (at most
+        /// 32), one per state: the low `key_bits` its row in `defined`,
+        /// the high `start_bits` its row start in `targets`.
+        states: &'a [u32],
+        /// Width of a row key (1 to 31).
+        key_bits: u8,
+        /// Width of a row start (1 to 31).
+        start_bits: u8,
+    },
 }
 
 /// One supervisor's transition function, bit-packed (the encoding and
@@ -953,7 +967,7 @@ pub struct SupervisorTable<'a> {
     pub events: Index,
     /// Bits per state `b`.
     pub state_bits: u8,
-    /// `n·m` defined-bits.
+    /// `n·m` defined-bits (the distinct rows of them when keyed).
     pub defined: &'a [u32],
     /// Packed `b`-bit targets.
     pub targets: &'a [u32],

@@ -16,8 +16,22 @@
 //!     `row_start[s]` plus the number of defined events of `s` before `e`.
 //!     `row_start` holds `n` entries of `⌈log2(total + 1)⌉` bits.
 //!
-//! The generator picks the layout with fewer words (dense on a tie: it is
-//! one step faster).
+//! The generator picks the layout with the fewest words (dense on a tie:
+//! it is one step faster; then sparse over keyed, below).
+//!
+//! # Keyed rows
+//!
+//! A fourth layout, [`Rows::Keyed`], stores each distinct row of
+//! defined-bits once: many states of a large supervisor enable the same
+//! events. `defined` is then a dictionary of the `k` distinct rows, row
+//! `r` at bits `r·m .. r·m + m` (`⌈k·m / 32⌉` words); `targets` is the
+//! sparse layout's; and `states` holds one record of `key_bits +
+//! start_bits` bits (at most 32) per state: the low `key_bits` the
+//! state's row in the dictionary (its *key*, `key_bits = max(1,
+//! ⌈log2 k⌉)`), the high `start_bits` its row start, as the sparse
+//! layout's. A lookup reads the record, the dictionary row, counts the
+//! defined events before `e` in it, and reads one target: the sparse
+//! layout's steps, with one more read.
 //!
 //! # Petri nets
 //!
@@ -54,15 +68,20 @@
 //! | dense targets | `01 00 · 00 10 · 00 00` | `0x81` |
 //! | sparse targets | `01 · 10 · 00` | `0x09` |
 //! | sparse row starts (2 bits) | `00 · 01 · 10` | `0x24` |
+//! | keyed dictionary (rows `a`, `b`) | `1 0 · 0 1` | `0x09` |
+//! | keyed records (1-bit key, 2-bit start) | `0 00 · 1 10 · 0 01` | `0x118` |
 //!
 //! Looking up δ(1, b): bit `1·2 + 1 = 3` of `defined` is set; dense entry 3
 //! is bits 6–7 of `0x81` = `10` = state 2; sparse: row start of state 1 is
 //! 1, no defined event of state 1 precedes `b`, entry 1 is `10` = 2.
+//! Keyed (targets as sparse): the record of state 1 is `0b011`, key 1 and
+//! start 1; bit `1·2 + 1` of the dictionary is set, nothing before it in
+//! row 1, entry 1 is state 2.
 //!
 //! # Integrity
 //!
 //! The tables are part of the program image ([`crate::image`]): every
-//! word of `defined`, `targets` and `row_starts` is covered by the image
+//! word of `defined`, `targets` and `row_starts` (`states`) is covered by the image
 //! CRC ([`crate::image::table_image_crc`]), which the generator records and the controller
 //! checks at start-up and, in the background, scan after scan.
 
@@ -130,11 +149,23 @@ impl<'a> Config<'a> {
 pub use crate::bits::contains as bit;
 use crate::bits::insert as bit_insert;
 
+/// The record of `state` in a keyed table's `states` ([`Rows::Keyed`]):
+/// its dictionary row (the low `key_bits`) and its row start (the high
+/// `start_bits`). Shifts wrap rather than panic on widths that the
+/// structure check refuses.
+#[inline]
+pub fn keyed_record(states: &[u32], key_bits: u8, start_bits: u8, state: u32) -> (usize, usize) {
+    let record = read_bits(states, state as usize, key_bits.wrapping_add(start_bits));
+    let start = record.wrapping_shr(u32::from(key_bits));
+    let key = record ^ start.wrapping_shl(u32::from(key_bits));
+    (key as usize, start as usize)
+}
+
 /// Number of set bits in `from..to`: one count of at most 32 bits read
 /// at once (a sparse table's row prefix, when its supervisor has at most
 /// 33 events), else word by word.
 #[inline]
-fn ones_between(words: &[u32], from: usize, to: usize) -> usize {
+pub(crate) fn ones_between(words: &[u32], from: usize, to: usize) -> usize {
     let len = to.saturating_sub(from);
     if len <= 32 {
         return read_bits_at(words, from, len as u8).count_ones() as usize;
@@ -176,9 +207,22 @@ impl SupervisorTable<'_> {
         if local >= m {
             return None;
         }
-        if let Rows::Net { fields } = self.rows {
-            let (pre, post) = (*self.defined.get(local)?, *self.targets.get(local)?);
-            return self.fire(fields, state, pre, post);
+        // One test for the dense and sparse layouts (declared first), as
+        // when the net layout was the only other.
+        match self.rows {
+            Rows::Dense | Rows::Sparse { .. } => {}
+            Rows::Net { fields } => {
+                let (pre, post) = (*self.defined.get(local)?, *self.targets.get(local)?);
+                return self.fire(fields, state, pre, post);
+            }
+            Rows::Keyed {
+                states,
+                key_bits,
+                start_bits,
+            } => {
+                let (key, start) = keyed_record(states, key_bits, start_bits, state);
+                return self.keyed_next(key, start, local);
+            }
         }
         let row = state as usize * m;
         let pair = row + local;
@@ -191,7 +235,7 @@ impl SupervisorTable<'_> {
             }
             match self.rows {
                 Rows::Dense => pair,
-                Rows::Net { .. } => return None,
+                Rows::Net { .. } | Rows::Keyed { .. } => return None,
                 Rows::Sparse {
                     row_starts,
                     start_bits,
@@ -207,7 +251,7 @@ impl SupervisorTable<'_> {
             }
             match self.rows {
                 Rows::Dense => pair,
-                Rows::Net { .. } => return None,
+                Rows::Net { .. } | Rows::Keyed { .. } => return None,
                 Rows::Sparse {
                     row_starts,
                     start_bits,
@@ -231,10 +275,43 @@ impl SupervisorTable<'_> {
         if len == 0 {
             return 0;
         }
-        if let Rows::Net { fields } = self.rows {
-            return self.net_enabled(fields, state, from, len);
+        match self.rows {
+            Rows::Dense | Rows::Sparse { .. } => {
+                read_bits_at(self.defined, state as usize * m + from, len as u8)
+            }
+            Rows::Net { fields } => self.net_enabled(fields, state, from, len),
+            Rows::Keyed {
+                states,
+                key_bits,
+                start_bits,
+            } => {
+                let (key, _) = keyed_record(states, key_bits, start_bits, state);
+                read_bits_at(self.defined, key * m + from, len as u8)
+            }
         }
-        read_bits_at(self.defined, state as usize * m + from, len as u8)
+    }
+
+    /// [`SupervisorTable::next_state`] of the keyed layout: the state's
+    /// row is dictionary row `key`, its targets start at entry `start`
+    /// (`local` is below the table's events, so `m ≥ 1`).
+    #[inline]
+    fn keyed_next(&self, key: usize, start: usize, local: usize) -> Option<u32> {
+        let m = self.events as usize;
+        let row = key * m;
+        let entry = if m <= 32 {
+            // The whole dictionary row in one read, as a sparse row.
+            let bits = read_bits_at(self.defined, row, m as u8);
+            if bits >> local & 1 == 0 {
+                return None;
+            }
+            start + (bits & ((1u32 << local) - 1)).count_ones() as usize
+        } else {
+            if !bit(self.defined, row + local) {
+                return None;
+            }
+            start + ones_between(self.defined, row, row + local)
+        };
+        Some(read_bits(self.targets, entry, self.state_bits))
     }
 
     /// For a table of the net layout: adds to `allowed` (a bit set of
@@ -386,9 +463,23 @@ mod tests {
         },
     };
 
+    const KEYED: SupervisorTable<'static> = SupervisorTable {
+        events: 2,
+        state_bits: 2,
+        defined: &[0x09],
+        targets: &[0x09],
+        rows: Rows::Keyed {
+            states: &[0x118],
+            key_bits: 1,
+            start_bits: 2,
+        },
+    };
+
     #[test]
-    fn worked_example_decodes_in_both_layouts() {
-        for t in [DENSE, SPARSE] {
+    fn worked_example_decodes_in_every_layout() {
+        assert_eq!(keyed_record(&[0x118], 1, 2, 1), (1, 1));
+        assert_eq!(keyed_record(&[0x118], 1, 2, 2), (0, 2));
+        for t in [DENSE, SPARSE, KEYED] {
             assert_eq!(t.next_state(0, 0), Some(1));
             assert_eq!(t.next_state(0, 1), None);
             assert_eq!(t.next_state(1, 0), None);
@@ -540,12 +631,13 @@ mod tests {
     }
 
     /// Rows of exactly 32 and of 31 local events (read whole, one count
-    /// per lookup): the sparse layout gives the dense layout's targets,
-    /// events 30 and 31 included, and undefined pairs stay undefined.
+    /// per lookup), and of 40 (counted word by word): the sparse and keyed
+    /// layouts give the dense layout's targets, events 30 and 31
+    /// included, and undefined pairs stay undefined.
     #[test]
-    fn sparse_rows_of_a_whole_word_agree_with_dense() {
+    fn sparse_and_keyed_rows_agree_with_dense() {
         extern crate std;
-        use std::vec;
+        use std::{vec, vec::Vec};
         fn put(words: &mut [u32], index: usize, width: usize, value: u32) {
             for b in 0..width {
                 if value >> b & 1 == 1 {
@@ -554,17 +646,29 @@ mod tests {
                 }
             }
         }
-        for m in [31usize, 32] {
+        for m in [31usize, 32, 40] {
             let (n, width) = (7usize, 3usize);
             let defined_at = |s: usize, e: usize| !(s * 7 + e * 3).is_multiple_of(5) || e >= 30;
             let target = |s: usize, e: usize| ((s + e) % n) as u32;
             let mut defined = vec![0u32; (n * m).div_ceil(32)];
             let mut dense = vec![0u32; (n * m * width).div_ceil(32)];
             let mut sparse = vec![0u32; (n * m * width).div_ceil(32)];
-            let mut row_starts = vec![0u32; (n * 8).div_ceil(32)];
+            let mut row_starts = vec![0u32; (n * 9).div_ceil(32)];
+            // Keyed: rows repeat every 5 states; 3-bit keys, 9-bit starts.
+            let mut dictionary = vec![0u32; (5 * m).div_ceil(32)];
+            let mut records = vec![0u32; (n * 12).div_ceil(32)];
+            let mut keys: Vec<usize> = Vec::new();
             let mut k = 0;
             for s in 0..n {
-                put(&mut row_starts, s, 8, k as u32);
+                put(&mut row_starts, s, 9, k as u32);
+                let key = (s * 7) % 5;
+                put(&mut records, s, 12, key as u32 | (k as u32) << 3);
+                if !keys.contains(&key) {
+                    keys.push(key);
+                    for e in (0..m).filter(|&e| defined_at(s, e)) {
+                        put(&mut dictionary, key * m + e, 1, 1);
+                    }
+                }
                 for e in 0..m {
                     if defined_at(s, e) {
                         put(&mut defined, s * m + e, 1, 1);
@@ -581,14 +685,26 @@ mod tests {
                 targets,
                 rows,
             };
+            let sparse_targets = sparse.clone();
             let dense = table(&dense, Rows::Dense);
             let sparse = table(
                 &sparse,
                 Rows::Sparse {
                     row_starts: &row_starts,
-                    start_bits: 8,
+                    start_bits: 9,
                 },
             );
+            let keyed = SupervisorTable {
+                defined: &dictionary,
+                ..table(
+                    &sparse_targets,
+                    Rows::Keyed {
+                        states: &records,
+                        key_bits: 3,
+                        start_bits: 9,
+                    },
+                )
+            };
             for s in 0..n {
                 for e in 0..m {
                     let expected = defined_at(s, e).then(|| target(s, e));
@@ -602,6 +718,19 @@ mod tests {
                         sparse.next_state(state, local),
                         expected,
                         "sparse {m} {s} {e}"
+                    );
+                    assert_eq!(
+                        keyed.next_state(state, local),
+                        expected,
+                        "keyed {m} {s} {e}"
+                    );
+                }
+                for from in (0..m).step_by(32) {
+                    let (from, len) = (from as Index, 32);
+                    assert_eq!(
+                        keyed.enabled(s as u32, from, len),
+                        dense.enabled(s as u32, from, len),
+                        "keyed row {m} {s} {from}"
                     );
                 }
             }

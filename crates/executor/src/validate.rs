@@ -30,7 +30,7 @@ use crate::program::{
     words, Action, Config, EventSpec, GuardNode, Index, Membership, Program, Span, StateBit,
     StateMapEntry, SupervisorSpec, Trigger,
 };
-use crate::table::{bit, read_bits, Rows, SupervisorTable};
+use crate::table::{bit, keyed_record, ones_between, read_bits, Rows, SupervisorTable};
 
 /// Where in the image a flaw lies: a field, or an item of a list or pool
 /// by its index.
@@ -579,6 +579,23 @@ fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Resu
     }
     let m = u64::from(table.events);
     let pairs = states * m;
+    if let Rows::Keyed {
+        states: records,
+        key_bits,
+        start_bits,
+    } = table.rows
+    {
+        let entries =
+            keyed_entries(spec.states, table, records, key_bits, start_bits).ok_or(Invalid {
+                part,
+                flaw: Flaw::TableLength,
+            })?;
+        return if bits_of(table.targets) < entries * u64::from(width) {
+            fail(part, Flaw::TableLength)
+        } else {
+            Ok(())
+        };
+    }
     if bits_of(table.defined) < pairs {
         return fail(part, Flaw::TableLength);
     }
@@ -605,42 +622,92 @@ fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Resu
     Ok(())
 }
 
+/// The keyed layout's sizes ([`Rows::Keyed`]): widths of at least 1 bit
+/// and at most 32 together, a record per state, and a dictionary of
+/// exactly `⌈k·m / 32⌉` words for `k` one more than the largest key (so
+/// that every key names a row inside it). The number of targets its rows
+/// give, `None` when a size is wrong.
+fn keyed_entries(
+    states: u32,
+    table: &SupervisorTable<'_>,
+    records: &[u32],
+    key_bits: u8,
+    start_bits: u8,
+) -> Option<u64> {
+    let record_bits = u32::from(key_bits) + u32::from(start_bits);
+    if key_bits == 0
+        || start_bits == 0
+        || record_bits > 32
+        || bits_of(records) < u64::from(states) * u64::from(record_bits)
+    {
+        return None;
+    }
+    let m = usize::from(table.events);
+    let key = |s: u32| keyed_record(records, key_bits, start_bits, s).0;
+    let rows = (0..states).map(key).max().map_or(0, |k| k as u64 + 1);
+    if table.defined.len() as u64 != (rows * m as u64).div_ceil(32) {
+        return None;
+    }
+    // Every row lies inside the dictionary, so in a usize.
+    let ones = |s: u32| ones_between(table.defined, key(s) * m, key(s) * m + m) as u64;
+    Some((0..states).map(ones).sum())
+}
+
 /// Every defined pair's target of table `j` a state of supervisor `j`, in
 /// the layout's entry order (pair order when dense, the count of defined
-/// pairs before it when sparse), and a sparse table's row starts those
-/// counts. Assumes a table that passes [`validate_table`].
+/// pairs before it when sparse or keyed), and a sparse or keyed table's
+/// row starts those counts. Assumes a table that passes
+/// [`validate_table`].
 fn table_entries(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Result<(), Invalid> {
     let part = Part::Table(j);
     let spec = &c.supervisor(j);
-    let sparse = match table.rows {
-        Rows::Net { .. } => return Ok(()),
-        Rows::Dense => None,
-        Rows::Sparse {
-            row_starts,
-            start_bits,
-        } => Some((row_starts, start_bits)),
-    };
-    let width = table.state_bits;
     let m = usize::from(table.events);
-    let pairs = spec.states as usize * m;
-    let mut before = 0usize;
-    for pair in 0..pairs {
-        let state = (pair / m) as u32;
-        if let Some((row_starts, start_bits)) = sparse {
-            if pair % m == 0 && read_bits(row_starts, state as usize, start_bits) as usize != before
-            {
-                return fail(part, Flaw::RowStart { state });
+    // Each state's row of defined-bits (its first bit) and row start.
+    let row = |state: u32| -> (usize, Option<usize>) {
+        match table.rows {
+            Rows::Sparse {
+                row_starts,
+                start_bits,
+            } => (
+                state as usize * m,
+                Some(read_bits(row_starts, state as usize, start_bits) as usize),
+            ),
+            Rows::Keyed {
+                states,
+                key_bits,
+                start_bits,
+            } => {
+                let (key, start) = keyed_record(states, key_bits, start_bits, state);
+                (key * m, Some(start))
             }
+            Rows::Dense | Rows::Net { .. } => (state as usize * m, None),
         }
-        if !bit(table.defined, pair) {
-            continue;
+    };
+    if let Rows::Net { .. } = table.rows {
+        return Ok(());
+    }
+    let width = table.state_bits;
+    let mut before = 0usize;
+    for state in 0..spec.states {
+        let (first, start) = row(state);
+        if start.is_some_and(|start| start != before) {
+            return fail(part, Flaw::RowStart { state });
         }
-        let entry = if sparse.is_some() { before } else { pair };
-        let target = read_bits(table.targets, entry, width);
-        if target >= spec.states {
-            return fail(part, out_of_range(target, spec.states));
+        for e in 0..m {
+            if !bit(table.defined, first + e) {
+                continue;
+            }
+            let entry = if start.is_some() {
+                before
+            } else {
+                state as usize * m + e
+            };
+            let target = read_bits(table.targets, entry, width);
+            if target >= spec.states {
+                return fail(part, out_of_range(target, spec.states));
+            }
+            before += 1;
         }
-        before += 1;
     }
     Ok(())
 }

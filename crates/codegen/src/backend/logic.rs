@@ -1252,20 +1252,7 @@ mod tests {
     /// An automaton with states `s0..`, events `e0..` (even ones
     /// controllable) and `delta[s * m + e]` as transitions.
     fn random_automaton(n: usize, m: usize, delta: &[Option<u32>]) -> Automaton {
-        let mut b = AutomatonBuilder::new("random");
-        let events: Vec<EventId> = (0..m)
-            .map(|e| b.add_event(&format!("e{e}"), e % 2 == 0).unwrap())
-            .collect();
-        let states: Vec<StateId> = (0..n).map(|s| b.add_state(&format!("s{s}"))).collect();
-        b.set_initial(states[0]).unwrap();
-        for s in 0..n {
-            for e in 0..m {
-                if let Some(t) = delta[s * m + e] {
-                    b.add_transition(states[s], events[e], states[t as usize], 0);
-                }
-            }
-        }
-        b.build().unwrap()
+        crate::backend::table::tests::automaton(n, m, |s, e| delta[s * m + e].map(|t| t as usize)).0
     }
 
     fn random_case() -> impl Strategy<Value = (usize, usize, Vec<Option<u32>>)> {

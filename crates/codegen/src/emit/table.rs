@@ -1,6 +1,7 @@
 //! The table backend's text: each supervisor as constant bit-packed
-//! tables (`<NAME>_DEFINED`, `<NAME>_TARGETS`, `<NAME>_ROW_STARTS`) that
-//! the executor decodes, and the `Tables` program over them.
+//! tables (`<NAME>_DEFINED`, `<NAME>_TARGETS`, and `<NAME>_ROW_STARTS`
+//! when sparse or `<NAME>_STATES` when keyed) that the executor decodes,
+//! and the `Tables` program over them.
 
 use super::{doc_text, ident, quoted, Emitter, SupervisorStats};
 use crate::backend::table::Layout;
@@ -63,13 +64,17 @@ impl Emitter<'_> {
             let id = ident(&sup.name);
             let rows = self.decoded_rows(j, 8);
             let layout = match table.layout {
-                Layout::Dense => "dense",
-                Layout::Sparse => "sparse",
-                Layout::Net => "net",
+                Layout::Dense => "dense layout".to_owned(),
+                Layout::Sparse => "sparse layout".to_owned(),
+                Layout::Keyed => format!(
+                    "keyed layout ({} distinct rows of defined-bits in `{id}_DEFINED`)",
+                    table.stored_rows()
+                ),
+                Layout::Net => "net layout".to_owned(),
             };
             let _ = writeln!(
                 self.out,
-                "/// Supervisor {} ({}): {} states in {} bits, {} local events, {layout} layout, {} bytes.\n/// {}\n/// Transitions of the first states:\n{rows}const {id}_DEFINED: [u32; {}] = [{}];\n/// Packed targets of {}.\nconst {id}_TARGETS: [u32; {}] = [{}];",
+                "/// Supervisor {} ({}): {} states in {} bits, {} local events, {layout}, {} bytes.\n/// {}\n/// Transitions of the first states:\n{rows}const {id}_DEFINED: [u32; {}] = [{}];\n/// Packed targets of {}.\nconst {id}_TARGETS: [u32; {}] = [{}];",
                 quoted(&sup.name),
                 self.source_line(j),
                 table.states,
@@ -85,6 +90,21 @@ impl Emitter<'_> {
             );
             let rows = match table.layout {
                 Layout::Dense | Layout::Net => "Rows::Dense".to_owned(),
+                Layout::Keyed => {
+                    let _ = writeln!(
+                        self.out,
+                        "/// Per state of {}: its row of `{id}_DEFINED` (low {} bits) and its first entry in `{id}_TARGETS` (high {} bits).\nconst {id}_STATES: [u32; {}] = [{}];",
+                        quoted(&sup.name),
+                        table.key_bits,
+                        table.start_bits,
+                        table.row_starts.len(),
+                        words(&table.row_starts)
+                    );
+                    format!(
+                        "Rows::Keyed {{ states: &{id}_STATES, key_bits: {}, start_bits: {} }}",
+                        table.key_bits, table.start_bits
+                    )
+                }
                 Layout::Sparse => {
                     let _ = writeln!(
                         self.out,

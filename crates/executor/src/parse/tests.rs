@@ -5,7 +5,7 @@ extern crate std;
 use super::{Blob, ParseError};
 use crate::image::{self, IMAGE_CRC};
 use crate::program::Program;
-use crate::rom_test::tests::{every_pool, ring};
+use crate::rom_test::tests::{every_pool, ring, ring_keyed};
 use crate::table::TableProgram;
 use std::vec::Vec;
 
@@ -22,7 +22,7 @@ fn crc_of(words: &[u32]) -> u32 {
 
 #[test]
 fn an_image_read_back_is_the_same_image() {
-    for program in [every_pool(), ring(16)] {
+    for program in [every_pool(), ring(16), ring_keyed(16)] {
         let words = words_of(&program);
         assert_eq!(4 * words.len(), image::bytes(&program));
         assert_eq!(
@@ -104,24 +104,69 @@ fn a_loaded_image_runs_only_after_every_generator_check() {
 
     // Every word's lowest and highest bit flipped, one at a time: refused,
     // or a program that every generator check accepts (flipped words of a
-    // table's targets can still name states), never a panic.
-    let mut accepted = 0;
-    for k in 0..words.len() {
-        for bit in [0, 31] {
-            let mut flipped = words.clone();
-            flipped[k] ^= 1 << bit;
-            let (mut name, mut tables) = ([0u8; 32], [SupervisorTable::EMPTY; 4]);
-            match load(&flipped, &mut name, &mut tables, 0) {
-                Ok(p) => {
-                    accepted += 1;
-                    assert_eq!(crate::validate::validate_generated(&p), Ok(()));
+    // table's targets can still name states), never a panic; the dense
+    // ring and the keyed one.
+    let keyed = words_of(&ring_keyed(16));
+    let (mut name, mut tables) = ([0u8; 32], [SupervisorTable::EMPTY; 4]);
+    assert!(
+        load(&keyed, &mut name, &mut tables, 0).is_ok(),
+        "the keyed ring loads"
+    );
+    for words in [words, keyed] {
+        let mut accepted = 0;
+        for k in 0..words.len() {
+            for bit in [0, 31] {
+                let mut flipped = words.clone();
+                flipped[k] ^= 1 << bit;
+                let (mut name, mut tables) = ([0u8; 32], [SupervisorTable::EMPTY; 4]);
+                match load(&flipped, &mut name, &mut tables, 0) {
+                    Ok(p) => {
+                        accepted += 1;
+                        assert_eq!(crate::validate::validate_generated(&p), Ok(()));
+                    }
+                    Err(Refusal::Structure(invalid)) => {
+                        assert!((1..=24).contains(&invalid.flaw.code()), "{invalid:?}");
+                    }
+                    Err(_) => {}
                 }
-                Err(Refusal::Structure(invalid)) => {
-                    assert!((1..=24).contains(&invalid.flaw.code()), "{invalid:?}");
-                }
-                Err(_) => {}
             }
         }
+        assert!(accepted < 2 * words.len(), "some flips are refused");
     }
-    assert!(accepted < 2 * words.len(), "some flips are refused");
+}
+
+#[test]
+fn a_keyed_table_header_with_bad_widths_is_refused() {
+    let program = ring_keyed(16);
+    let words = words_of(&program);
+    let table = program.tables[0];
+    let crate::table::Rows::Keyed { states, .. } = table.rows else {
+        unreachable!()
+    };
+    // The table's header: the 7 words before its three runs.
+    let header = words.len() - states.len() - table.targets.len() - table.defined.len() - 7;
+    assert_eq!(
+        words[header + 2..header + 4],
+        [3, 9 | 1 << 8],
+        "keyed, widths"
+    );
+    let parse = |k: usize, value: u32| {
+        let mut changed = words.clone();
+        changed[header + k] = value;
+        let mut name = [0u8; 32];
+        Blob::parse(&changed, &mut name).map(|_| ())
+    };
+    assert_eq!(parse(3, 9 | 1 << 8), Ok(()));
+    assert_eq!(parse(3, 24 | 8 << 8), Ok(()), "32 bits a record");
+    for widths in [0, 9, 1 << 8, 24 | 9 << 8, 9 | 1 << 16, 9 | 0x100 << 8] {
+        assert_eq!(
+            parse(3, widths),
+            Err(ParseError::Header { word: 3 }),
+            "{widths:#x}"
+        );
+    }
+    assert!(
+        matches!(parse(2, 4), Err(ParseError::Header { .. })),
+        "no layout 4"
+    );
 }

@@ -68,6 +68,52 @@ fn ring_table() -> SupervisorTable<'static> {
     table
 }
 
+/// The ring's table in the keyed layout: every state has the one row of
+/// defined-bits `1` (a dictionary of one word, 1-bit keys), and targets
+/// as sparse, which for one event defined everywhere are the dense ones.
+fn ring_table_keyed() -> SupervisorTable<'static> {
+    let dense = ring_table();
+    let (key_bits, start_bits) = (1u8, 9u8);
+    let width = usize::from(key_bits + start_bits);
+    let mut records = vec![0u32; (STATES as usize * width).div_ceil(32)];
+    for s in 0..STATES as usize {
+        // Key 0, row start s.
+        let (bit, value) = (s * width, (s as u64) << key_bits);
+        let wide = value << (bit % 32);
+        records[bit / 32] |= wide as u32;
+        if let Some(next) = records.get_mut(bit / 32 + 1) {
+            *next |= (wide >> 32) as u32;
+        }
+    }
+    let table = SupervisorTable {
+        defined: leak(vec![1]),
+        rows: Rows::Keyed {
+            states: leak(records),
+            key_bits,
+            start_bits,
+        },
+        ..dense
+    };
+    for s in 0..STATES {
+        assert_eq!(table.next_state(s, 0), Some((s + 1) % STATES));
+        assert_eq!(table.next_state(s, 1), None);
+        assert_eq!(table.enabled(s, 0, 32), 1);
+    }
+    table
+}
+
+/// The ring with its keyed table ([`ring_table_keyed`]), the CRC a
+/// generator would record.
+pub(crate) fn ring_keyed(rom_test_bytes_per_scan: u16) -> TableProgram<'static> {
+    let config = ring_config(rom_test_bytes_per_scan);
+    let tables = leak(vec![ring_table_keyed()]);
+    TableProgram {
+        config,
+        tables,
+        crc: image::table_image_crc(&config, tables),
+    }
+}
+
 const OUTPUTS: [OutputSpec; 1] = [OutputSpec {
     safe: false,
     initial: false,
@@ -500,6 +546,10 @@ fn every_field_of_the_configuration_and_tables_is_in_the_image() {
         ("start bits", with_table(SupervisorTable { rows: Rows::Sparse { row_starts: &[0x24], start_bits: 3 }, ..table })),
         ("layout", with_table(SupervisorTable { rows: Rows::Dense, ..table })),
         ("net layout", with_table(SupervisorTable { rows: Rows::Net { fields: &[0x24] }, ..table })),
+        ("keyed layout", with_table(SupervisorTable { rows: Rows::Keyed { states: &[0x24], key_bits: 2, start_bits: 0 }, ..table })),
+        ("key bits", with_table(SupervisorTable { rows: Rows::Keyed { states: &[0x24], key_bits: 1, start_bits: 1 }, ..table })),
+        ("keyed start bits", with_table(SupervisorTable { rows: Rows::Keyed { states: &[0x24], key_bits: 1, start_bits: 2 }, ..table })),
+        ("keyed records", with_table(SupervisorTable { rows: Rows::Keyed { states: &[0x25], key_bits: 1, start_bits: 1 }, ..table })),
         ("no table", TableProgram { tables: &[], ..p }),
     ];
     let mut seen = std::collections::BTreeMap::new();
@@ -791,4 +841,89 @@ fn a_table_target_out_of_range_is_corrupt_before_the_state_is_stored() {
     assert_eq!((r.states, r.outputs), (&[0][..], &[false][..]));
     assert_eq!(c.counters().faults, 1);
     assert_eq!(c.image_test().passes, 0, "found by the scan, not the pass");
+}
+
+/// The keyed ring runs as the dense one, and what a corrupt keyed table
+/// can break is refused: its sizes at start-up ([`crate::validate`]), its
+/// row starts and targets by the generator's check.
+#[test]
+fn a_keyed_table_runs_and_its_corruptions_are_refused() {
+    use crate::validate::{validate, validate_generated, Flaw, Invalid};
+    let program = ring_keyed(16);
+    assert_eq!(validate_generated(&program), Ok(()));
+    let mut c = Controller::new(&program, Mem::new()).unwrap();
+    c.scan(0, &[false, false]);
+    for k in 1..5u32 {
+        c.scan(20 * k, &[true, false]);
+        let r = c.scan(20 * k + 10, &[false, false]);
+        assert_eq!((r.fault, r.states), (None, &[k][..]), "step {k}");
+    }
+    let table = program.tables[0];
+    let Rows::Keyed { states, .. } = table.rows else {
+        unreachable!()
+    };
+    let rows = |records: &'static [u32], key_bits, start_bits| Rows::Keyed {
+        states: records,
+        key_bits,
+        start_bits,
+    };
+    let flipped = |word: usize, mask: u32| {
+        let mut copy = states.to_vec();
+        copy[word] ^= mask;
+        leak(copy)
+    };
+    let at = |flaw| {
+        Err(Invalid {
+            part: crate::validate::Part::Table(0),
+            flaw,
+        })
+    };
+    let with = |table: SupervisorTable<'static>| TableProgram {
+        tables: leak(vec![table]),
+        ..program
+    };
+    // Refused at start-up: sizes.
+    #[rustfmt::skip]
+    let sizes: Vec<(&str, SupervisorTable<'static>)> = vec![
+        ("a dictionary word too many", SupervisorTable { defined: leak(vec![1, 0]), ..table }),
+        ("no dictionary", SupervisorTable { defined: &[], ..table }),
+        ("keys of no bits", SupervisorTable { rows: rows(states, 0, 9), ..table }),
+        ("starts of no bits", SupervisorTable { rows: rows(states, 1, 0), ..table }),
+        ("records wider than a word", SupervisorTable { rows: rows(states, 24, 9), ..table }),
+        ("records cut short", SupervisorTable { rows: rows(leak(states[1..].to_vec()), 1, 9), ..table }),
+        ("targets cut short", SupervisorTable { targets: leak(table.targets[1..].to_vec()), ..table }),
+    ];
+    for (what, table) in sizes {
+        assert_eq!(validate(&with(table)), at(Flaw::TableLength), "{what}");
+    }
+    // Passed at start-up, refused by the generator's check: state 0 keyed
+    // to row 1 (the dictionary's padding bits: no event defined, so state
+    // 1's row starts one entry late); a row start off by one (state 0's
+    // record, start bits 1..10); a target no state.
+    let key = with(SupervisorTable {
+        rows: rows(flipped(0, 1), 1, 9),
+        ..table
+    });
+    assert_eq!(validate(&key), Ok(()));
+    assert_eq!(validate_generated(&key), at(Flaw::RowStart { state: 1 }));
+    let start = with(SupervisorTable {
+        rows: rows(flipped(0, 1 << 1), 1, 9),
+        ..table
+    });
+    assert_eq!(validate(&start), Ok(()));
+    assert_eq!(validate_generated(&start), at(Flaw::RowStart { state: 0 }));
+    let mut far = table.targets.to_vec();
+    far[0] |= 0x1ff;
+    let far = with(SupervisorTable {
+        targets: leak(far),
+        ..table
+    });
+    assert_eq!(validate(&far), Ok(()));
+    assert_eq!(
+        validate_generated(&far),
+        at(Flaw::OutOfRange {
+            index: 511,
+            count: STATES
+        })
+    );
 }
