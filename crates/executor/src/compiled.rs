@@ -56,6 +56,7 @@
 //! ```
 
 use crate::program::{enabled_by_steps, Config, Index, Program, SupervisorTable};
+use crate::table::Layouts;
 use core::marker::PhantomData;
 
 /// What a generated program file defines.
@@ -67,6 +68,9 @@ pub trait ProgramData {
     /// One table per supervisor, part of the image (the table backend);
     /// empty when the supervisors are code.
     const TABLES: &'static [SupervisorTable<'static>] = &[];
+    /// The layouts of [`ProgramData::TABLES`], worked out at build time:
+    /// the decoders of the others are left out of the program's code.
+    const LAYOUTS: Layouts = Layouts::of(Self::TABLES);
 
     /// δ of supervisor `supervisor` ([`Program::next_state`]). The default
     /// reads [`ProgramData::TABLES`]; a program whose supervisors are code
@@ -75,7 +79,7 @@ pub trait ProgramData {
     fn next_state(supervisor: Index, state: u32, local: Index) -> Option<u32> {
         Self::TABLES
             .get(usize::from(supervisor))?
-            .next_state(state, local)
+            .next_state_in(Self::LAYOUTS, state, local)
     }
 
     /// Which of the local events `from..from + len` (`len ≤ 32`) are
@@ -85,7 +89,7 @@ pub trait ProgramData {
     #[inline]
     fn enabled(supervisor: Index, state: u32, from: Index, len: u8) -> u32 {
         match Self::TABLES.get(usize::from(supervisor)) {
-            Some(t) => t.enabled(state, from, len),
+            Some(t) => t.enabled_in(Self::LAYOUTS, state, from, len),
             None => enabled_by_steps(len, |k| {
                 Self::next_state(supervisor, state, from.wrapping_add(k)).is_some()
             }),
@@ -128,6 +132,11 @@ impl<D: ProgramData> Program for Compiled<D> {
 
     fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {
         D::TABLES.get(usize::from(supervisor)).copied()
+    }
+
+    #[inline]
+    fn layouts(&self) -> Layouts {
+        D::LAYOUTS
     }
 
     fn recorded_crc(&self) -> u32 {

@@ -9,6 +9,7 @@ use crate::program::{
 };
 use crate::record::{Counters, Fault, ScanRecord};
 use crate::rom_test::{ImageTest, RomTest};
+use crate::table::Layouts;
 use crate::timers::{due, earliest};
 
 /// The memory does not match the program's sizes.
@@ -546,9 +547,10 @@ fn refresh_allowed<P: Program>(
     }
     let alphabet = spec.alphabet.of(config.event_lists);
     // A Petri-net group tests its transitions straight into the set.
-    if program
-        .table(j as Index)
-        .is_some_and(|t| t.insert_enabled_net(state, alphabet, allowed))
+    if program.layouts().has(Layouts::NET)
+        && program
+            .table(j as Index)
+            .is_some_and(|t| t.insert_enabled_net(state, alphabet, allowed))
     {
         return;
     }

@@ -1011,6 +1011,13 @@ pub trait Program {
     /// for every supervisor of a program whose supervisors are code.
     fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>>;
 
+    /// The layouts its tables may use ([`crate::table::Layouts`]): every
+    /// one unless the program knows its tables at build time.
+    #[inline]
+    fn layouts(&self) -> crate::table::Layouts {
+        crate::table::Layouts::ALL
+    }
+
     /// The CRC of the program image ([`crate::image::crc`]) recorded at
     /// generation.
     fn recorded_crc(&self) -> u32;
@@ -1031,6 +1038,10 @@ impl<P: Program + ?Sized> Program for &P {
 
     fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>> {
         (**self).table(supervisor)
+    }
+
+    fn layouts(&self) -> crate::table::Layouts {
+        (**self).layouts()
     }
 
     fn recorded_crc(&self) -> u32 {

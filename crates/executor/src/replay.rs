@@ -103,6 +103,19 @@ pub enum Field {
     Fault,
 }
 
+impl Field {
+    /// The field's name, as `{:?}` writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Field::Executed => "Executed",
+            Field::Unexpected => "Unexpected",
+            Field::States => "States",
+            Field::Outputs => "Outputs",
+            Field::Fault => "Fault",
+        }
+    }
+}
+
 /// Too many items for a recorded scan's fixed capacity.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct CapacityExceeded;
@@ -192,6 +205,21 @@ mod tests {
         unpack(&bits, &mut back);
         assert_eq!(back, values);
         assert_eq!(pack(&[false; MAX_INPUTS + 1]), Err(CapacityExceeded));
+    }
+
+    #[test]
+    fn field_names_are_their_debug_names() {
+        extern crate std;
+        use std::format;
+        for f in [
+            Field::Executed,
+            Field::Unexpected,
+            Field::States,
+            Field::Outputs,
+            Field::Fault,
+        ] {
+            assert_eq!(f.name(), format!("{f:?}"));
+        }
     }
 
     #[test]

@@ -16,8 +16,11 @@
 //!     `row_start[s]` plus the number of defined events of `s` before `e`.
 //!     `row_start` holds `n` entries of `⌈log2(total + 1)⌉` bits.
 //!
-//! The generator picks the layout with the fewest words (dense on a tie:
-//! it is one step faster; then sparse over keyed, below).
+//! The generator picks the one of dense and sparse with fewer words
+//! (dense on a tie: it is one step faster), and keyed (below) instead
+//! when that saves at least an eighth of them: its lookup reads one word
+//! more. A program compiled into the firmware links only the decoders of
+//! the layouts its tables use ([`Layouts`]).
 //!
 //! # Keyed rows
 //!
@@ -198,20 +201,76 @@ impl SupervisorTable<'static> {
     };
 }
 
+/// The layouts a program's tables use, as a set: what a program compiled
+/// into the firmware knows at build time ([`Layouts::of`] its tables), so
+/// that the decoder of a layout it does not use is left out of its code
+/// (a keyed or net arm inlined into every lookup costs flash and, through
+/// register pressure, instructions). A loaded image may use any:
+/// [`Layouts::ALL`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Layouts(u8);
+
+impl Layouts {
+    /// No table (supervisors that are code).
+    pub const NONE: Layouts = Layouts(0);
+    /// [`Rows::Dense`].
+    pub const DENSE: Layouts = Layouts(1);
+    /// [`Rows::Sparse`].
+    pub const SPARSE: Layouts = Layouts(2);
+    /// [`Rows::Net`].
+    pub const NET: Layouts = Layouts(4);
+    /// [`Rows::Keyed`].
+    pub const KEYED: Layouts = Layouts(8);
+    /// Every layout.
+    pub const ALL: Layouts = Layouts(15);
+
+    /// The layouts of `tables`.
+    pub const fn of(tables: &[SupervisorTable<'_>]) -> Layouts {
+        let mut bits = 0;
+        let mut i = 0;
+        while i < tables.len() {
+            bits |= Layouts::of_rows(&tables[i].rows).0;
+            i += 1;
+        }
+        Layouts(bits)
+    }
+
+    /// The layout of one table's rows.
+    pub const fn of_rows(rows: &Rows<'_>) -> Layouts {
+        match rows {
+            Rows::Dense => Layouts::DENSE,
+            Rows::Sparse { .. } => Layouts::SPARSE,
+            Rows::Net { .. } => Layouts::NET,
+            Rows::Keyed { .. } => Layouts::KEYED,
+        }
+    }
+
+    /// Every layout of `other` is in the set.
+    #[inline(always)]
+    pub const fn has(self, other: Layouts) -> bool {
+        self.0 & other.0 == other.0
+    }
+}
+
 impl SupervisorTable<'_> {
     /// δ(state, local), `None` when undefined.
     #[inline]
     pub fn next_state(&self, state: u32, local: Index) -> Option<u32> {
+        self.next_state_in(Layouts::ALL, state, local)
+    }
+
+    /// [`SupervisorTable::next_state`] of a table whose layout is one of
+    /// `layouts` (`None` when it is not: the decoders of the others are
+    /// left out where `layouts` is a constant).
+    #[inline]
+    pub fn next_state_in(&self, layouts: Layouts, state: u32, local: Index) -> Option<u32> {
         let m = self.events as usize;
         let local = local as usize;
         if local >= m {
             return None;
         }
-        // One test for the dense and sparse layouts (declared first), as
-        // when the net layout was the only other.
         match self.rows {
-            Rows::Dense | Rows::Sparse { .. } => {}
-            Rows::Net { fields } => {
+            Rows::Net { fields } if layouts.has(Layouts::NET) => {
                 let (pre, post) = (*self.defined.get(local)?, *self.targets.get(local)?);
                 return self.fire(fields, state, pre, post);
             }
@@ -219,10 +278,11 @@ impl SupervisorTable<'_> {
                 states,
                 key_bits,
                 start_bits,
-            } => {
+            } if layouts.has(Layouts::KEYED) => {
                 let (key, start) = keyed_record(states, key_bits, start_bits, state);
                 return self.keyed_next(key, start, local);
             }
+            _ => {}
         }
         let row = state as usize * m;
         let pair = row + local;
@@ -234,31 +294,31 @@ impl SupervisorTable<'_> {
                 return None;
             }
             match self.rows {
-                Rows::Dense => pair,
-                Rows::Net { .. } | Rows::Keyed { .. } => return None,
+                Rows::Dense if layouts.has(Layouts::DENSE) => pair,
                 Rows::Sparse {
                     row_starts,
                     start_bits,
-                } => {
+                } if layouts.has(Layouts::SPARSE) => {
                     let before = bits & ((1u32 << local) - 1);
                     read_bits(row_starts, state as usize, start_bits) as usize
                         + before.count_ones() as usize
                 }
+                _ => return None,
             }
         } else {
             if !bit(self.defined, pair) {
                 return None;
             }
             match self.rows {
-                Rows::Dense => pair,
-                Rows::Net { .. } | Rows::Keyed { .. } => return None,
+                Rows::Dense if layouts.has(Layouts::DENSE) => pair,
                 Rows::Sparse {
                     row_starts,
                     start_bits,
-                } => {
+                } if layouts.has(Layouts::SPARSE) => {
                     read_bits(row_starts, state as usize, start_bits) as usize
                         + ones_between(self.defined, row, pair)
                 }
+                _ => return None,
             }
         };
         Some(read_bits(self.targets, entry, self.state_bits))
@@ -269,6 +329,13 @@ impl SupervisorTable<'_> {
     /// table's read as undefined.
     #[inline]
     pub fn enabled(&self, state: u32, from: Index, len: u8) -> u32 {
+        self.enabled_in(Layouts::ALL, state, from, len)
+    }
+
+    /// [`SupervisorTable::enabled`] of a table whose layout is one of
+    /// `layouts` (0 when it is not), as [`SupervisorTable::next_state_in`].
+    #[inline]
+    pub fn enabled_in(&self, layouts: Layouts, state: u32, from: Index, len: u8) -> u32 {
         let m = self.events as usize;
         let from = from as usize;
         let len = (len.min(32) as usize).min(m.saturating_sub(from));
@@ -276,18 +343,24 @@ impl SupervisorTable<'_> {
             return 0;
         }
         match self.rows {
-            Rows::Dense | Rows::Sparse { .. } => {
+            Rows::Dense if layouts.has(Layouts::DENSE) => {
                 read_bits_at(self.defined, state as usize * m + from, len as u8)
             }
-            Rows::Net { fields } => self.net_enabled(fields, state, from, len),
+            Rows::Sparse { .. } if layouts.has(Layouts::SPARSE) => {
+                read_bits_at(self.defined, state as usize * m + from, len as u8)
+            }
+            Rows::Net { fields } if layouts.has(Layouts::NET) => {
+                self.net_enabled(fields, state, from, len)
+            }
             Rows::Keyed {
                 states,
                 key_bits,
                 start_bits,
-            } => {
+            } if layouts.has(Layouts::KEYED) => {
                 let (key, _) = keyed_record(states, key_bits, start_bits, state);
                 read_bits_at(self.defined, key * m + from, len as u8)
             }
+            _ => 0,
         }
     }
 
@@ -491,6 +564,34 @@ mod tests {
             assert_eq!(t.enabled(1, 0, 2), 0b10);
             assert_eq!(t.enabled(1, 1, 1), 0b1);
             assert_eq!(t.enabled(2, 0, 32), 0b01, "rows end at the table's events");
+        }
+    }
+
+    /// A program knows its tables' layouts at build time; a table read as
+    /// a layout it is not refuses every event and enables none, so that
+    /// the decoders of the others can be left out.
+    #[test]
+    fn layouts_of_tables_and_lookups_restricted_to_them() {
+        assert_eq!(Layouts::of(&[]), Layouts::NONE);
+        let of = Layouts::of(&[DENSE, NET]);
+        assert!(of.has(Layouts::DENSE) && of.has(Layouts::NET));
+        assert!(!of.has(Layouts::SPARSE) && !of.has(Layouts::KEYED));
+        assert_eq!(Layouts::of(&[SPARSE, KEYED, SPARSE]).0, 2 | 8);
+        assert_eq!(Layouts::of(&[DENSE, SPARSE, NET, KEYED]), Layouts::ALL);
+        for t in [DENSE, SPARSE, KEYED, NET] {
+            let own = Layouts::of(&[t]);
+            let others = Layouts(Layouts::ALL.0 & !own.0);
+            for state in 0..3 {
+                for local in 0..2 {
+                    assert_eq!(
+                        t.next_state_in(own, state, local),
+                        t.next_state(state, local)
+                    );
+                    assert_eq!(t.next_state_in(others, state, local), None, "{own:?}");
+                }
+                assert_eq!(t.enabled_in(own, state, 0, 2), t.enabled(state, 0, 2));
+                assert_eq!(t.enabled_in(others, state, 0, 2), 0, "{own:?}");
+            }
         }
     }
 

@@ -26,6 +26,7 @@
 #![forbid(unsafe_code)]
 
 pub mod edges;
+pub mod hostline;
 pub mod icount;
 pub mod levels;
 pub mod slots;

@@ -4,8 +4,9 @@
 //! `table` module, which decodes it; this module produces it. Layout
 //! choice: dense (entry per state × event), sparse (defined pairs only,
 //! with row starts) or keyed (sparse targets, each distinct row of
-//! defined-bits stored once, a key and a row start per state), whichever
-//! takes the fewest words; dense on a tie, then sparse.
+//! defined-bits stored once, a key and a row start per state): the fewer
+//! words of dense and sparse (dense on a tie), unless keyed saves at least
+//! an eighth of them ([`KEYED_SHARE`]).
 
 use des::automaton::{Automaton, EventId, StateId};
 use executor::table::{keyed_record, Rows, SupervisorTable};
@@ -121,21 +122,35 @@ fn keyed_rows(
     Some((dictionary, records, key_bits))
 }
 
+/// The keyed layout is chosen when it takes at most this share
+/// (numerator, denominator) of the words of the better of dense and
+/// sparse: 7/8, at least an eighth saved.
+pub const KEYED_SHARE: (usize, usize) = (7, 8);
+
 impl EncodedTable {
     /// Encodes `a`'s transition function over the local alphabet `local`
     /// (local index `i` is event `local[i]` of `a`), in the layout of
-    /// fewest words ([`EncodedTable::candidates`]: dense on a tie, then
-    /// sparse).
+    /// fewest words of dense and sparse (dense on a tie), or keyed when
+    /// it saves at least an eighth of those ([`KEYED_SHARE`]).
     pub fn encode(a: &Automaton, local: &[EventId]) -> EncodedTable {
         let mut candidates = Self::candidates(a, local).into_iter();
         let dense = candidates
             .next()
             .expect("the dense layout is always a candidate");
-        // The first of the smallest: dense, sparse, keyed.
-        candidates.fold(
-            dense,
-            |best, t| if t.words() < best.words() { t } else { best },
-        )
+        let sparse = candidates
+            .next()
+            .expect("the sparse layout is always a candidate");
+        let best = if sparse.words() < dense.words() {
+            sparse
+        } else {
+            dense
+        };
+        // Keyed only when it saves a real share: its lookup reads one
+        // word more, and a program with a keyed table links its decoder.
+        match candidates.next() {
+            Some(keyed) if keyed.words() * KEYED_SHARE.1 <= best.words() * KEYED_SHARE.0 => keyed,
+            _ => best,
+        }
     }
 
     /// `a`'s transition function over `local` in each layout that can
@@ -456,6 +471,38 @@ pub(crate) mod tests {
         decodes_as(&t, &a, &local);
     }
 
+    /// Keyed only when it saves an eighth of the better plain layout's
+    /// words: with more and more distinct rows its saving shrinks, and
+    /// some table it would make smaller stays sparse.
+    #[test]
+    fn keyed_needs_to_save_an_eighth() {
+        let mut smaller_but_plain = 0;
+        let mut chosen = 0;
+        for distinct in [2usize, 5, 20, 60, 120, 200] {
+            let rows: Vec<u64> = (0..distinct as u64)
+                .map(|k| (k * 0x9e37_79b9).rotate_left(k as u32) & 0x3ff_ffff)
+                .collect();
+            let (a, local) = repeating_rows(240, 26, &rows);
+            let c = EncodedTable::candidates(&a, &local);
+            let plain = c[0].words().min(c[1].words());
+            let t = EncodedTable::encode(&a, &local);
+            if c[2].words() * KEYED_SHARE.1 <= plain * KEYED_SHARE.0 {
+                assert_eq!(t.layout, Layout::Keyed, "{distinct} rows");
+                chosen += 1;
+            } else {
+                assert_ne!(t.layout, Layout::Keyed, "{distinct} rows");
+                assert_eq!(t.words(), plain);
+                smaller_but_plain += usize::from(c[2].words() < plain);
+            }
+            decodes_as(&t, &a, &local);
+        }
+        assert!(chosen > 0, "keyed chosen for few distinct rows");
+        assert!(
+            smaller_but_plain > 0,
+            "a small saving keeps the plain layout"
+        );
+    }
+
     #[test]
     fn ties_go_to_dense_then_sparse() {
         // The worked example: dense takes 2 words, sparse and keyed 3.
@@ -481,7 +528,8 @@ pub(crate) mod tests {
         #![proptest_config(ProptestConfig::with_cases(64))]
 
         /// Random automata, their rows drawn from a few: every candidate
-        /// layout decodes to δ, and the one chosen has the fewest words.
+        /// layout decodes to δ, and the one chosen is the fewer words of
+        /// dense and sparse unless keyed saves an eighth of them.
         #[test]
         fn every_layout_decodes_random_automata_to_their_transitions(
             n in 1usize..=60,
@@ -500,8 +548,14 @@ pub(crate) mod tests {
                 decodes_as(t, &a, &events);
             }
             let chosen = EncodedTable::encode(&a, &events);
-            let fewest = candidates.iter().map(EncodedTable::words).min().unwrap();
-            prop_assert_eq!(chosen.words(), fewest);
+            let plain = candidates[0].words().min(candidates[1].words());
+            let keyed = candidates[2].words();
+            if keyed * 8 <= plain * 7 {
+                prop_assert_eq!(chosen.layout, Layout::Keyed);
+            } else {
+                prop_assert_eq!(chosen.words(), plain);
+                prop_assert!(chosen.layout != Layout::Keyed);
+            }
         }
     }
 

@@ -21,20 +21,26 @@
 //! read after it. The exit code is 0 only when M = 0 and
 //! the budgets given at build time (`PLC_BUDGET_FLASH`, `PLC_BUDGET_RAM`,
 //! `PLC_BUDGET_INSTR_MEDIAN`, `PLC_BUDGET_INSTR_MAX`) hold. A HardFault
-//! exits with failure.
+//! or a panic exits with failure.
+//!
+//! The replay loop is a function of its own (`replay`), so that the
+//! reports around it do not change the code of the scans it times; its
+//! lines are written without `core::fmt` ([`firmware::hostline`]), which
+//! the board never links either, so that `flash` is the board's share.
 
 #![no_std]
 #![no_main]
 
+use core::panic::PanicInfo;
 use core::sync::atomic::{AtomicU32, Ordering};
 use cortex_m::peripheral::SYST;
 use cortex_m_rt::{entry, exception, ExceptionFrame};
-use cortex_m_semihosting::{debug, hprintln};
+use cortex_m_semihosting::debug;
 use executor::replay::{unpack_words, RecordedScan, ScenarioHeader};
 use executor::{Controller, Program};
+use firmware::hostline::Line;
 use firmware::icount::{elapsed, exit, finish, instructions, kth_smallest, start};
 use firmware::program;
-use panic_semihosting as _;
 
 /// The scenario, recorded by `host-sim record`.
 static SCENARIO: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/scenario.bin"));
@@ -95,67 +101,38 @@ fn instructions_long(syst: &mut SYST, f: impl FnOnce()) -> u32 {
     instructions(ticks)
 }
 
-fn fail(message: &str) -> ! {
-    hprintln!("error: {}", message);
-    exit(debug::EXIT_FAILURE)
+/// What [`replay`] counted.
+struct Tally {
+    scans: usize,
+    mismatches: u32,
+    /// The worst scan of all, past the samples too.
+    worst: u32,
+    quiet_scans: usize,
+    share_max: u32,
+    share_sum: u32,
 }
 
-#[entry]
-fn main() -> ! {
-    let Some(mut core) = cortex_m::Peripherals::take() else {
-        fail("core peripherals taken twice");
-    };
-    // The cost of reading the counter twice, subtracted from every sample.
-    let overhead = start(&mut core.SYST);
-
-    let Ok((header, mut rest)) = postcard::take_from_bytes::<ScenarioHeader>(SCENARIO) else {
-        fail("the scenario has no valid header");
-    };
-    let config = program::PROGRAM.config();
-    // The configuration CRC the generator recorded (computing it here would
-    // link a second copy of the image stream, for another program type).
-    if header.config_crc != program::CONFIG_CRC || usize::from(header.inputs) != config.inputs.len()
-    {
-        hprintln!(
-            "scenario configuration CRC {:#010x}, program {:#010x}",
-            header.config_crc,
-            program::CONFIG_CRC
-        );
-        fail("the scenario was recorded for another project (configuration CRC differs)");
-    }
-    let Ok(mut controller) = Controller::new_proven(&program::PROGRAM, program::Memory::new())
-    else {
-        fail("generated memory does not fit the program");
-    };
-    // The whole-image CRC, as at start-up (scans check the image in the
-    // background, `rom_test_bytes_per_scan` bytes each, and pay for that
-    // share in their own counts).
-    let mut intact = false;
-    let check = instructions_long(&mut core.SYST, || intact = controller.check_image());
-    if !intact {
-        fail("the program image's CRC does not match");
-    }
-    let bytes = executor::image::bytes(&program::PROGRAM);
-    let per_scan = usize::from(config.rom_test_bytes_per_scan / 4).max(1) * 4;
-    hprintln!(
-        "image_check instr={} image_bytes={} rom_test_bytes_per_scan={} pass_scans={} (CRC-32 of the whole program image, as at start-up)",
-        check,
-        bytes,
-        per_scan,
-        bytes.div_ceil(per_scan)
-    );
-
+/// Replays the scan records `rest` through `controller`, comparing each
+/// record and counting instructions into `samples` (every scan's) and
+/// `quiet` (the quiet scans': no input changed since the scan before,
+/// which was not in fault mode, and nothing was executed or unexpected).
+/// Out of line, so that the code around it (reports, budgets) leaves the
+/// timed loop's code, and so its counts, unchanged: the scan is inlined
+/// into this loop, as into the board's.
+#[inline(never)]
+fn replay<P: Program, M: executor::Memory>(
+    controller: &mut Controller<P, M>,
+    mut rest: &[u8],
+    overhead: u32,
+    samples: &mut [u32; MAX_SCANS],
+    quiet: &mut [u32; MAX_SCANS],
+) -> Tally {
     // Packed as a board reads its input ports, before the scan is timed.
     let mut raw = [0u32; program::INPUT_WORDS];
-    let mut samples = [0u32; MAX_SCANS];
-    // Quiet scans: no input changed since the scan before, which was not in
-    // fault mode, and nothing was executed or unexpected.
-    let mut quiet = [0u32; MAX_SCANS];
     let mut quiet_scans = 0usize;
     let mut previous: Option<[u32; program::INPUT_WORDS]> = None;
     let (mut share_max, mut share_sum) = (0u32, 0u32);
     let (mut scans, mut mismatches) = (0usize, 0u32);
-    // The worst scan of all, past the samples too.
     let mut worst = 0u32;
     while !rest.is_empty() {
         let Ok((expected, tail)) = postcard::take_from_bytes::<RecordedScan>(rest) else {
@@ -177,7 +154,12 @@ fn main() -> ! {
 
         if let Some(field) = expected.mismatch(&record) {
             if mismatches < 10 {
-                hprintln!("mismatch at scan {}: {:?}", record.scan, field);
+                Line::new()
+                    .text("mismatch at scan ")
+                    .num(record.scan)
+                    .text(": ")
+                    .text(field.name())
+                    .print();
             }
             mismatches += 1;
         }
@@ -194,42 +176,137 @@ fn main() -> ! {
         previous = record.fault.is_none().then_some(raw);
         scans += 1;
     }
-    if scans as u32 != header.scans {
+    Tally {
+        scans,
+        mismatches,
+        worst,
+        quiet_scans,
+        share_max,
+        share_sum,
+    }
+}
+
+fn fail(message: &str) -> ! {
+    Line::new().text("error: ").text(message).print();
+    exit(debug::EXIT_FAILURE)
+}
+
+#[entry]
+fn main() -> ! {
+    let Some(mut core) = cortex_m::Peripherals::take() else {
+        fail("core peripherals taken twice");
+    };
+    // The cost of reading the counter twice, subtracted from every sample.
+    let overhead = start(&mut core.SYST);
+
+    let Ok((header, rest)) = postcard::take_from_bytes::<ScenarioHeader>(SCENARIO) else {
+        fail("the scenario has no valid header");
+    };
+    let config = program::PROGRAM.config();
+    // The configuration CRC the generator recorded (computing it here would
+    // link a second copy of the image stream, for another program type).
+    if header.config_crc != program::CONFIG_CRC || usize::from(header.inputs) != config.inputs.len()
+    {
+        Line::new()
+            .text("scenario configuration CRC ")
+            .hex(header.config_crc)
+            .text(", program ")
+            .hex(program::CONFIG_CRC)
+            .print();
+        fail("the scenario was recorded for another project (configuration CRC differs)");
+    }
+    let Ok(mut controller) = Controller::new_proven(&program::PROGRAM, program::Memory::new())
+    else {
+        fail("generated memory does not fit the program");
+    };
+    // The whole-image CRC, as at start-up (scans check the image in the
+    // background, `rom_test_bytes_per_scan` bytes each, and pay for that
+    // share in their own counts).
+    let mut intact = false;
+    let check = instructions_long(&mut core.SYST, || intact = controller.check_image());
+    if !intact {
+        fail("the program image's CRC does not match");
+    }
+    let bytes = executor::image::bytes(&program::PROGRAM);
+    let per_scan = usize::from(config.rom_test_bytes_per_scan / 4).max(1) * 4;
+    Line::new()
+        .text("image_check instr=")
+        .num(check)
+        .text(" image_bytes=")
+        .num(bytes as u32)
+        .text(" rom_test_bytes_per_scan=")
+        .num(per_scan as u32)
+        .text(" pass_scans=")
+        .num(bytes.div_ceil(per_scan) as u32)
+        .text(" (CRC-32 of the whole program image, as at start-up)")
+        .print();
+
+    let mut samples = [0u32; MAX_SCANS];
+    let mut quiet = [0u32; MAX_SCANS];
+    let tally = replay(&mut controller, rest, overhead, &mut samples, &mut quiet);
+    if tally.scans as u32 != header.scans {
         fail("the scenario's scan count does not match its header");
     }
 
-    let measured = &samples[..scans.min(MAX_SCANS)];
+    // Slices without a panic path (its message would link `core::fmt`).
+    let measured = samples
+        .get(..tally.scans.min(MAX_SCANS))
+        .unwrap_or_default();
     let at = |q: usize| kth_smallest(measured, measured.len().saturating_sub(1) * q / 100);
-    let (median, p99, max) = (at(50), at(99), worst);
-    let quiet = &quiet[..quiet_scans];
+    let (median, p99, max) = (at(50), at(99), tally.worst);
+    let quiet = quiet.get(..tally.quiet_scans).unwrap_or_default();
     let quiet_median = kth_smallest(quiet, quiet.len().saturating_sub(1) / 2);
     let quiet_max = kth_smallest(quiet, quiet.len());
     let (flash, ram) = image_sizes();
     let flash = flash - SCENARIO.len() as u32;
-    hprintln!(
-        "scans={} mismatches={} instr_median={} instr_p99={} instr_max={} flash={} ram={} quiet_scans={} quiet_median={} quiet_max={} share_mean={} share_max={}",
-        scans,
-        mismatches,
-        median,
-        p99,
-        max,
-        flash,
-        ram,
-        quiet_scans,
-        quiet_median,
-        quiet_max,
-        share_sum / (scans.max(1) as u32),
-        share_max
-    );
+    Line::new()
+        .text("scans=")
+        .num(tally.scans as u32)
+        .text(" mismatches=")
+        .num(tally.mismatches)
+        .text(" instr_median=")
+        .num(median)
+        .text(" instr_p99=")
+        .num(p99)
+        .text(" instr_max=")
+        .num(max)
+        .text(" flash=")
+        .num(flash)
+        .text(" ram=")
+        .num(ram)
+        .text(" quiet_scans=")
+        .num(tally.quiet_scans as u32)
+        .text(" quiet_median=")
+        .num(quiet_median)
+        .text(" quiet_max=")
+        .num(quiet_max)
+        .text(" share_mean=")
+        .num(tally.share_sum / (tally.scans.max(1) as u32))
+        .text(" share_max=")
+        .num(tally.share_max)
+        .print();
     let within = flash <= budget(option_env!("PLC_BUDGET_FLASH"))
         && ram <= budget(option_env!("PLC_BUDGET_RAM"))
         && median <= budget(option_env!("PLC_BUDGET_INSTR_MEDIAN"))
         && max <= budget(option_env!("PLC_BUDGET_INSTR_MAX"));
-    finish(mismatches == 0 && within)
+    finish(tally.mismatches == 0 && within)
 }
 
 #[exception]
 unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
-    hprintln!("HardFault at pc={:#010x}", frame.pc());
+    Line::new().text("HardFault at pc=").hex(frame.pc()).print();
+    exit(debug::EXIT_FAILURE)
+}
+
+/// A panic: its place (not its message, which would link `core::fmt`:
+/// [`firmware::hostline`]), then exit with failure.
+#[panic_handler]
+fn panic(info: &PanicInfo) -> ! {
+    let mut line = Line::new();
+    line.text("panicked");
+    if let Some(at) = info.location() {
+        line.text(" at ").text(at.file()).text(":").num(at.line());
+    }
+    line.print();
     exit(debug::EXIT_FAILURE)
 }
