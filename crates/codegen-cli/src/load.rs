@@ -6,7 +6,7 @@ use super::error::CliError;
 use super::output::{warn, Out};
 use super::Outcome;
 use field_update::header::version_parts;
-use field_update::host::{load, Link, SlotFile};
+use field_update::host::{load, Link, SlotFile, DEFAULT_TIMEOUT_MS};
 use field_update::protocol::{Request, Response, Status};
 use field_update::CRC_ALGORITHM;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -30,8 +30,9 @@ pub struct LoadArgs {
     #[arg(long, default_value_t = 115_200)]
     baud: u32,
     /// Milliseconds to wait for an answer before sending a request again
-    /// (three tries).
-    #[arg(long, default_value_t = 2_000)]
+    /// (three tries); `Begin`'s answer, which comes after the PLC erased
+    /// a slot, is waited for up to 4 s longer.
+    #[arg(long, default_value_t = DEFAULT_TIMEOUT_MS)]
     timeout_ms: u64,
 }
 
@@ -51,7 +52,7 @@ pub fn run(args: &LoadArgs, json: bool, out: &mut Out) -> Result<Outcome, CliErr
         .timeout(Duration::from_millis(args.timeout_ms))
         .open()
         .map_err(|e| CliError::Usage(format!("{}: {e}", args.port)))?;
-    let mut link = Link::new(port, &CRC);
+    let mut link = Link::new(port, &CRC).timeout_ms(args.timeout_ms);
     let before = status(&mut link)?;
     let mut report = serde_json::json!({ "before": before.0 });
     if !json {

@@ -11,7 +11,7 @@
 use crate::crc_of_words;
 use crate::frame::{self, FrameError, FrameReader, MAX_FRAME};
 use crate::header::{HeaderFault, SlotHeader, HEADER_WORDS};
-use crate::protocol::{data_requests, Refusal, Request, Response, MAX_DATA};
+use crate::protocol::{data_requests, Refusal, Request, Response, ERASE_MS, MAX_DATA};
 use crate::slot::Slot;
 use crc::Crc;
 use std::io::{self, Read, Write};
@@ -138,6 +138,18 @@ pub enum LinkError {
     },
 }
 
+/// The read timeout a link's port is assumed to have until
+/// [`Link::timeout_ms`] says otherwise (ms): `codegen load`'s default.
+pub const DEFAULT_TIMEOUT_MS: u64 = 2_000;
+
+/// Read timeouts of `timeout_ms` each that a link waits out for the
+/// answer to `Begin` beyond the first: together they last at least
+/// [`ERASE_MS`], the erase the PLC does before it answers.
+pub fn erase_timeouts(timeout_ms: u64) -> u32 {
+    let timeouts = u64::from(ERASE_MS).div_ceil(timeout_ms.max(1));
+    u32::try_from(timeouts).unwrap_or(u32::MAX)
+}
+
 /// One end of a link to a PLC: requests out, answers in.
 pub struct Link<'c, T> {
     io: T,
@@ -146,6 +158,9 @@ pub struct Link<'c, T> {
     body: Vec<u8>,
     /// Tries per request before [`LinkError::NoAnswer`].
     pub tries: u32,
+    /// Read timeouts waited out for `Begin`'s answer beyond the first
+    /// ([`erase_timeouts`]).
+    erase_timeouts: u32,
 }
 
 fn name_of(request: &Request<'_>) -> &'static str {
@@ -159,8 +174,10 @@ fn name_of(request: &Request<'_>) -> &'static str {
 }
 
 impl<'c, T: Read + Write> Link<'c, T> {
-    /// A link over `io` (a port with a read timeout: a timeout counts as
-    /// a lost answer and the request is sent again).
+    /// A link over `io`, a port with a read timeout of
+    /// [`DEFAULT_TIMEOUT_MS`]: a timeout counts as a lost answer and the
+    /// request is sent again, except while `Begin`'s answer may still be
+    /// on its way ([`erase_timeouts`]).
     pub fn new(io: T, crc: &'c Crc<u32>) -> Link<'c, T> {
         Link {
             io,
@@ -168,11 +185,22 @@ impl<'c, T: Read + Write> Link<'c, T> {
             reader: FrameReader::new(),
             body: Vec::new(),
             tries: 3,
+            erase_timeouts: erase_timeouts(DEFAULT_TIMEOUT_MS),
         }
     }
 
+    /// States the port's read timeout, in ms, from which the wait for
+    /// `Begin`'s answer follows.
+    pub fn timeout_ms(mut self, timeout_ms: u64) -> Link<'c, T> {
+        self.erase_timeouts = erase_timeouts(timeout_ms);
+        self
+    }
+
     /// Sends `request` and returns the PLC's answer, sending it again
-    /// after a timeout or a damaged answer.
+    /// after a timeout (for `Begin`, after the erase's timeouts), a
+    /// damaged answer, or `Refused(Frame)` (the request arrived damaged
+    /// and did nothing). Answers of a kind `request` does not get are
+    /// late answers to earlier requests, and skipped.
     pub fn request(&mut self, request: &Request<'_>) -> Result<Response<'_>, LinkError> {
         let mut out = [0u8; MAX_FRAME];
         let no_answer = |tries, last| LinkError::NoAnswer {
@@ -182,21 +210,48 @@ impl<'c, T: Read + Write> Link<'c, T> {
         };
         let bytes =
             frame::encode(request, self.crc, &mut out).map_err(|e| no_answer(0, Some(e)))?;
+        let patience = match request {
+            Request::Begin { .. } => self.erase_timeouts.saturating_add(1),
+            _ => 1,
+        };
         let mut last = None;
+        let mut damaged = false;
         for _ in 0..self.tries {
             self.io.write_all(bytes)?;
             self.io.flush()?;
-            match self.read_frame() {
-                Ok(Ok(())) => {
-                    if frame::message::<Response<'_>>(&self.body).is_ok() {
-                        return frame::message(&self.body).map_err(|e| no_answer(0, Some(e)));
+            let mut timeouts = 0;
+            let answer = loop {
+                match self.read_frame() {
+                    Err(e) if is_timeout(&e) => {
+                        timeouts += 1;
+                        if timeouts >= patience {
+                            break None;
+                        }
                     }
-                    last = Some(FrameError::Message);
+                    // A late answer to an earlier request: read on.
+                    Ok(Ok(()))
+                        if frame::message::<Response<'_>>(&self.body)
+                            .is_ok_and(|answer| !answers(request, &answer)) => {}
+                    other => break Some(other),
                 }
-                Ok(Err(e)) => last = Some(e),
-                Err(e) if is_timeout(&e) => {}
-                Err(e) => return Err(e.into()),
+            };
+            damaged = false;
+            match answer {
+                Some(Ok(Ok(()))) => match frame::message::<Response<'_>>(&self.body) {
+                    Ok(Response::Refused(Refusal::Frame)) => damaged = true,
+                    Ok(_) => return frame::message(&self.body).map_err(|e| no_answer(0, Some(e))),
+                    Err(_) => last = Some(FrameError::Message),
+                },
+                Some(Ok(Err(e))) => last = Some(e),
+                Some(Err(e)) => return Err(e.into()),
+                None => {}
             }
+        }
+        if damaged {
+            return Err(LinkError::Refused {
+                request: name_of(request),
+                why: Refusal::Frame,
+            });
         }
         Err(no_answer(self.tries, last))
     }
@@ -217,6 +272,16 @@ impl<'c, T: Read + Write> Link<'c, T> {
                 }));
             }
         }
+    }
+}
+
+/// Whether `response` is of a kind that answers `request`.
+fn answers(request: &Request<'_>, response: &Response<'_>) -> bool {
+    match response {
+        Response::Refused(_) => true,
+        Response::Status(_) => matches!(request, Request::Status | Request::Abort),
+        Response::Next { .. } => matches!(request, Request::Begin { .. } | Request::Data { .. }),
+        Response::Switched { .. } => matches!(request, Request::Commit),
     }
 }
 
@@ -322,6 +387,7 @@ mod tests {
     use super::*;
     use crate::loader::{Endpoint, Loader, Running};
     use crate::slot::{choose, Check, RamSlots, SlotStore};
+    use crate::tests::Counting;
     use std::collections::VecDeque;
 
     static CRC: Crc<u32> = Crc::<u32>::new(&crate::CRC_ALGORITHM);
@@ -338,7 +404,9 @@ mod tests {
     }
 
     /// A PLC at the other end of a byte stream: an endpoint over RAM
-    /// slots, losing every `lose`-th answer.
+    /// slots, losing every `lose`-th answer. An erase stalls it for
+    /// `erase_reads` of the PC's read timeouts: bytes sent meanwhile are
+    /// lost, and the answer comes after them.
     struct SimulatedPlc {
         a: Vec<u32>,
         b: Vec<u32>,
@@ -346,6 +414,15 @@ mod tests {
         out: VecDeque<u8>,
         answers: usize,
         lose: Option<usize>,
+        erase_reads: usize,
+        /// Read timeouts until the erase in progress ends.
+        busy: usize,
+        /// The answer sent once the erase ends.
+        pending: Vec<u8>,
+        erases: usize,
+        /// The requests the PC sent, by name.
+        sent: Vec<&'static str>,
+        sent_reader: FrameReader<MAX_FRAME>,
     }
 
     impl SimulatedPlc {
@@ -357,6 +434,20 @@ mod tests {
                 out: VecDeque::new(),
                 answers: 0,
                 lose,
+                erase_reads: 0,
+                busy: 0,
+                pending: Vec::new(),
+                erases: 0,
+                sent: Vec::new(),
+                sent_reader: FrameReader::new(),
+            }
+        }
+
+        /// A PLC whose erase lasts `reads` read timeouts.
+        fn slow_erase(reads: usize) -> SimulatedPlc {
+            SimulatedPlc {
+                erase_reads: reads,
+                ..SimulatedPlc::new(None)
             }
         }
     }
@@ -368,20 +459,38 @@ mod tests {
                 image_crc: 0,
             };
             for &byte in bytes {
-                let mut slots = RamSlots::new(&mut self.a, &mut self.b);
+                if let Some(Ok(request)) = self
+                    .sent_reader
+                    .push(byte)
+                    .map(|f| f.and_then(|f| frame::decode::<Request<'_>>(f, &CRC)))
+                {
+                    self.sent.push(name_of(&request));
+                }
+                if self.busy > 0 {
+                    continue;
+                }
+                let erases = self.erases;
+                let mut store = Counting {
+                    slots: RamSlots::new(&mut self.a, &mut self.b),
+                    erases: &mut self.erases,
+                };
                 let mut answer = self
                     .endpoint
-                    .receive(byte, &mut slots, running)
+                    .receive(byte, &mut store, running)
                     .map(<[u8]>::to_vec);
                 while self.endpoint.loader().is_checking() && answer.is_none() {
                     answer = self
                         .endpoint
-                        .poll(&mut slots, &mut AnyImage, 7)
+                        .poll(&mut store, &mut AnyImage, 7)
                         .map(|(_, frame)| frame.to_vec());
                 }
+                let erased = self.erases > erases && self.erase_reads > 0;
                 if let Some(frame) = answer {
                     self.answers += 1;
-                    if self.lose.is_none_or(|n| self.answers % n != 0) {
+                    if erased {
+                        self.busy = self.erase_reads;
+                        self.pending = frame;
+                    } else if self.lose.is_none_or(|n| self.answers % n != 0) {
                         self.out.extend(frame);
                     }
                 }
@@ -396,6 +505,13 @@ mod tests {
 
     impl Read for SimulatedPlc {
         fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+            if self.busy > 0 {
+                self.busy -= 1;
+                if self.busy == 0 {
+                    self.out.extend(self.pending.drain(..));
+                }
+                return Err(io::ErrorKind::TimedOut.into());
+            }
             match self.out.pop_front() {
                 Some(byte) if !buf.is_empty() => {
                     buf[0] = byte;
@@ -501,5 +617,126 @@ mod tests {
             ),
             "{err}"
         );
+    }
+
+    /// Loads `f` into the fresh `plc` over a link with the default
+    /// timeout: it lands in slot A, sequence 1.
+    fn load_into_a(plc: &mut SimulatedPlc, f: &SlotFile) {
+        let loaded = {
+            let mut link = Link::new(&mut *plc, &CRC);
+            load(&mut link, f, |_, _| {}).map_err(|e| e.to_string())
+        };
+        assert_eq!(
+            loaded,
+            Ok(Loaded {
+                slot: Slot::A,
+                sequence: 1
+            })
+        );
+        let slots = RamSlots::new(&mut plc.a, &mut plc.b);
+        assert_eq!(
+            &slots.contents(Slot::A)[HEADER_WORDS..HEADER_WORDS + f.image.len()],
+            &f.image[..]
+        );
+    }
+
+    #[test]
+    fn an_erase_longer_than_the_timeout_is_waited_for_begin_is_sent_once() {
+        // The longest erase (ERASE_MS) at the default timeout: two read
+        // timeouts of 2 s before the answer.
+        let reads = erase_timeouts(DEFAULT_TIMEOUT_MS) as usize;
+        assert_eq!(reads, 2);
+        let mut plc = SimulatedPlc::slow_erase(reads);
+        load_into_a(&mut plc, &file(300, 5));
+        assert_eq!(plc.erases, 1);
+        assert_eq!(plc.sent.iter().filter(|&&r| r == "Begin").count(), 1);
+        assert_eq!(plc.sent.len(), 1 + 5 + 1, "Begin, five Data, Commit");
+    }
+
+    #[test]
+    fn a_begin_sent_again_after_a_slower_erase_does_not_erase_again() {
+        // An erase longer than the PC waits for: it sends Begin again,
+        // which arrives after the erase; the load still lands, with one
+        // erase, and the late answers are skipped.
+        let mut plc = SimulatedPlc::slow_erase(erase_timeouts(DEFAULT_TIMEOUT_MS) as usize + 1);
+        load_into_a(&mut plc, &file(300, 5));
+        assert_eq!(plc.sent.iter().filter(|&&r| r == "Begin").count(), 2);
+        assert_eq!(plc.erases, 1);
+        let mut link = Link::new(&mut plc, &CRC);
+        assert!(
+            matches!(link.request(&Request::Status), Ok(Response::Status(s)) if s.slot == Some(Slot::A)),
+            "the late answers are all read"
+        );
+    }
+
+    #[test]
+    fn the_wait_for_begin_covers_the_erase_at_any_timeout() {
+        for timeout_ms in [1, 100, 1_000, 1_999, 2_000, 3_000, 4_000, 10_000] {
+            let timeouts = u64::from(erase_timeouts(timeout_ms));
+            assert!(timeouts * timeout_ms >= u64::from(ERASE_MS), "{timeout_ms}");
+            assert!(
+                (timeouts - 1) * timeout_ms < u64::from(ERASE_MS),
+                "{timeout_ms}"
+            );
+        }
+        assert_eq!(erase_timeouts(0), ERASE_MS);
+    }
+
+    /// A PLC that answers the `k`-th write with `answers[k]`'s frames.
+    struct Scripted {
+        answers: VecDeque<Vec<Response<'static>>>,
+        out: VecDeque<u8>,
+        writes: usize,
+    }
+
+    impl Write for Scripted {
+        fn write(&mut self, bytes: &[u8]) -> io::Result<usize> {
+            self.writes += 1;
+            let mut buf = [0u8; MAX_FRAME];
+            for answer in self.answers.pop_front().unwrap_or_default() {
+                let frame = frame::encode(&answer, &CRC, &mut buf).expect("fits");
+                self.out.extend(frame.iter().copied());
+            }
+            Ok(bytes.len())
+        }
+
+        fn flush(&mut self) -> io::Result<()> {
+            Ok(())
+        }
+    }
+
+    impl Read for Scripted {
+        fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+            match self.out.pop_front() {
+                Some(byte) if !buf.is_empty() => {
+                    buf[0] = byte;
+                    Ok(1)
+                }
+                _ => Err(io::ErrorKind::TimedOut.into()),
+            }
+        }
+    }
+
+    #[test]
+    fn a_request_refused_as_damaged_is_sent_again_and_late_answers_are_skipped() {
+        let status = Response::Status(crate::protocol::Status {
+            name: "sim",
+            slot: None,
+            version: 0,
+            image_crc: 0,
+            loading: None,
+        });
+        let late = Response::Switched {
+            slot: Slot::A,
+            sequence: 1,
+        };
+        let mut plc = Scripted {
+            answers: VecDeque::from([vec![Response::Refused(Refusal::Frame)], vec![late, status]]),
+            out: VecDeque::new(),
+            writes: 0,
+        };
+        let mut link = Link::new(&mut plc, &CRC);
+        assert_eq!(link.request(&Request::Status).ok(), Some(status));
+        assert_eq!(plc.writes, 2);
     }
 }

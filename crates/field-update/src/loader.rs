@@ -149,6 +149,24 @@ impl<'c> Loader<'c> {
                     image_crc,
                     version,
                 },
+                State::Receiving {
+                    header, next: 0, ..
+                },
+            ) if (header.words, header.image_crc, header.version)
+                == (words, image_crc, version) =>
+            {
+                // The same `Begin` sent again after its answer was lost (or
+                // came late: the erase stalls the PLC for seconds): its slot
+                // is erased and nothing is written yet, so it is answered
+                // again without a second erase.
+                Reply::Send(Response::Next { offset: 0 })
+            }
+            (
+                Request::Begin {
+                    words,
+                    image_crc,
+                    version,
+                },
                 _,
             ) => {
                 self.state = State::Idle;

@@ -6,6 +6,11 @@
 //! is sent again from there), then `Commit`, answered by `Switched` once
 //! the image is checked and its header written, or `Refused`. `Abort`
 //! drops a load; `Status` may come at any time.
+//!
+//! The PLC answers `Begin` after erasing the slot, which stalls it for up
+//! to [`ERASE_MS`]: the PC waits that long for the answer before it
+//! sends `Begin` again, and a `Begin` sent again before any `Data` is
+//! answered without a second erase.
 
 use crate::slot::{Rejected, Slot};
 use serde::{Deserialize, Serialize};
@@ -13,6 +18,13 @@ use serde::{Deserialize, Serialize};
 /// Most image bytes in one `Data` request: a multiple of 4 and of the
 /// 256-byte flash page of the boards.
 pub const MAX_DATA: usize = 256;
+
+/// The longest a PLC may take to answer `Begin`, in milliseconds: the
+/// erase of a slot. The Nucleo-F411RE's slot is a 128 KiB sector, erased
+/// at the HAL's 8-bit parallelism in at most 4 s (STM32F411 datasheet,
+/// typically 2 s), during which its core stalls and bytes sent to it are
+/// lost.
+pub const ERASE_MS: u32 = 4_000;
 
 /// What the PC asks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

@@ -282,6 +282,87 @@ fn images_too_large_or_empty_are_refused_before_the_erase() {
     assert_eq!(slots.contents(Slot::A)[0], 0x1234, "nothing was erased");
 }
 
+/// A slot store that counts its erases.
+pub(crate) struct Counting<'a> {
+    /// The slots.
+    pub slots: RamSlots<'a>,
+    /// Erases so far.
+    pub erases: &'a mut usize,
+}
+
+impl SlotStore for Counting<'_> {
+    type Error = <RamSlots<'static> as SlotStore>::Error;
+
+    fn slot_words(&self) -> usize {
+        self.slots.slot_words()
+    }
+
+    fn contents(&self, slot: Slot) -> &[u32] {
+        self.slots.contents(slot)
+    }
+
+    fn erase(&mut self, slot: Slot) -> Result<(), Self::Error> {
+        *self.erases += 1;
+        self.slots.erase(slot)
+    }
+
+    fn program(&mut self, slot: Slot, offset: usize, words: &[u32]) -> Result<(), Self::Error> {
+        self.slots.program(slot, offset, words)
+    }
+}
+
+#[test]
+fn a_begin_sent_again_before_any_data_does_not_erase_again() {
+    let (mut a, mut b) = fresh();
+    let mut erases = 0;
+    let mut store = Counting {
+        slots: RamSlots::new(&mut a, &mut b),
+        erases: &mut erases,
+    };
+    let mut loader = Loader::new(&CRC, None);
+    let words = image(20, 3);
+    let begin = Request::Begin {
+        words: 20,
+        image_crc: crc_of_words(&CRC, &words),
+        version: 7,
+    };
+    let next = |offset| Reply::Send(Response::Next { offset });
+    for _ in 0..3 {
+        assert_eq!(loader.handle(begin, &mut store), next(0));
+    }
+    assert_eq!(*store.erases, 1, "one erase for the Begin and its repeats");
+    // Another image's Begin is another load: its own erase.
+    let other = Request::Begin {
+        words: 20,
+        image_crc: 1,
+        version: 7,
+    };
+    assert_eq!(loader.handle(other, &mut store), next(0));
+    assert_eq!(*store.erases, 2);
+    // Once a word is written, the same Begin starts the load over: the
+    // slot is erased again before it is written again.
+    assert_eq!(loader.handle(begin, &mut store), next(0));
+    let image_bytes = bytes(&words);
+    let first = data_requests(&image_bytes).next().expect("a chunk");
+    assert_eq!(loader.handle(first, &mut store), next(80));
+    assert_eq!(loader.handle(begin, &mut store), next(0));
+    assert_eq!(*store.erases, 4);
+    for request in data_requests(&image_bytes) {
+        assert_eq!(loader.handle(request, &mut store), next(80));
+    }
+    assert_eq!(loader.handle(Request::Commit, &mut store), Reply::Later);
+    let outcome = loop {
+        if let Some(outcome) = loader.poll(&mut store, &mut LengthCheck, 8) {
+            break outcome;
+        }
+    };
+    assert!(
+        matches!(outcome, Outcome::Switched(v) if v.slot == Slot::A),
+        "{outcome:?}"
+    );
+    assert_eq!(*store.erases, 4);
+}
+
 #[test]
 fn a_damaged_frame_is_refused_and_the_next_one_is_read() {
     let mut out = [0u8; MAX_FRAME];
