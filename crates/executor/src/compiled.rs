@@ -55,8 +55,7 @@
 //! assert_eq!(PROGRAM.recorded_crc(), 0);
 //! ```
 
-use crate::program::{enabled_by_steps, Config, Index, Program, SupervisorTable};
-use crate::table::Layouts;
+use crate::program::{enabled_by_steps, Config, Index, Layouts, Program, SupervisorTable};
 use core::marker::PhantomData;
 
 /// What a generated program file defines.

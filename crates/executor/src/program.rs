@@ -957,6 +957,57 @@ pub enum Rows<'a> {
     },
 }
 
+/// The layouts a program's tables use, as a set: what a program compiled
+/// into the firmware knows at build time ([`Layouts::of`] its tables), so
+/// that the decoder of a layout it does not use is left out of its code
+/// (a keyed or net arm inlined into every lookup costs flash and, through
+/// register pressure, instructions). A loaded image may use any:
+/// [`Layouts::ALL`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Layouts(pub(crate) u8);
+
+impl Layouts {
+    /// No table (supervisors that are code).
+    pub const NONE: Layouts = Layouts(0);
+    /// [`Rows::Dense`].
+    pub const DENSE: Layouts = Layouts(1);
+    /// [`Rows::Sparse`].
+    pub const SPARSE: Layouts = Layouts(2);
+    /// [`Rows::Net`].
+    pub const NET: Layouts = Layouts(4);
+    /// [`Rows::Keyed`].
+    pub const KEYED: Layouts = Layouts(8);
+    /// Every layout.
+    pub const ALL: Layouts = Layouts(15);
+
+    /// The layouts of `tables`.
+    pub const fn of(tables: &[SupervisorTable<'_>]) -> Layouts {
+        let mut bits = 0;
+        let mut i = 0;
+        while i < tables.len() {
+            bits |= Layouts::of_rows(&tables[i].rows).0;
+            i += 1;
+        }
+        Layouts(bits)
+    }
+
+    /// The layout of one table's rows.
+    pub const fn of_rows(rows: &Rows<'_>) -> Layouts {
+        match rows {
+            Rows::Dense => Layouts::DENSE,
+            Rows::Sparse { .. } => Layouts::SPARSE,
+            Rows::Net { .. } => Layouts::NET,
+            Rows::Keyed { .. } => Layouts::KEYED,
+        }
+    }
+
+    /// Every layout of `other` is in the set.
+    #[inline(always)]
+    pub const fn has(self, other: Layouts) -> bool {
+        self.0 & other.0 == other.0
+    }
+}
+
 /// One supervisor's transition function, bit-packed (the encoding and
 /// the decoder: [`crate::table`]). Plain data, like [`Config`]: the
 /// generator emits it as constants, and [`Program::table`] hands it out
@@ -1011,11 +1062,11 @@ pub trait Program {
     /// for every supervisor of a program whose supervisors are code.
     fn table(&self, supervisor: Index) -> Option<SupervisorTable<'_>>;
 
-    /// The layouts its tables may use ([`crate::table::Layouts`]): every
+    /// The layouts its tables may use ([`Layouts`]): every
     /// one unless the program knows its tables at build time.
     #[inline]
-    fn layouts(&self) -> crate::table::Layouts {
-        crate::table::Layouts::ALL
+    fn layouts(&self) -> Layouts {
+        Layouts::ALL
     }
 
     /// The CRC of the program image ([`crate::image::crc`]) recorded at
@@ -1040,7 +1091,7 @@ impl<P: Program + ?Sized> Program for &P {
         (**self).table(supervisor)
     }
 
-    fn layouts(&self) -> crate::table::Layouts {
+    fn layouts(&self) -> Layouts {
         (**self).layouts()
     }
 

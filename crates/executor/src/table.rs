@@ -96,7 +96,7 @@ use crate::program::{Config, Index, Program, SupervisorSpec};
 
 /// The tables' data, defined beside the [`Program`] trait that hands them
 /// out; this module decodes them.
-pub use crate::program::{Rows, SupervisorTable};
+pub use crate::program::{Layouts, Rows, SupervisorTable};
 
 /// The `width`-bit entry `index` of a packed array (0 if out of range).
 #[inline]
@@ -199,57 +199,6 @@ impl SupervisorTable<'static> {
         targets: &[],
         rows: Rows::Dense,
     };
-}
-
-/// The layouts a program's tables use, as a set: what a program compiled
-/// into the firmware knows at build time ([`Layouts::of`] its tables), so
-/// that the decoder of a layout it does not use is left out of its code
-/// (a keyed or net arm inlined into every lookup costs flash and, through
-/// register pressure, instructions). A loaded image may use any:
-/// [`Layouts::ALL`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Layouts(u8);
-
-impl Layouts {
-    /// No table (supervisors that are code).
-    pub const NONE: Layouts = Layouts(0);
-    /// [`Rows::Dense`].
-    pub const DENSE: Layouts = Layouts(1);
-    /// [`Rows::Sparse`].
-    pub const SPARSE: Layouts = Layouts(2);
-    /// [`Rows::Net`].
-    pub const NET: Layouts = Layouts(4);
-    /// [`Rows::Keyed`].
-    pub const KEYED: Layouts = Layouts(8);
-    /// Every layout.
-    pub const ALL: Layouts = Layouts(15);
-
-    /// The layouts of `tables`.
-    pub const fn of(tables: &[SupervisorTable<'_>]) -> Layouts {
-        let mut bits = 0;
-        let mut i = 0;
-        while i < tables.len() {
-            bits |= Layouts::of_rows(&tables[i].rows).0;
-            i += 1;
-        }
-        Layouts(bits)
-    }
-
-    /// The layout of one table's rows.
-    pub const fn of_rows(rows: &Rows<'_>) -> Layouts {
-        match rows {
-            Rows::Dense => Layouts::DENSE,
-            Rows::Sparse { .. } => Layouts::SPARSE,
-            Rows::Net { .. } => Layouts::NET,
-            Rows::Keyed { .. } => Layouts::KEYED,
-        }
-    }
-
-    /// Every layout of `other` is in the set.
-    #[inline(always)]
-    pub const fn has(self, other: Layouts) -> bool {
-        self.0 & other.0 == other.0
-    }
 }
 
 impl SupervisorTable<'_> {
