@@ -347,16 +347,7 @@ pub(crate) mod tests {
         let t = EncodedTable::encode(&a, &local);
         assert_eq!(t.layout, Layout::Sparse);
         assert!(t.bytes() * 4 < t.naive_bytes());
-        let view = t.view();
-        for s in a.states() {
-            for (i, &e) in local.iter().enumerate() {
-                assert_eq!(
-                    view.next_state(s.0, i as u16),
-                    a.successor(s, e).map(|x| x.0),
-                    "state {s} event {i}"
-                );
-            }
-        }
+        decodes_as(&t, &a, &local);
     }
 
     #[test]

@@ -13,6 +13,7 @@
 //! just after. Programming is byte by byte (16 µs a byte at most: 4 ms
 //! for a 256-byte `Data` chunk), inside the scan's link share.
 
+use field_update::protocol::ERASE_MS;
 use field_update::slot::{Slot, SlotStore};
 use firmware::slots::{FLASH_ORIGIN, SECTOR_A, SECTOR_B, SLOT_A, SLOT_B, SLOT_BYTES};
 use stm32f4xx_hal::flash::{self, FlashExt};
@@ -21,8 +22,9 @@ use stm32f4xx_hal::prelude::*;
 use stm32f4xx_hal::watchdog::IndependentWatchdog;
 
 /// The watchdog timeout over a sector erase (ms): twice the longest
-/// 128 KiB erase (4 s), well below the IWDG's 32 s.
-pub const ERASE_WATCHDOG_MS: u32 = 8_000;
+/// 128 KiB erase ([`ERASE_MS`], 4 s, which the PC also waits out for
+/// `Begin`'s answer), well below the IWDG's 32 s.
+pub const ERASE_WATCHDOG_MS: u32 = 2 * ERASE_MS;
 
 /// Words of a slot.
 const SLOT_WORDS: usize = (SLOT_BYTES / 4) as usize;
