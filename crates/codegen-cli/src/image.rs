@@ -61,7 +61,8 @@ pub fn run(args: &ImageArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
     let crc = lowered.recorded_crc();
     // What the PLC will check, checked here first: a refusal is a bug of
     // the generator, not of the project.
-    let file = SlotFile::new(words, args.sequence, args.version, &CRC);
+    let wiring = codegen::board::wiring_signature(&project);
+    let file = SlotFile::new(words, args.sequence, args.version, wiring, &CRC);
     if file.header.image_crc != crc {
         return Err(CliError::Usage(format!(
             "{}: the image's words do not give its recorded CRC (a generator bug)",
@@ -86,12 +87,13 @@ pub fn run(args: &ImageArgs, json: bool, out: &mut Out) -> Result<Outcome, CliEr
             "image_crc": format!("{crc:#010x}"),
             "version": format!("{major}.{minor}.{patch}"),
             "sequence": args.sequence,
+            "wiring": format!("{wiring:#010x}"),
             "file": args.output.display().to_string(),
             "file_bytes": bytes.len(),
         }));
     } else {
         out.line(format_args!(
-            "{}: image of {} words ({} B), CRC {crc:#010x}, version {major}.{minor}.{patch}, sequence {} -> {} ({} B)",
+            "{}: image of {} words ({} B), CRC {crc:#010x}, version {major}.{minor}.{patch}, sequence {}, wiring {wiring:#010x} -> {} ({} B)",
             project.name,
             file.image.len(),
             file.image.len() * 4,

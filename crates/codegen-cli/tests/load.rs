@@ -20,9 +20,15 @@ use std::time::Duration;
 
 static CRC: crc::Crc<u32> = crc::Crc::<u32>::new(&CRC_ALGORITHM);
 
+/// The simulated PLC's wiring signature.
+const WIRING: u32 = 0x0BAD_CAFE;
+
 /// Refuses images whose first word is 0 (code 9).
 struct FirstWordCheck;
 impl Check for FirstWordCheck {
+    fn wiring(&self) -> u32 {
+        WIRING
+    }
     fn check(&mut self, image: &[u32]) -> Result<(), u16> {
         if image.first() == Some(&0) {
             Err(9)
@@ -36,7 +42,7 @@ impl Check for FirstWordCheck {
 fn plc(mut master: TTYPort, stop: Arc<AtomicBool>) -> JoinHandle<(Vec<u32>, Vec<u32>)> {
     thread::spawn(move || {
         let (mut a, mut b) = (vec![u32::MAX; 1024], vec![u32::MAX; 1024]);
-        let mut endpoint = Endpoint::new(Loader::new(&CRC, None));
+        let mut endpoint = Endpoint::new(Loader::new(&CRC, None, WIRING));
         master
             .set_timeout(Duration::from_millis(20))
             .expect("timeout");
@@ -81,7 +87,7 @@ fn a_slot_file_is_loaded_over_a_serial_port_and_a_bad_one_is_refused() {
     let image: Vec<u32> = (1..=300u32)
         .map(|k| k.wrapping_mul(2_654_435_761))
         .collect();
-    let good = SlotFile::new(image.clone(), 1, version(1, 2, 3), &CRC);
+    let good = SlotFile::new(image.clone(), 1, version(1, 2, 3), WIRING, &CRC);
     let good_path = dir.path().join("good.bin");
     std::fs::write(&good_path, good.to_bytes(&CRC)).expect("written");
     let good_path = good_path.to_str().expect("utf-8");
@@ -101,14 +107,32 @@ fn a_slot_file_is_loaded_over_a_serial_port_and_a_bad_one_is_refused() {
 
     let mut bad_image = image.clone();
     bad_image[0] = 0;
-    let bad = SlotFile::new(bad_image, 1, version(2, 0, 0), &CRC);
+    let bad = SlotFile::new(bad_image, 1, version(2, 0, 0), WIRING, &CRC);
     let bad_path = dir.path().join("bad.bin");
     std::fs::write(&bad_path, bad.to_bytes(&CRC)).expect("written");
     let out = codegen(&["load", bad_path.to_str().expect("utf-8"), "--port", &port]);
     assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
-        stderr.contains("the PLC refused Commit: Rejected(Structure(9))"),
+        stderr.contains(
+            "the PLC refused Commit: the image was checked and refused: structure check code 0x0009"
+        ),
+        "{stderr}"
+    );
+
+    // An image made for other wiring is refused at `Begin`, before the
+    // PLC erases anything.
+    let other = SlotFile::new(image.clone(), 1, version(3, 0, 0), WIRING ^ 1, &CRC);
+    let other_path = dir.path().join("other.bin");
+    std::fs::write(&other_path, other.to_bytes(&CRC)).expect("written");
+    let out = codegen(&["load", other_path.to_str().expect("utf-8"), "--port", &port]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(
+            "the PLC refused Begin: the image was made for other wiring (signature 0x0badcaff; \
+             this firmware's is 0x0badcafe"
+        ),
         "{stderr}"
     );
 
@@ -149,6 +173,9 @@ fn a_slot_file_is_loaded_over_a_serial_port_and_a_bad_one_is_refused() {
 /// checked as a generator checks it (`executor::parse::load`).
 struct ExecutorCheck;
 impl Check for ExecutorCheck {
+    fn wiring(&self) -> u32 {
+        0
+    }
     fn check(&mut self, image: &[u32]) -> Result<(), u16> {
         let mut name = vec![0u8; 256];
         let mut tables = vec![executor::table::SupervisorTable::EMPTY; 64];
@@ -173,9 +200,16 @@ fn image_of(project: &str, dir: &std::path::Path) -> Vec<u32> {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    SlotFile::parse(&std::fs::read(&path).expect("written"), &CRC)
-        .expect("a valid slot file")
-        .image
+    let file =
+        SlotFile::parse(&std::fs::read(&path).expect("written"), &CRC).expect("a valid slot file");
+    let project = project::load(std::path::Path::new(&format!("{root}{project}")))
+        .expect("the project loads");
+    assert_eq!(
+        file.header.wiring,
+        codegen::board::wiring_signature(&project),
+        "the header records the project's wiring"
+    );
+    file.image
 }
 
 /// Loads `image` announcing `image_crc`; the outcome, and the slot's
@@ -188,11 +222,12 @@ fn load_direct(image: &[u32], image_crc: u32) -> (field_update::loader::Outcome,
         vec![u32::MAX; image.len() + 16],
     );
     let mut slots = RamSlots::new(&mut a, &mut b);
-    let mut loader = Loader::new(&CRC, None);
+    let mut loader = Loader::new(&CRC, None, 0);
     let begin = Request::Begin {
         words: image.len() as u32,
         image_crc,
         version: 1,
+        wiring: 0,
     };
     let bytes: Vec<u8> = image.iter().flat_map(|w| w.to_le_bytes()).collect();
     for request in [begin]

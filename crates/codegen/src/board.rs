@@ -6,6 +6,8 @@
 //! decides how to configure pins and the data stays testable on a PC:
 //!
 //! - `CHIP`: the chip the pins belong to, as probe-rs names it;
+//! - `WIRING`: the wiring signature ([`wiring_signature`]), which a field
+//!   update's image must carry to run on this firmware;
 //! - `Pin` and `Pull`: a GPIO pin and how a signal maps onto its level;
 //! - `INPUT_PINS` / `OUTPUT_PINS`: the pin of each signal by index
 //!   (`None`: an input reads 0, an output drives nothing);
@@ -74,6 +76,56 @@ fn latch_words(project: &Project, mcu: &Chip, pin: &InputPin) -> String {
     }
 }
 
+/// What a firmware fixes when it is built and a loaded image must agree
+/// with, one line each: the board's chip, then every input's name, pin,
+/// pull and level, then every output's name, pin and level, in index
+/// order (`-` for a signal without a pin, `none` for a project without a
+/// `[board]`). Names are identifiers, so a space separates fields.
+pub fn wiring_text(project: &Project) -> String {
+    let board = project.board.as_ref();
+    let mut text = format!("chip {}\n", board.map_or("none", |b| b.chip.as_str()));
+    for (i, input) in project.inputs.iter().enumerate() {
+        let pin = board.and_then(|b| b.inputs.get(i)).and_then(Option::as_ref);
+        let _ = match pin {
+            Some(p) => writeln!(
+                text,
+                "in {} {} {} {}",
+                input.name,
+                p.pin,
+                pull_words(p.pull),
+                level_words(p.active_low)
+            ),
+            None => writeln!(text, "in {} -", input.name),
+        };
+    }
+    for (o, output) in project.outputs.iter().enumerate() {
+        let pin = board
+            .and_then(|b| b.outputs.get(o))
+            .and_then(Option::as_ref);
+        let _ = match pin {
+            Some(p) => writeln!(
+                text,
+                "out {} {} {}",
+                output.name,
+                p.pin,
+                level_words(p.active_low)
+            ),
+            None => writeln!(text, "out {} -", output.name),
+        };
+    }
+    text
+}
+
+/// The wiring signature of `project`: the image CRC's algorithm over
+/// [`wiring_text`]. A field-update slot header records it
+/// (`field_update::header::SlotHeader::wiring`), and a firmware built
+/// for one wiring refuses an image made for another: with the same
+/// number of signals, its inputs and outputs would mean something else
+/// than what the pins carry.
+pub fn wiring_signature(project: &Project) -> u32 {
+    executor::image::IMAGE_CRC.checksum(wiring_text(project).as_bytes())
+}
+
 /// The Rust source of `pub mod board { … }` for `project`, or an empty
 /// string when it has no `[board]` section. Names and the chip appear only
 /// in doc comments (sanitised) and escaped string literals. The text is
@@ -95,6 +147,11 @@ pub fn board_module(project: &Project) -> String {
         out,
         "/// The chip the pins belong to, as probe-rs names it.\npub const CHIP: &str = {:?};",
         board.chip
+    );
+    let _ = writeln!(
+        out,
+        "/// The wiring signature (`codegen::board::wiring_signature`): a\n/// field-update image runs on this firmware only when its slot header\n/// records the same.\npub const WIRING: u32 = {:#010x};",
+        wiring_signature(project)
     );
     // The types are the board data crate's: a generated file is data.
     out.push_str("pub use boards::{PinId, Pull, SignalPin};\n");

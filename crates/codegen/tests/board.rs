@@ -360,3 +360,75 @@ fn every_seed_project_is_wired() {
         assert!(p.warnings.is_empty(), "{seed}: {:?}", p.warnings);
     }
 }
+
+/// The station wired as in the first test, with `edit` applied to the
+/// project text.
+fn station(edit: impl Fn(String) -> String) -> project::Project {
+    load_ok(&edit(format!(
+        "{SIGNALS}[board]\nchip = \"STM32F411RETx\"\n\
+outputs = {{ lamp = {{ pin = \"PA5\" }}, valve = {{ pin = \"PB0\", active_low = true }} }}\n\
+[board.inputs]\nstart_pb = {{ pin = \"PC13\", pull = \"up\", active_low = true }}\npart = \"pa1\"\n\
+[board.inputs.limit]\npin = \"PB4\"\npull = \"down\"\n"
+    )))
+}
+
+#[test]
+fn the_wiring_signature_changes_with_every_fact_a_firmware_fixes_and_nothing_else() {
+    use codegen::board::{wiring_signature, wiring_text};
+    let base = station(|t| t);
+    assert_eq!(
+        wiring_text(&base),
+        "chip STM32F411RETx\nin start_pb PC13 pull-up active low\nin part PA1 no pull active high\n\
+in limit PB4 pull-down active high\nout lamp PA5 active high\nout valve PB0 active low\n"
+    );
+    let signature = wiring_signature(&base);
+    // What the image carries itself (events, debouncing, safe levels)
+    // is not wiring: an update may change it.
+    let behaviour = station(|t| {
+        t.replace("debounce_scans = 3", "debounce_scans = 5")
+            .replace("set = \"lamp\" }", "set = \"lamp\", clear = \"valve\" }")
+    });
+    assert_eq!(wiring_signature(&behaviour), signature);
+    // Each wiring fact, changed alone, gives another signature.
+    let edits: [(&str, &str); 6] = [
+        // Every occurrence: declared, used and wired.
+        ("start_pb", "begin_pb"),
+        ("pin = \"PB4\"", "pin = \"PB5\""),
+        ("pull = \"down\"", "pull = \"up\""),
+        (
+            "valve = { pin = \"PB0\", active_low = true }",
+            "valve = { pin = \"PB0\" }",
+        ),
+        ("lamp = { pin = \"PA5\" }, ", ""),
+        ("chip = \"STM32F411RETx\"", "chip = \"STM32F411CEUx\""),
+    ];
+    for (from, to) in edits {
+        let changed = station(|t| t.replace(from, to));
+        assert_ne!(
+            wiring_signature(&changed),
+            signature,
+            "`{from}` -> `{to}`:\n{}",
+            wiring_text(&changed)
+        );
+    }
+}
+
+#[test]
+fn the_press_and_its_update_share_a_wiring_and_the_generated_program_states_it() {
+    use codegen::board::wiring_signature;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let load = |p: &str| project::load(&root.join(p)).expect("the model loads");
+    let (press, press7) = (
+        load("models/press.plc.toml"),
+        load("models/press7.plc.toml"),
+    );
+    assert_eq!(wiring_signature(&press), wiring_signature(&press7));
+    let module = board_module(&press);
+    assert!(
+        module.contains(&format!(
+            "pub const WIRING: u32 = {:#010x};",
+            wiring_signature(&press)
+        )),
+        "{module}"
+    );
+}

@@ -9,7 +9,7 @@
 //! | 3 | the program's version (`major << 16 \| minor << 8 \| patch`) |
 //! | 4 | the image's length in words |
 //! | 5 | the image CRC (the executor's, over the image's words) |
-//! | 6 | 0, reserved |
+//! | 6 | the wiring signature of the project the image was made for ([`SlotHeader::wiring`]) |
 //! | 7 | CRC of words 0–6 ([`crate::CRC_ALGORITHM`]) |
 //!
 //! The loader writes the header last: an erased header (all ones) or a
@@ -23,8 +23,9 @@ use crc::Crc;
 /// significant byte.
 pub const MAGIC: u32 = u32::from_be_bytes(*b"PLCI");
 
-/// The header layout this crate writes and reads.
-pub const FORMAT: u32 = 1;
+/// The header layout this crate writes and reads (2: word 6 is the
+/// wiring signature; layout 1 left it 0).
+pub const FORMAT: u32 = 2;
 
 /// Words of a header.
 pub const HEADER_WORDS: usize = 8;
@@ -41,6 +42,12 @@ pub struct SlotHeader {
     pub words: u32,
     /// The image CRC recorded by the generator.
     pub image_crc: u32,
+    /// The wiring signature of the project the image was made for: a CRC
+    /// of its board chip and of each input's and output's name, pin and
+    /// electrical settings (`codegen::board::wiring_signature`). A
+    /// firmware runs only images of its own wiring, whose signals mean
+    /// what its pins carry.
+    pub wiring: u32,
 }
 
 /// Why a header is not a valid one.
@@ -69,7 +76,7 @@ impl SlotHeader {
             self.version,
             self.words,
             self.image_crc,
-            0,
+            self.wiring,
             0,
         ];
         words[HEADER_WORDS - 1] = crc_of_words(crc, &words[..HEADER_WORDS - 1]);
@@ -96,6 +103,7 @@ impl SlotHeader {
             version: words[3],
             words: words[4],
             image_crc: words[5],
+            wiring: words[6],
         };
         let fits =
             usize::try_from(header.words).is_ok_and(|n| n > 0 && n <= slot.len() - HEADER_WORDS);

@@ -55,13 +55,21 @@ pub enum SlotFileError {
 
 impl SlotFile {
     /// A slot file for `image` with `header`'s fields (its length and CRC
-    /// taken from the image).
-    pub fn new(image: Vec<u32>, sequence: u32, version: u32, crc: &Crc<u32>) -> SlotFile {
+    /// taken from the image), made for a firmware of wiring signature
+    /// `wiring`.
+    pub fn new(
+        image: Vec<u32>,
+        sequence: u32,
+        version: u32,
+        wiring: u32,
+        crc: &Crc<u32>,
+    ) -> SlotFile {
         let header = SlotHeader {
             sequence,
             version,
             words: image.len() as u32,
             image_crc: crc_of_words(crc, &image),
+            wiring,
         };
         SlotFile { header, image }
     }
@@ -121,7 +129,7 @@ pub enum LinkError {
         last: Option<FrameError>,
     },
     /// The PLC refused a request.
-    #[error("the PLC refused {request}: {why:?}")]
+    #[error("the PLC refused {request}: {why}")]
     Refused {
         /// The request, by name.
         request: &'static str,
@@ -315,6 +323,7 @@ pub fn load<T: Read + Write>(
         words: file.header.words,
         image_crc: file.header.image_crc,
         version: file.header.version,
+        wiring: file.header.wiring,
     };
     expect_next(link, &begin, 0)?;
     let chunks: Vec<Request<'_>> = data_requests(&bytes).collect();
@@ -394,6 +403,9 @@ mod tests {
 
     struct AnyImage;
     impl Check for AnyImage {
+        fn wiring(&self) -> u32 {
+            0
+        }
         fn check(&mut self, image: &[u32]) -> Result<(), u16> {
             if image.first() == Some(&0) {
                 Err(9)
@@ -430,7 +442,7 @@ mod tests {
             SimulatedPlc {
                 a: vec![u32::MAX; 512],
                 b: vec![u32::MAX; 512],
-                endpoint: Endpoint::new(Loader::new(&CRC, None)),
+                endpoint: Endpoint::new(Loader::new(&CRC, None, 0)),
                 out: VecDeque::new(),
                 answers: 0,
                 lose,
@@ -524,7 +536,7 @@ mod tests {
 
     fn file(len: u32, first: u32) -> SlotFile {
         let image = (0..len).map(|k| first.wrapping_add(k * 77)).collect();
-        SlotFile::new(image, 1, crate::header::version(1, 2, 3), &CRC)
+        SlotFile::new(image, 1, crate::header::version(1, 2, 3), 0, &CRC)
     }
 
     #[test]

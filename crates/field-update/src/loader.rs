@@ -73,6 +73,8 @@ impl Outcome {
 /// The PLC side of the protocol.
 pub struct Loader<'c> {
     crc: &'c Crc<u32>,
+    /// The firmware's wiring signature: a `Begin` of another is refused.
+    wiring: u32,
     running: Option<Valid>,
     state: State,
     /// The outcome of the last commit, until the next `Begin` or `Abort`:
@@ -91,10 +93,13 @@ impl core::fmt::Debug for Loader<'_> {
 
 impl<'c> Loader<'c> {
     /// A loader for a controller running `running` (from
-    /// [`crate::slot::choose`]; `None`: the built-in program).
-    pub fn new(crc: &'c Crc<u32>, running: Option<Valid>) -> Loader<'c> {
+    /// [`crate::slot::choose`]; `None`: the built-in program) in a
+    /// firmware of wiring signature `wiring` (the [`Check::wiring`] of
+    /// its check).
+    pub fn new(crc: &'c Crc<u32>, running: Option<Valid>, wiring: u32) -> Loader<'c> {
         Loader {
             crc,
+            wiring,
             running,
             state: State::Idle,
             finished: None,
@@ -148,12 +153,17 @@ impl<'c> Loader<'c> {
                     words,
                     image_crc,
                     version,
+                    wiring,
                 },
                 State::Receiving {
                     header, next: 0, ..
                 },
-            ) if (header.words, header.image_crc, header.version)
-                == (words, image_crc, version) =>
+            ) if (
+                header.words,
+                header.image_crc,
+                header.version,
+                header.wiring,
+            ) == (words, image_crc, version, wiring) =>
             {
                 // The same `Begin` sent again after its answer was lost (or
                 // came late: the erase stalls the PLC for seconds): its slot
@@ -166,11 +176,18 @@ impl<'c> Loader<'c> {
                     words,
                     image_crc,
                     version,
+                    wiring,
                 },
                 _,
             ) => {
                 self.state = State::Idle;
                 self.finished = None;
+                if wiring != self.wiring {
+                    return refuse(Refusal::Wiring {
+                        expected: self.wiring,
+                        found: wiring,
+                    });
+                }
                 let capacity = store.slot_words().saturating_sub(HEADER_WORDS);
                 if words == 0 {
                     return refuse(Refusal::Empty);
@@ -195,6 +212,7 @@ impl<'c> Loader<'c> {
                         version,
                         words,
                         image_crc,
+                        wiring,
                     },
                     next: 0,
                 };

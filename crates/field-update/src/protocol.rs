@@ -32,8 +32,9 @@ pub enum Request<'a> {
     /// What runs, and how far a load has come.
     Status,
     /// Load an image of `words` words into the slot that does not run
-    /// (erasing it): its CRC and version as the slot header will record
-    /// them.
+    /// (erasing it): its CRC, version and wiring signature as the slot
+    /// header will record them. An image of another wiring is refused
+    /// before anything is erased.
     Begin {
         /// Words of the image.
         words: u32,
@@ -41,6 +42,9 @@ pub enum Request<'a> {
         image_crc: u32,
         /// The program's version ([`crate::header::version`]).
         version: u32,
+        /// The wiring signature of the image's project
+        /// ([`crate::header::SlotHeader::wiring`]).
+        wiring: u32,
     },
     /// Image bytes (words little-endian) from byte `offset`, at most
     /// [`MAX_DATA`], a whole number of words.
@@ -111,6 +115,14 @@ pub enum Refusal {
     },
     /// An empty image.
     Empty,
+    /// The image was made for another wiring than this firmware's: its
+    /// signals would not mean what the pins carry.
+    Wiring {
+        /// This firmware's wiring signature.
+        expected: u32,
+        /// The image's.
+        found: u32,
+    },
     /// `Data` at another offset than the one expected, or not a whole
     /// number of words, or more than [`MAX_DATA`] bytes, or past the end.
     Offset {
@@ -141,4 +153,36 @@ pub fn data_requests(image: &[u8]) -> impl Iterator<Item = Request<'_>> {
             offset: (k * MAX_DATA) as u32,
             bytes,
         })
+}
+
+/// What the PC tells its user about a refusal.
+impl core::fmt::Display for Refusal {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            Refusal::NotLoading => write!(f, "no load in progress"),
+            Refusal::TooLarge { words, capacity } => write!(
+                f,
+                "the image of {words} words does not fit a slot of {capacity}"
+            ),
+            Refusal::Empty => write!(f, "an empty image"),
+            Refusal::Wiring { expected, found } => write!(
+                f,
+                "the image was made for other wiring (signature {found:#010x}; this firmware's is \
+                 {expected:#010x}: its project's board, inputs or outputs differ from the \
+                 firmware's)"
+            ),
+            Refusal::Offset { expected } => {
+                write!(f, "data out of order (byte {expected} expected)")
+            }
+            Refusal::Incomplete { expected } => {
+                write!(
+                    f,
+                    "commit before the whole image (byte {expected} expected)"
+                )
+            }
+            Refusal::Rejected(why) => write!(f, "the image was checked and refused: {why}"),
+            Refusal::Flash => write!(f, "the flash controller failed"),
+            Refusal::Frame => write!(f, "a damaged frame"),
+        }
+    }
 }

@@ -46,9 +46,15 @@ pub trait SlotStore {
     fn program(&mut self, slot: Slot, offset: usize, words: &[u32]) -> Result<(), Self::Error>;
 }
 
-/// What the firmware asks of an image before it runs it: the executor's
-/// structure check. The CRC against the header is checked before.
+/// What the firmware asks of an image before it runs it: the wiring
+/// signature of its header, then (after the CRC against the header) the
+/// executor's structure check.
 pub trait Check {
+    /// The wiring signature of this firmware's project
+    /// ([`SlotHeader::wiring`]): an image whose header records another is
+    /// not run.
+    fn wiring(&self) -> u32;
+
     /// `Err(code)` when `image` is not a program this firmware can run;
     /// the code names the first flaw found (reported to the loader).
     fn check(&mut self, image: &[u32]) -> Result<(), u16>;
@@ -62,6 +68,13 @@ pub enum Rejected {
     Empty,
     /// The header is there but damaged (layout, CRC or length).
     Header,
+    /// The image was made for another wiring than this firmware's.
+    Wiring {
+        /// This firmware's wiring signature.
+        expected: u32,
+        /// The one the header records.
+        found: u32,
+    },
     /// The image's CRC is not the header's: found, recorded.
     ImageCrc {
         /// The CRC of the words in the slot.
@@ -118,14 +131,20 @@ pub fn verify(
 }
 
 /// The verdict on an image whose CRC, `found`, is computed: the header's
-/// CRC, then the firmware's check. What start-up ([`verify`]) and a load
-/// ([`crate::loader::Loader::poll`]) both ask.
+/// wiring and CRC, then the firmware's check. What start-up ([`verify`])
+/// and a load ([`crate::loader::Loader::poll`]) both ask.
 pub(crate) fn accept(
     image: &[u32],
     header: &SlotHeader,
     found: u32,
     check: &mut impl Check,
 ) -> Result<(), Rejected> {
+    if header.wiring != check.wiring() {
+        return Err(Rejected::Wiring {
+            expected: check.wiring(),
+            found: header.wiring,
+        });
+    }
     if found != header.image_crc {
         return Err(Rejected::ImageCrc {
             found,
@@ -225,5 +244,24 @@ impl SlotStore for RamSlots<'_> {
         }
         target.copy_from_slice(words);
         Ok(())
+    }
+}
+
+/// Why a slot was not chosen, in words.
+impl core::fmt::Display for Rejected {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            Rejected::Empty => write!(f, "no valid slot header"),
+            Rejected::Header => write!(f, "a damaged slot header"),
+            Rejected::Wiring { expected, found } => write!(
+                f,
+                "made for other wiring (signature {found:#010x}, the firmware's {expected:#010x})"
+            ),
+            Rejected::ImageCrc { found, recorded } => write!(
+                f,
+                "image CRC {found:#010x}, its header records {recorded:#010x}"
+            ),
+            Rejected::Structure(code) => write!(f, "structure check code {code:#06x}"),
+        }
     }
 }

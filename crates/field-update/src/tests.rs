@@ -14,11 +14,18 @@ static CRC: Crc<u32> = Crc::<u32>::new(&CRC_ALGORITHM);
 
 const SLOT_WORDS: usize = 256;
 
+/// The tests' firmware's wiring signature.
+const WIRING: u32 = 0x5EED_0001;
+
 /// A structure check for the tests: an image is valid when its first word
 /// is its length and no word is `0xDEAD`.
 struct LengthCheck;
 
 impl Check for LengthCheck {
+    fn wiring(&self) -> u32 {
+        WIRING
+    }
+
     fn check(&mut self, image: &[u32]) -> Result<(), u16> {
         if image.first() != Some(&(image.len() as u32)) {
             return Err(1);
@@ -59,6 +66,7 @@ fn load(
         words: words.len() as u32,
         image_crc,
         version: 0x0001_0200,
+        wiring: WIRING,
     };
     let requests = [begin]
         .into_iter()
@@ -112,7 +120,7 @@ fn fresh() -> (Vec<u32>, Vec<u32>) {
 fn loads_alternate_between_slots_and_the_newest_valid_slot_runs() {
     let (mut a, mut b) = fresh();
     let mut slots = RamSlots::new(&mut a, &mut b);
-    let mut loader = Loader::new(&CRC, None);
+    let mut loader = Loader::new(&CRC, None, WIRING);
 
     let first = image(100, 1);
     let outcome = load(
@@ -167,7 +175,7 @@ fn loads_alternate_between_slots_and_the_newest_valid_slot_runs() {
 fn a_refused_image_leaves_the_running_program_and_no_valid_slot() {
     let (mut a, mut b) = fresh();
     let mut slots = RamSlots::new(&mut a, &mut b);
-    let mut loader = Loader::new(&CRC, None);
+    let mut loader = Loader::new(&CRC, None, WIRING);
     let good = image(40, 3);
     let Outcome::Switched(running) =
         load(&mut loader, &mut slots, &good, crc_of_words(&CRC, &good), 8)
@@ -207,13 +215,14 @@ fn a_refused_image_leaves_the_running_program_and_no_valid_slot() {
 fn a_load_cut_short_never_runs() {
     let (mut a, mut b) = fresh();
     let mut slots = RamSlots::new(&mut a, &mut b);
-    let mut loader = Loader::new(&CRC, None);
+    let mut loader = Loader::new(&CRC, None, WIRING);
     let words = image(100, 5);
     let image_bytes = bytes(&words);
     let begin = Request::Begin {
         words: 100,
         image_crc: crc_of_words(&CRC, &words),
         version: 1,
+        wiring: WIRING,
     };
     assert_eq!(
         loader.handle(begin, &mut slots),
@@ -257,11 +266,12 @@ fn images_too_large_or_empty_are_refused_before_the_erase() {
     let (mut a, mut b) = fresh();
     a[0] = 0x1234;
     let mut slots = RamSlots::new(&mut a, &mut b);
-    let mut loader = Loader::new(&CRC, None);
+    let mut loader = Loader::new(&CRC, None, WIRING);
     let too_large = Request::Begin {
         words: (SLOT_WORDS - HEADER_WORDS + 1) as u32,
         image_crc: 0,
         version: 0,
+        wiring: WIRING,
     };
     assert_eq!(
         loader.handle(too_large, &mut slots),
@@ -274,12 +284,69 @@ fn images_too_large_or_empty_are_refused_before_the_erase() {
         words: 0,
         image_crc: 0,
         version: 0,
+        wiring: WIRING,
     };
     assert_eq!(
         loader.handle(empty, &mut slots),
         Reply::Send(Response::Refused(Refusal::Empty))
     );
     assert_eq!(slots.contents(Slot::A)[0], 0x1234, "nothing was erased");
+}
+
+#[test]
+fn an_image_of_other_wiring_is_refused_before_the_erase_and_never_chosen() {
+    let (mut a, mut b) = fresh();
+    a[0] = 0x1234;
+    let mut slots = RamSlots::new(&mut a, &mut b);
+    let mut loader = Loader::new(&CRC, None, WIRING);
+    let words = image(20, 3);
+    let other = Request::Begin {
+        words: 20,
+        image_crc: crc_of_words(&CRC, &words),
+        version: 1,
+        wiring: WIRING ^ 0x100,
+    };
+    assert_eq!(
+        loader.handle(other, &mut slots),
+        Reply::Send(Response::Refused(Refusal::Wiring {
+            expected: WIRING,
+            found: WIRING ^ 0x100
+        }))
+    );
+    assert!(!loader.is_loading());
+    assert_eq!(slots.contents(Slot::A)[0], 0x1234, "nothing was erased");
+
+    // Written into a slot by other means (a debug probe): its header and
+    // image check, its wiring does not, and it is passed over.
+    let header = SlotHeader {
+        sequence: 1,
+        version: 1,
+        words: 20,
+        image_crc: crc_of_words(&CRC, &words),
+        wiring: WIRING ^ 0x100,
+    };
+    slots.erase(Slot::A).unwrap();
+    slots.program(Slot::A, 0, &header.to_words(&CRC)).unwrap();
+    slots.program(Slot::A, HEADER_WORDS, &words).unwrap();
+    let choice = choose(&slots, &CRC, &mut LengthCheck);
+    assert_eq!(choice.running, None);
+    assert_eq!(
+        choice.rejected[0],
+        Some(Rejected::Wiring {
+            expected: WIRING,
+            found: WIRING ^ 0x100
+        })
+    );
+    // The same image with the firmware's wiring runs.
+    let header = SlotHeader {
+        wiring: WIRING,
+        ..header
+    };
+    slots.erase(Slot::A).unwrap();
+    slots.program(Slot::A, 0, &header.to_words(&CRC)).unwrap();
+    slots.program(Slot::A, HEADER_WORDS, &words).unwrap();
+    let running = choose(&slots, &CRC, &mut LengthCheck).running;
+    assert_eq!(running.map(|v| (v.slot, v.header)), Some((Slot::A, header)));
 }
 
 /// A slot store that counts its erases.
@@ -319,12 +386,13 @@ fn a_begin_sent_again_before_any_data_does_not_erase_again() {
         slots: RamSlots::new(&mut a, &mut b),
         erases: &mut erases,
     };
-    let mut loader = Loader::new(&CRC, None);
+    let mut loader = Loader::new(&CRC, None, WIRING);
     let words = image(20, 3);
     let begin = Request::Begin {
         words: 20,
         image_crc: crc_of_words(&CRC, &words),
         version: 7,
+        wiring: WIRING,
     };
     let next = |offset| Reply::Send(Response::Next { offset });
     for _ in 0..3 {
@@ -336,6 +404,7 @@ fn a_begin_sent_again_before_any_data_does_not_erase_again() {
         words: 20,
         image_crc: 1,
         version: 7,
+        wiring: WIRING,
     };
     assert_eq!(loader.handle(other, &mut store), next(0));
     assert_eq!(*store.erases, 2);
@@ -405,6 +474,7 @@ fn slot_headers_round_trip_and_refuse_damage() {
         version: 0x0002_0001,
         words: 10,
         image_crc: 0xCAFE_F00D,
+        wiring: WIRING,
     };
     let mut slot = vec![u32::MAX; 32];
     slot[..HEADER_WORDS].copy_from_slice(&header.to_words(&CRC));
@@ -432,7 +502,7 @@ proptest! {
     fn hostile_bytes_never_make_a_slot_valid_unless_it_passes(stream in proptest::collection::vec(any::<u8>(), 0..2000)) {
         let (mut a, mut b) = fresh();
         let mut slots = RamSlots::new(&mut a, &mut b);
-        let mut loader = Loader::new(&CRC, None);
+        let mut loader = Loader::new(&CRC, None, WIRING);
         let mut reader = FrameReader::<MAX_FRAME>::new();
         for &byte in &stream {
             if let Some(Ok(frame)) = reader.push(byte) {
@@ -447,6 +517,7 @@ proptest! {
             let words = slots.contents(valid.slot);
             let image = &words[HEADER_WORDS..HEADER_WORDS + valid.header.words as usize];
             prop_assert_eq!(crc_of_words(&CRC, image), valid.header.image_crc);
+            prop_assert_eq!(valid.header.wiring, WIRING);
             prop_assert!(LengthCheck.check(image).is_ok());
         }
     }
@@ -456,11 +527,11 @@ proptest! {
     fn requests_in_any_order_keep_the_guarantee(ops in proptest::collection::vec((0u8..5, 0u32..80, any::<u32>()), 0..60)) {
         let (mut a, mut b) = fresh();
         let mut slots = RamSlots::new(&mut a, &mut b);
-        let mut loader = Loader::new(&CRC, None);
+        let mut loader = Loader::new(&CRC, None, WIRING);
         let data = bytes(&image(80, 9));
         for (kind, n, x) in ops {
             let request = match kind {
-                0 => Request::Begin { words: n, image_crc: x, version: 0 },
+                0 => Request::Begin { words: n, image_crc: x, version: 0, wiring: if n % 7 == 0 { x } else { WIRING } },
                 1 => { let at = (n as usize * 4).min(data.len()); Request::Data { offset: at as u32, bytes: &data[at..(at + 64).min(data.len())] } }
                 2 => Request::Commit,
                 3 => Request::Abort,
@@ -472,6 +543,7 @@ proptest! {
         if let Some(valid) = choose(&slots, &CRC, &mut LengthCheck).running {
             let image = &slots.contents(valid.slot)[HEADER_WORDS..HEADER_WORDS + valid.header.words as usize];
             prop_assert_eq!(crc_of_words(&CRC, image), valid.header.image_crc);
+            prop_assert_eq!(valid.header.wiring, WIRING);
             prop_assert!(LengthCheck.check(image).is_ok());
         }
     }

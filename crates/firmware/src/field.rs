@@ -76,14 +76,14 @@ impl Link<Nucleo> for Serial<'_, '_, '_> {
 /// whatever the link switches to, forever.
 pub fn run(mut board: Nucleo, startup: Startup) -> ! {
     report::startup(&startup, WATCHDOG_MS);
-    let check = ImageCheck::new(&CONFIG);
+    let check = ImageCheck::new(&CONFIG, program::board::WIRING);
     let choice: Choice = {
         let (store, _) = board.update_parts(WATCHDOG_MS);
         let mut probe = check;
         choose(&store, &CRC, &mut probe)
     };
     report::choice(&choice);
-    let mut endpoint = Endpoint::new(Loader::new(&CRC, choice.running));
+    let mut endpoint = Endpoint::new(Loader::new(&CRC, choice.running, program::board::WIRING));
     board.start_watchdog(WATCHDOG_MS);
     let mut next = choice.running;
     loop {

@@ -3,12 +3,14 @@
 //! loader and start-up ask), the memory a loaded program runs in
 //! ([`Room`]), and the program made from a checked image ([`Loaded`]).
 //!
-//! A loaded image is judged by everything a generator proves
+//! A loaded image is judged first by its slot header's wiring signature,
+//! which must be this firmware's (`codegen::board::wiring_signature` of
+//! the built-in project: the same chip, and inputs and outputs of the
+//! same names, pins and levels) and its CRC, by
+//! `field_update::slot::accept`; then by everything a generator proves
 //! (`executor::parse::load`: parse, then `validate_generated`), then by
 //! what this firmware can run: its inputs and outputs are as many as the
-//! built-in program's (the board's pins are wired for those), and its
-//! sizes fit [`Room`]. The slot header's CRC is checked before, by
-//! `field_update::slot::accept`.
+//! built-in program's, and its sizes fit [`Room`].
 
 use executor::memory::BoundedMemory;
 use executor::parse::{self, Refusal};
@@ -43,14 +45,17 @@ pub const REFUSED_OUTPUTS: u16 = 0x402;
 pub struct ImageCheck {
     inputs: usize,
     outputs: usize,
+    wiring: u32,
 }
 
 impl ImageCheck {
-    /// The check of a firmware whose built-in program is `built_in`.
-    pub fn new(built_in: &Config<'_>) -> ImageCheck {
+    /// The check of a firmware whose built-in program is `built_in`, of
+    /// wiring signature `wiring` (the generated `program::board::WIRING`).
+    pub fn new(built_in: &Config<'_>, wiring: u32) -> ImageCheck {
         ImageCheck {
             inputs: built_in.inputs.len(),
             outputs: built_in.outputs.len(),
+            wiring,
         }
     }
 
@@ -70,6 +75,10 @@ impl ImageCheck {
 }
 
 impl Check for ImageCheck {
+    fn wiring(&self) -> u32 {
+        self.wiring
+    }
+
     fn check(&mut self, image: &[u32]) -> Result<(), u16> {
         let mut name = [0u8; MAX_NAME];
         let mut tables = [SupervisorTable::EMPTY; MAX_SUPERVISORS];
@@ -130,6 +139,10 @@ mod tests {
     use super::*;
     use crate::program;
 
+    /// A wiring signature for the tests (the check's own is compared by
+    /// `field_update::slot::accept`, tested there).
+    const WIRING: u32 = 0x0005_EED5;
+
     /// The built-in program's image words (the default project's).
     fn own_image() -> Vec<u32> {
         let mut words = Vec::new();
@@ -140,7 +153,7 @@ mod tests {
     #[test]
     fn the_built_in_image_passes_and_loads_as_the_built_in_program() {
         let config = program::PROGRAM.config();
-        let mut check = ImageCheck::new(&config);
+        let mut check = ImageCheck::new(&config, WIRING);
         let image = own_image();
         assert_eq!(check.check(&image), Ok(()));
         let mut loaded = Loaded::new();
@@ -153,7 +166,7 @@ mod tests {
     #[test]
     fn words_changed_after_the_check_start_the_controller_in_fault_mode() {
         let config = program::PROGRAM.config();
-        let mut check = ImageCheck::new(&config);
+        let mut check = ImageCheck::new(&config, WIRING);
         let image = own_image();
         assert_eq!(check.check(&image), Ok(()));
         let crc = program::PROGRAM.recorded_crc();
@@ -180,11 +193,13 @@ mod tests {
         let mut other_inputs = ImageCheck {
             inputs: inputs + 1,
             outputs,
+            wiring: WIRING,
         };
         assert_eq!(other_inputs.check(&image), Err(REFUSED_INPUTS));
         let mut other_outputs = ImageCheck {
             inputs,
             outputs: outputs + 1,
+            wiring: WIRING,
         };
         assert_eq!(other_outputs.check(&image), Err(REFUSED_OUTPUTS));
         // Room for the program's sizes but one event fewer.
@@ -196,7 +211,7 @@ mod tests {
     #[test]
     fn a_damaged_image_is_refused_with_the_executors_code() {
         let config = program::PROGRAM.config();
-        let mut check = ImageCheck::new(&config);
+        let mut check = ImageCheck::new(&config, WIRING);
         let mut image = own_image();
         image.pop();
         let code = check.check(&image).expect_err("short image");

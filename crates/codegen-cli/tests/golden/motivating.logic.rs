@@ -527,6 +527,11 @@ pub type Memory = executor::memory::StaticMemory<
 pub mod board {
     /// The chip the pins belong to, as probe-rs names it.
     pub const CHIP: &str = "STM32F411RETx";
+
+    /// The wiring signature (`codegen::board::wiring_signature`): a
+    /// field-update image runs on this firmware only when its slot header
+    /// records the same.
+    pub const WIRING: u32 = 0x3fa2a975;
     pub use boards::{PinId, Pull, SignalPin};
 
     /// Pin of each input, by input index (`None`: not wired, the firmware

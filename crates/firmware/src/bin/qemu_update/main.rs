@@ -169,7 +169,8 @@ fn main() -> ! {
     let built_in = &program::PROGRAM;
     let config = built_in.config();
     let built_in_crc = built_in.recorded_crc();
-    let check = ImageCheck::new(&config);
+    let wiring = program::board::WIRING;
+    let check = ImageCheck::new(&config, wiring);
 
     // The PC's files: the update's slot file, and the built-in image.
     let mut file_words = [0u32; SLOT_WORDS];
@@ -223,7 +224,7 @@ fn main() -> ! {
     let mut a = [u32::MAX; SLOT_WORDS];
     let mut b = [u32::MAX; SLOT_WORDS];
     let mut plc = Plc {
-        endpoint: Endpoint::new(Loader::new(&CRC, None)),
+        endpoint: Endpoint::new(Loader::new(&CRC, None, wiring)),
         store: RamSlots::new(&mut a, &mut b),
         check,
         budget: usize::from(config.rom_test_bytes_per_scan / 4).max(1),
@@ -263,7 +264,7 @@ fn main() -> ! {
     // 2. Refused loads while the built-in program runs its scenario, then
     // the update.
     hprintln!(
-        "2. built-in program, its scenario; the PC: Status, a corrupt image, a hostile image (word {} flipped, CRC recomputed), then the update",
+        "2. built-in program, its scenario; the PC: Status, a corrupt image, a hostile image (word {} flipped, CRC recomputed), the update announced for other wiring, then the update",
         hostile_at
     );
     let jobs = [
@@ -272,17 +273,26 @@ fn main() -> ! {
             image: corrupt,
             image_crc: update_crc,
             version: file_header.version,
+            wiring: file_header.wiring,
         },
         Job::Load {
             image: hostile,
             image_crc: hostile_crc,
             version: file_header.version,
+            wiring: file_header.wiring,
+        },
+        Job::Load {
+            image: update,
+            image_crc: update_crc,
+            version: file_header.version,
+            wiring: file_header.wiring ^ 0x8000_0000,
         },
         Job::AfterScenario,
         Job::Load {
             image: update,
             image_crc: update_crc,
             version: file_header.version,
+            wiring: file_header.wiring,
         },
     ];
     let Ok(mut controller) = Controller::new_proven(built_in, program::Memory::new()) else {
@@ -301,7 +311,7 @@ fn main() -> ! {
         &mut plc,
         overhead,
     );
-    loads += 3;
+    loads += 4;
     tally.mismatches += end.mismatches;
     poll_max = poll_max.max(end.poll_max);
     check_scans = check_scans.max(end.check_scans);
@@ -330,7 +340,17 @@ fn main() -> ! {
         ))));
     hprintln!("  hostile image refused with code {:#06x}", hostile_code);
     tally.expect(structure_refused, "the hostile image: refused by the structure check, with the code the firmware's check gives");
-    refused += u32::from(image_crc_refused) + u32::from(structure_refused);
+    let wiring_refused = end.answers[3]
+        == Some(Answer::Refused(Refusal::Wiring {
+            expected: wiring,
+            found: file_header.wiring ^ 0x8000_0000,
+        }));
+    tally.expect(
+        file_header.wiring == wiring && wiring_refused,
+        "the update announced for other wiring: refused at Begin (the update's own wiring is the firmware's)",
+    );
+    refused +=
+        u32::from(image_crc_refused) + u32::from(structure_refused) + u32::from(wiring_refused);
     tally.expect(
         end.mismatches == 0 && end.replayed > 0,
         "the built-in program ran its whole scenario unchanged meanwhile",
@@ -342,7 +362,7 @@ fn main() -> ! {
     tally.expect(
         valid_a.slot == Slot::A
             && valid_a.header.sequence == 1
-            && end.answers[4]
+            && end.answers[5]
                 == Some(Answer::Switched {
                     slot: Slot::A,
                     sequence: 1,
@@ -366,6 +386,7 @@ fn main() -> ! {
             image: own,
             image_crc: built_in_crc,
             version: v120,
+            wiring,
         },
     ];
     let mut instr = 0;

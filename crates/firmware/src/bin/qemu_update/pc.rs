@@ -22,11 +22,13 @@ pub enum Job<'i> {
     Status,
     /// Nothing until the phase's scenario has ended.
     AfterScenario,
-    /// `Begin`, every `Data`, `Commit` of `image`, announcing `image_crc`.
+    /// `Begin`, every `Data`, `Commit` of `image`, announcing `image_crc`
+    /// and the wiring signature `wiring`.
     Load {
         image: &'i [u32],
         image_crc: u32,
         version: u32,
+        wiring: u32,
     },
 }
 
@@ -127,11 +129,13 @@ impl<'i> Pc<'i> {
                 image,
                 image_crc,
                 version,
+                wiring,
             } => match self.offset {
                 None => Request::Begin {
                     words: image.len() as u32,
                     image_crc,
                     version,
+                    wiring,
                 },
                 Some(offset) if (offset as usize) < image.len() * 4 => {
                     let first = offset as usize / 4;
