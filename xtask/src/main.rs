@@ -31,7 +31,7 @@
 //! - `guard-bench`: the guards of symbolic supervisors evaluated in QEMU
 //!   as node tables and as sums of products (instructions, bytes).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::{Command, ExitCode};
 
 mod bench;
@@ -99,9 +99,17 @@ fn main() -> ExitCode {
 /// Errors of a task, as text for the user.
 pub type Result<T = ()> = std::result::Result<T, String>;
 
-/// The workspace root.
+/// The workspace root: that of the `xtask` cargo runs (`cargo xtask`
+/// sets `CARGO_MANIFEST_DIR` when it starts us), else that of the sources
+/// this binary was built from. Two working trees that share a
+/// `CARGO_TARGET_DIR` share the uplifted `target/debug/xtask`, which can
+/// be the other tree's build: the tree is taken from the command, not
+/// from the binary.
 pub fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    let manifest = std::env::var_os("CARGO_MANIFEST_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")));
+    manifest
         .parent()
         .expect("xtask lives in the workspace")
         .to_path_buf()
