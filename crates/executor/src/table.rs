@@ -27,7 +27,9 @@
 //! A fourth layout, [`Rows::Keyed`], stores each distinct row of
 //! defined-bits once: many states of a large supervisor enable the same
 //! events. `defined` is then a dictionary of the `k` distinct rows, row
-//! `r` at bits `r·m .. r·m + m` (`⌈k·m / 32⌉` words); `targets` is the
+//! `r` at bits `r·w .. r·w + m` for the row stride `w` ([`keyed_stride`]:
+//! 32 for up to 32 events, so that a row is one word and a lookup reads
+//! it with one load, else `m`; `⌈k·w / 32⌉` words); `targets` is the
 //! sparse layout's; and `states` holds one record of `key_bits +
 //! start_bits` bits (at most 32) per state: the low `key_bits` the
 //! state's row in the dictionary (its *key*, `key_bits = max(1,
@@ -71,14 +73,14 @@
 //! | dense targets | `01 00 · 00 10 · 00 00` | `0x81` |
 //! | sparse targets | `01 · 10 · 00` | `0x09` |
 //! | sparse row starts (2 bits) | `00 · 01 · 10` | `0x24` |
-//! | keyed dictionary (rows `a`, `b`) | `1 0 · 0 1` | `0x09` |
+//! | keyed dictionary (rows `a`, `b`, a word each) | `1 0 …` · `0 1 …` | `0x1`, `0x2` |
 //! | keyed records (1-bit key, 2-bit start) | `0 00 · 1 10 · 0 01` | `0x118` |
 //!
 //! Looking up δ(1, b): bit `1·2 + 1 = 3` of `defined` is set; dense entry 3
 //! is bits 6–7 of `0x81` = `10` = state 2; sparse: row start of state 1 is
 //! 1, no defined event of state 1 precedes `b`, entry 1 is `10` = 2.
 //! Keyed (targets as sparse): the record of state 1 is `0b011`, key 1 and
-//! start 1; bit `1·2 + 1` of the dictionary is set, nothing before it in
+//! start 1; bit 1 of dictionary word 1 is set, nothing before it in
 //! row 1, entry 1 is state 2.
 //!
 //! # Integrity
@@ -105,6 +107,26 @@ pub fn read_bits(words: &[u32], index: usize, width: u8) -> u32 {
         return 0;
     }
     read_bits_at(words, index * usize::from(width), width)
+}
+
+/// [`read_bits`] without a branch on whether the entry straddles two
+/// words: both are read (a missing one reads 0) and joined. For entries
+/// that straddle often (a keyed table's records and targets, of 10 to
+/// 32 bits); narrow ones rarely do, and [`read_bits`] skips the second
+/// read for them.
+#[inline]
+fn read_bits_joined(words: &[u32], index: usize, width: u8) -> u32 {
+    let bit = index * usize::from(width);
+    let (word, offset) = (bit / 32, (bit % 32) as u32);
+    let low = words.get(word).copied().unwrap_or(0);
+    let high = words.get(word + 1).copied().unwrap_or(0);
+    // `high << (32 - offset)` without the shift by 32 at offset 0.
+    let value = low >> offset | high << 1 << (31 - offset);
+    match width {
+        0 => 0,
+        1..=31 => value & ((1u32 << width) - 1),
+        _ => value,
+    }
 }
 
 /// The `width` bits (`1..=32`) starting at bit `bit` of a bit array (bits
@@ -158,10 +180,23 @@ use crate::bits::insert as bit_insert;
 /// structure check refuses.
 #[inline]
 pub fn keyed_record(states: &[u32], key_bits: u8, start_bits: u8, state: u32) -> (usize, usize) {
-    let record = read_bits(states, state as usize, key_bits.wrapping_add(start_bits));
+    let record = read_bits_joined(states, state as usize, key_bits.wrapping_add(start_bits));
     let start = record.wrapping_shr(u32::from(key_bits));
     let key = record ^ start.wrapping_shl(u32::from(key_bits));
     (key as usize, start as usize)
+}
+
+/// Bits from one row of a keyed table's dictionary to the next
+/// ([`Rows::Keyed`]) for `events` local events: a whole word for up to
+/// 32 (each row one word, its unused high bits 0), else `events` (rows
+/// packed as the sparse layout's).
+#[inline]
+pub const fn keyed_stride(events: usize) -> usize {
+    if events <= 32 {
+        32
+    } else {
+        events
+    }
 }
 
 /// Number of set bits in `from..to`: one count of at most 32 bits read
@@ -307,6 +342,15 @@ impl SupervisorTable<'_> {
                 start_bits,
             } if layouts.has(Layouts::KEYED) => {
                 let (key, _) = keyed_record(states, key_bits, start_bits, state);
+                if m <= 32 {
+                    // The row is word `key`; `from < m`, `len ≤ m - from`.
+                    let row = self.defined.get(key).copied().unwrap_or(0) >> from;
+                    return if len >= 32 {
+                        row
+                    } else {
+                        row & ((1u32 << len) - 1)
+                    };
+                }
                 read_bits_at(self.defined, key * m + from, len as u8)
             }
             _ => 0,
@@ -321,8 +365,8 @@ impl SupervisorTable<'_> {
         let m = self.events as usize;
         let row = key * m;
         let entry = if m <= 32 {
-            // The whole dictionary row in one read, as a sparse row.
-            let bits = read_bits_at(self.defined, row, m as u8);
+            // The dictionary row is word `key` ([`keyed_stride`]): one load.
+            let bits = self.defined.get(key).copied().unwrap_or(0);
             if bits >> local & 1 == 0 {
                 return None;
             }
@@ -333,7 +377,7 @@ impl SupervisorTable<'_> {
             }
             start + ones_between(self.defined, row, row + local)
         };
-        Some(read_bits(self.targets, entry, self.state_bits))
+        Some(read_bits_joined(self.targets, entry, self.state_bits))
     }
 
     /// For a table of the net layout: adds to `allowed` (a bit set of
@@ -488,7 +532,7 @@ mod tests {
     const KEYED: SupervisorTable<'static> = SupervisorTable {
         events: 2,
         state_bits: 2,
-        defined: &[0x09],
+        defined: &[0x1, 0x2],
         targets: &[0x09],
         rows: Rows::Keyed {
             states: &[0x118],
@@ -705,7 +749,8 @@ mod tests {
             let mut sparse = vec![0u32; (n * m * width).div_ceil(32)];
             let mut row_starts = vec![0u32; (n * 9).div_ceil(32)];
             // Keyed: rows repeat every 5 states; 3-bit keys, 9-bit starts.
-            let mut dictionary = vec![0u32; (5 * m).div_ceil(32)];
+            let stride = keyed_stride(m);
+            let mut dictionary = vec![0u32; (5 * stride).div_ceil(32)];
             let mut records = vec![0u32; (n * 12).div_ceil(32)];
             let mut keys: Vec<usize> = Vec::new();
             let mut k = 0;
@@ -716,7 +761,7 @@ mod tests {
                 if !keys.contains(&key) {
                     keys.push(key);
                     for e in (0..m).filter(|&e| defined_at(s, e)) {
-                        put(&mut dictionary, key * m + e, 1, 1);
+                        put(&mut dictionary, key * stride + e, 1, 1);
                     }
                 }
                 for e in 0..m {

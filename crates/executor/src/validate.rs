@@ -30,7 +30,9 @@ use crate::program::{
     words, Action, Config, EventSpec, GuardNode, Index, Membership, Program, Span, StateBit,
     StateMapEntry, SupervisorSpec, Trigger,
 };
-use crate::table::{bit, keyed_record, ones_between, read_bits, Rows, SupervisorTable};
+use crate::table::{
+    bit, keyed_record, keyed_stride, ones_between, read_bits, Rows, SupervisorTable,
+};
 
 /// Where in the image a flaw lies: a field, or an item of a list or pool
 /// by its index.
@@ -624,8 +626,9 @@ fn validate_table(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Resu
 
 /// The keyed layout's sizes ([`Rows::Keyed`]): widths of at least 1 bit
 /// and at most 32 together, a record per state, and a dictionary of
-/// exactly `⌈k·m / 32⌉` words for `k` one more than the largest key (so
-/// that every key names a row inside it). The number of targets its rows
+/// exactly `⌈k·w / 32⌉` words for `k` one more than the largest key and
+/// the row stride `w` ([`keyed_stride`]), so that every key names a row
+/// inside it. The number of targets its rows
 /// give, `None` when a size is wrong.
 fn keyed_entries(
     states: u32,
@@ -643,13 +646,15 @@ fn keyed_entries(
         return None;
     }
     let m = usize::from(table.events);
+    let stride = keyed_stride(m);
     let key = |s: u32| keyed_record(records, key_bits, start_bits, s).0;
     let rows = (0..states).map(key).max().map_or(0, |k| k as u64 + 1);
-    if table.defined.len() as u64 != (rows * m as u64).div_ceil(32) {
+    if table.defined.len() as u64 != (rows * stride as u64).div_ceil(32) {
         return None;
     }
     // Every row lies inside the dictionary, so in a usize.
-    let ones = |s: u32| ones_between(table.defined, key(s) * m, key(s) * m + m) as u64;
+    let first = |s: u32| key(s) * stride;
+    let ones = |s: u32| ones_between(table.defined, first(s), first(s) + m) as u64;
     Some((0..states).map(ones).sum())
 }
 
@@ -678,7 +683,7 @@ fn table_entries(c: &Config<'_>, j: usize, table: &SupervisorTable<'_>) -> Resul
                 start_bits,
             } => {
                 let (key, start) = keyed_record(states, key_bits, start_bits, state);
-                (key * m, Some(start))
+                (key * keyed_stride(m), Some(start))
             }
             Rows::Dense | Rows::Net { .. } => (state as usize * m, None),
         }

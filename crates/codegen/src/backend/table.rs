@@ -9,7 +9,7 @@
 //! an eighth of them ([`KEYED_SHARE`]).
 
 use des::automaton::{Automaton, EventId, StateId};
-use executor::table::{keyed_record, Rows, SupervisorTable};
+use executor::table::{keyed_record, keyed_stride, Rows, SupervisorTable};
 
 /// Which target layout a table uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -76,7 +76,8 @@ fn words_for(bits: usize) -> usize {
 
 /// The keyed layout's dictionary and records from the `n·m` defined-bits
 /// `defined` and each state's row start (entries of `start_bits` bits):
-/// the distinct rows in order of first appearance, a record of `key |
+/// the distinct rows in order of first appearance (one every
+/// [`keyed_stride`] bits), a record of `key |
 /// start << key_bits` per state, and `key_bits`. `None` when a record
 /// would not fit in 32 bits.
 fn keyed_rows(
@@ -107,10 +108,11 @@ fn keyed_rows(
     if record_bits > 32 {
         return None;
     }
-    let mut dictionary = vec![0u32; words_for(rows.len() * m)];
+    let stride = keyed_stride(m);
+    let mut dictionary = vec![0u32; words_for(rows.len() * stride)];
     for (r, row) in rows.iter().enumerate() {
         for (e, _) in row.iter().enumerate().filter(|(_, &d)| d) {
-            let bit = r * m + e;
+            let bit = r * stride + e;
             dictionary[bit / 32] |= 1 << (bit % 32);
         }
     }
@@ -496,7 +498,8 @@ pub(crate) mod tests {
 
     #[test]
     fn ties_go_to_dense_then_sparse() {
-        // The worked example: dense takes 2 words, sparse and keyed 3.
+        // The worked example: dense takes 2 words, sparse 3, keyed 4 (a
+        // dictionary word per row).
         let a = worked_example();
         let local = ids(&a, &["a", "b"]);
         let words: Vec<(Layout, usize)> = EncodedTable::candidates(&a, &local)
@@ -505,11 +508,11 @@ pub(crate) mod tests {
             .collect();
         assert_eq!(
             words,
-            [(Layout::Dense, 2), (Layout::Sparse, 3), (Layout::Keyed, 3)]
+            [(Layout::Dense, 2), (Layout::Sparse, 3), (Layout::Keyed, 4)]
         );
         let keyed = &EncodedTable::candidates(&a, &local)[2];
         // The keyed table of the executor's worked example.
-        assert_eq!(keyed.defined, [0x09]);
+        assert_eq!(keyed.defined, [0x1, 0x2]);
         assert_eq!(keyed.row_starts, [0x118]);
         assert_eq!((keyed.key_bits, keyed.start_bits), (1, 2));
         assert_eq!(EncodedTable::encode(&a, &local).layout, Layout::Dense);

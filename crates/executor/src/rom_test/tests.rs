@@ -892,15 +892,18 @@ fn a_keyed_table_runs_and_its_corruptions_are_refused() {
         ("records wider than a word", SupervisorTable { rows: rows(states, 24, 9), ..table }),
         ("records cut short", SupervisorTable { rows: rows(leak(states[1..].to_vec()), 1, 9), ..table }),
         ("targets cut short", SupervisorTable { targets: leak(table.targets[1..].to_vec()), ..table }),
+        // State 0 keyed to row 1: the dictionary has one word, one row.
+        ("a key past the dictionary", SupervisorTable { rows: rows(flipped(0, 1), 1, 9), ..table }),
     ];
     for (what, table) in sizes {
         assert_eq!(validate(&with(table)), at(Flaw::TableLength), "{what}");
     }
     // Passed at start-up, refused by the generator's check: state 0 keyed
-    // to row 1 (the dictionary's padding bits: no event defined, so state
-    // 1's row starts one entry late); a row start off by one (state 0's
-    // record, start bits 1..10); a target no state.
+    // to row 1 of a dictionary of two (row 1 empty: no event defined, so
+    // state 1's row starts one entry late); a row start off by one (state
+    // 0's record, start bits 1..10); a target no state.
     let key = with(SupervisorTable {
+        defined: leak(vec![1, 0]),
         rows: rows(flipped(0, 1), 1, 9),
         ..table
     });
