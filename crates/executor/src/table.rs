@@ -188,8 +188,9 @@ pub fn keyed_record(states: &[u32], key_bits: u8, start_bits: u8, state: u32) ->
 
 /// Bits from one row of a keyed table's dictionary to the next
 /// ([`Rows::Keyed`]) for `events` local events: a whole word for up to
-/// 32 (each row one word, its unused high bits 0), else `events` (rows
-/// packed as the sparse layout's).
+/// 32 (each row one word; the generator writes its bits past the events
+/// as 0, and no lookup reads them), else `events` (rows packed as the
+/// sparse layout's).
 #[inline]
 pub const fn keyed_stride(events: usize) -> usize {
     if events <= 32 {
