@@ -29,6 +29,9 @@ pub fn run(path: &Path, json: bool, out: &mut Out) -> Result<Outcome, CliError> 
             "project": project.name,
             "chip": board.chip,
             "signals": rows,
+            // What a field-update image for this wiring records
+            // (docs/field-update.md).
+            "signature": format!("{:#010x}", codegen::board::wiring_signature(&project)),
         }));
     } else {
         out.push_str(&wiring_table(&project));

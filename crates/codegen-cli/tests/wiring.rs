@@ -41,6 +41,8 @@ fn the_wiring_verb_prints_the_table_or_json() {
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(json["chip"], "STM32F411RETx");
     assert_eq!(json["project"], "stamping-press");
+    let signature = codegen::board::wiring_signature(&plc_project::load(&press).unwrap());
+    assert_eq!(json["signature"], format!("{signature:#010x}"));
     let first = &json["signals"][0];
     assert_eq!(first["signal"], "auto_pb");
     assert_eq!(first["direction"], "input");
