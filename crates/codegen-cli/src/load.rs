@@ -108,6 +108,7 @@ fn status_json(s: &Status<'_>) -> serde_json::Value {
         "slot": s.slot.map(|slot| format!("{slot:?}")),
         "version": version_text(s.version),
         "image_crc": format!("{:#010x}", s.image_crc),
+        "wiring": format!("{:#010x}", s.wiring),
         "loading": s.loading,
     })
 }
@@ -122,8 +123,8 @@ fn status_line(s: &Status<'_>) -> String {
         None => String::new(),
     };
     format!(
-        "`{}` runs from {from}, image CRC {:#010x}{loading}",
-        s.name, s.image_crc
+        "`{}` runs from {from}, image CRC {:#010x}, wiring {:#010x}{loading}",
+        s.name, s.image_crc, s.wiring
     )
 }
 

@@ -100,9 +100,10 @@ fn a_slot_file_is_loaded_over_a_serial_port_and_a_bad_one_is_refused() {
     );
     assert_eq!(
         stdout,
-        "before: `press` runs from the program built into the firmware, image CRC 0x12345678\n\
+        "before: `press` runs from the program built into the firmware, image CRC 0x12345678, \
+         wiring 0x0badcafe\n\
          loaded 300 words into slot A (sequence 1): it runs from the next scan\n\
-         after: `press` runs from slot A, version 1.2.3, image CRC 0x12345678\n"
+         after: `press` runs from slot A, version 1.2.3, image CRC 0x12345678, wiring 0x0badcafe\n"
     );
 
     let mut bad_image = image.clone();
@@ -153,6 +154,7 @@ fn a_slot_file_is_loaded_over_a_serial_port_and_a_bad_one_is_refused() {
     let status: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
     assert_eq!(status["before"]["slot"], "A");
     assert_eq!(status["before"]["version"], "1.2.3");
+    assert_eq!(status["before"]["wiring"], "0x0badcafe");
 
     stop.store(true, Ordering::Relaxed);
     drop(slave);

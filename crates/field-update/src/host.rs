@@ -736,6 +736,7 @@ mod tests {
             slot: None,
             version: 0,
             image_crc: 0,
+            wiring: 0,
             loading: None,
         });
         let late = Response::Switched {

@@ -390,6 +390,7 @@ impl<'c> Endpoint<'c> {
                 slot: self.loader.running.map(|v| v.slot),
                 version: self.loader.running.map_or(0, |v| v.header.version),
                 image_crc: running.image_crc,
+                wiring: self.loader.wiring,
                 loading: self.loader.expected(),
             }),
             Reply::Later => return None,

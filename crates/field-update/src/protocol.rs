@@ -96,6 +96,9 @@ pub struct Status<'a> {
     pub version: u32,
     /// The running program's image CRC.
     pub image_crc: u32,
+    /// The firmware's wiring signature: what an image loaded into it
+    /// must record ([`crate::header::SlotHeader::wiring`]).
+    pub wiring: u32,
     /// The byte offset the load in progress expects next.
     pub loading: Option<u32>,
 }
