@@ -42,7 +42,7 @@ impl Check for FirstWordCheck {
 fn plc(mut master: TTYPort, stop: Arc<AtomicBool>) -> JoinHandle<(Vec<u32>, Vec<u32>)> {
     thread::spawn(move || {
         let (mut a, mut b) = (vec![u32::MAX; 1024], vec![u32::MAX; 1024]);
-        let mut endpoint = Endpoint::new(Loader::new(&CRC, None, WIRING));
+        let mut endpoint = Endpoint::new(Loader::new(&CRC, None, &FirstWordCheck));
         master
             .set_timeout(Duration::from_millis(20))
             .expect("timeout");
@@ -224,7 +224,7 @@ fn load_direct(image: &[u32], image_crc: u32) -> (field_update::loader::Outcome,
         vec![u32::MAX; image.len() + 16],
     );
     let mut slots = RamSlots::new(&mut a, &mut b);
-    let mut loader = Loader::new(&CRC, None, 0);
+    let mut loader = Loader::new(&CRC, None, &ExecutorCheck);
     let begin = Request::Begin {
         words: image.len() as u32,
         image_crc,

@@ -354,7 +354,7 @@ impl SupervisorTable<'_> {
                         row & ((1u32 << len) - 1)
                     };
                 }
-                read_bits_at(self.defined, key * m + from, len as u8)
+                read_bits_at(self.defined, key * keyed_stride(m) + from, len as u8)
             }
             _ => 0,
         }
@@ -366,7 +366,6 @@ impl SupervisorTable<'_> {
     #[inline]
     fn keyed_next(&self, key: usize, start: usize, local: usize) -> Option<u32> {
         let m = self.events as usize;
-        let row = key * m;
         let entry = if m <= 32 {
             // The dictionary row is word `key` ([`keyed_stride`]): one load.
             let bits = self.defined.get(key).copied().unwrap_or(0);
@@ -375,6 +374,7 @@ impl SupervisorTable<'_> {
             }
             start + (bits & ((1u32 << local) - 1)).count_ones() as usize
         } else {
+            let row = key * keyed_stride(m);
             if !bit(self.defined, row + local) {
                 return None;
             }

@@ -442,7 +442,7 @@ mod tests {
             SimulatedPlc {
                 a: vec![u32::MAX; 512],
                 b: vec![u32::MAX; 512],
-                endpoint: Endpoint::new(Loader::new(&CRC, None, 0)),
+                endpoint: Endpoint::new(Loader::new(&CRC, None, &AnyImage)),
                 out: VecDeque::new(),
                 answers: 0,
                 lose,

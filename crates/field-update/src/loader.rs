@@ -93,13 +93,13 @@ impl core::fmt::Debug for Loader<'_> {
 
 impl<'c> Loader<'c> {
     /// A loader for a controller running `running` (from
-    /// [`crate::slot::choose`]; `None`: the built-in program) in a
-    /// firmware of wiring signature `wiring` (the [`Check::wiring`] of
-    /// its check).
-    pub fn new(crc: &'c Crc<u32>, running: Option<Valid>, wiring: u32) -> Loader<'c> {
+    /// [`crate::slot::choose`]; `None`: the built-in program) whose
+    /// images `check` checks: a `Begin` must name its [`Check::wiring`],
+    /// so the loader and the check cannot disagree on it.
+    pub fn new(crc: &'c Crc<u32>, running: Option<Valid>, check: &impl Check) -> Loader<'c> {
         Loader {
             crc,
-            wiring,
+            wiring: check.wiring(),
             running,
             state: State::Idle,
             finished: None,

@@ -120,7 +120,7 @@ fn fresh() -> (Vec<u32>, Vec<u32>) {
 fn loads_alternate_between_slots_and_the_newest_valid_slot_runs() {
     let (mut a, mut b) = fresh();
     let mut slots = RamSlots::new(&mut a, &mut b);
-    let mut loader = Loader::new(&CRC, None, WIRING);
+    let mut loader = Loader::new(&CRC, None, &LengthCheck);
 
     let first = image(100, 1);
     let outcome = load(
@@ -175,7 +175,7 @@ fn loads_alternate_between_slots_and_the_newest_valid_slot_runs() {
 fn a_refused_image_leaves_the_running_program_and_no_valid_slot() {
     let (mut a, mut b) = fresh();
     let mut slots = RamSlots::new(&mut a, &mut b);
-    let mut loader = Loader::new(&CRC, None, WIRING);
+    let mut loader = Loader::new(&CRC, None, &LengthCheck);
     let good = image(40, 3);
     let Outcome::Switched(running) =
         load(&mut loader, &mut slots, &good, crc_of_words(&CRC, &good), 8)
@@ -215,7 +215,7 @@ fn a_refused_image_leaves_the_running_program_and_no_valid_slot() {
 fn a_load_cut_short_never_runs() {
     let (mut a, mut b) = fresh();
     let mut slots = RamSlots::new(&mut a, &mut b);
-    let mut loader = Loader::new(&CRC, None, WIRING);
+    let mut loader = Loader::new(&CRC, None, &LengthCheck);
     let words = image(100, 5);
     let image_bytes = bytes(&words);
     let begin = Request::Begin {
@@ -266,7 +266,7 @@ fn images_too_large_or_empty_are_refused_before_the_erase() {
     let (mut a, mut b) = fresh();
     a[0] = 0x1234;
     let mut slots = RamSlots::new(&mut a, &mut b);
-    let mut loader = Loader::new(&CRC, None, WIRING);
+    let mut loader = Loader::new(&CRC, None, &LengthCheck);
     let too_large = Request::Begin {
         words: (SLOT_WORDS - HEADER_WORDS + 1) as u32,
         image_crc: 0,
@@ -298,7 +298,7 @@ fn an_image_of_other_wiring_is_refused_before_the_erase_and_never_chosen() {
     let (mut a, mut b) = fresh();
     a[0] = 0x1234;
     let mut slots = RamSlots::new(&mut a, &mut b);
-    let mut loader = Loader::new(&CRC, None, WIRING);
+    let mut loader = Loader::new(&CRC, None, &LengthCheck);
     let words = image(20, 3);
     let other = Request::Begin {
         words: 20,
@@ -386,7 +386,7 @@ fn a_begin_sent_again_before_any_data_does_not_erase_again() {
         slots: RamSlots::new(&mut a, &mut b),
         erases: &mut erases,
     };
-    let mut loader = Loader::new(&CRC, None, WIRING);
+    let mut loader = Loader::new(&CRC, None, &LengthCheck);
     let words = image(20, 3);
     let begin = Request::Begin {
         words: 20,
@@ -502,7 +502,7 @@ proptest! {
     fn hostile_bytes_never_make_a_slot_valid_unless_it_passes(stream in proptest::collection::vec(any::<u8>(), 0..2000)) {
         let (mut a, mut b) = fresh();
         let mut slots = RamSlots::new(&mut a, &mut b);
-        let mut loader = Loader::new(&CRC, None, WIRING);
+        let mut loader = Loader::new(&CRC, None, &LengthCheck);
         let mut reader = FrameReader::<MAX_FRAME>::new();
         for &byte in &stream {
             if let Some(Ok(frame)) = reader.push(byte) {
@@ -527,7 +527,7 @@ proptest! {
     fn requests_in_any_order_keep_the_guarantee(ops in proptest::collection::vec((0u8..5, 0u32..80, any::<u32>()), 0..60)) {
         let (mut a, mut b) = fresh();
         let mut slots = RamSlots::new(&mut a, &mut b);
-        let mut loader = Loader::new(&CRC, None, WIRING);
+        let mut loader = Loader::new(&CRC, None, &LengthCheck);
         let data = bytes(&image(80, 9));
         for (kind, n, x) in ops {
             let request = match kind {

@@ -83,7 +83,7 @@ pub fn run(mut board: Nucleo, startup: Startup) -> ! {
         choose(&store, &CRC, &mut probe)
     };
     report::choice(&choice);
-    let mut endpoint = Endpoint::new(Loader::new(&CRC, choice.running, program::board::WIRING));
+    let mut endpoint = Endpoint::new(Loader::new(&CRC, choice.running, &check));
     board.start_watchdog(WATCHDOG_MS);
     let mut next = choice.running;
     loop {

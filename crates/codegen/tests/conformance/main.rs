@@ -106,11 +106,20 @@
 //! local events past the first slice of their rows, and that these runs
 //! still reach every rule.
 //!
+//! A keyed wide project ([`keyed_wide_supervisor`]) has supervisors of
+//! 24–40 states whose rows of defined events repeat (1–3 patterns over
+//! many or every event): the table backend stores them keyed, a
+//! dictionary of rows packed `m` bits apart for `m > 32` local events.
+//! [`keyed_wide_cases_store_keyed_tables_and_move_past_the_first_word`]
+//! checks that at least three tables in four are stored so and that the
+//! runs move them on local events past the first 32.
+//!
 //! 8,500 cases have narrow projects with supervisors of 1–12 states and
 //! 1,500 with 13–50 states (CMSSM synthesis, which runs on every case,
-//! dominates their run time); 200 cases have wide projects (each costs
-//! about as much as fifteen narrow ones, mostly the logic backend
-//! evaluating its covers for every local event when a state changes).
+//! dominates their run time); 200 cases have wide projects and 60 keyed
+//! wide ones (a wide case costs about as much as fifteen narrow ones,
+//! mostly the logic backend evaluating its covers for every local event
+//! when a state changes).
 //!
 //! # Where things are
 //!
@@ -135,8 +144,8 @@ use crate::hand::{
     supervisor_named, PRESS, PRESS_TRACE, RUN, TICK,
 };
 use crate::projects::{
-    add_random_guards, add_random_nets, project, supervisor, wide_supervisor, ProjectSpec, NARROW,
-    WIDE,
+    add_random_guards, add_random_nets, keyed_wide_supervisor, project, supervisor,
+    wide_supervisor, ProjectSpec, NARROW, WIDE,
 };
 use crate::reference::{Record, Reference};
 use crate::runs::{run, wide_run, RunSpec};
@@ -301,6 +310,51 @@ proptest! {
     ) {
         check_case(&spec, &run)?;
     }
+}
+
+proptest! {
+    #![proptest_config(config(60))]
+
+    /// Supervisors whose rows repeat, stored keyed with more than 32
+    /// local events: the dictionary's rows packed, not one a word.
+    #[test]
+    fn backends_match_reference_on_keyed_wide_tables(
+        spec in project(&WIDE, keyed_wide_supervisor()),
+        run in wide_run(),
+    ) {
+        check_case(&spec, &run)?;
+    }
+}
+
+/// The keyed wide cases are what they are for: the table backend stores
+/// their supervisors keyed with more than 32 local events, and the runs
+/// move them on local events past the first 32.
+#[test]
+fn keyed_wide_cases_store_keyed_tables_and_move_past_the_first_word() {
+    use proptest::strategy::ValueTree;
+
+    let strategy = (project(&WIDE, keyed_wide_supervisor()), wide_run());
+    let mut runner = proptest::test_runner::TestRunner::new(config(40));
+    let (mut keyed, mut tables) = (0, 0);
+    for _ in 0..40 {
+        let (spec, _) = strategy.new_tree(&mut runner).unwrap().current();
+        let image = codegen::lower::TableImage::new(&spec.build()).unwrap();
+        tables += image.tables.len();
+        keyed += image
+            .tables
+            .iter()
+            .filter(|t| t.layout == codegen::backend::table::Layout::Keyed && t.events > 32)
+            .count();
+    }
+    assert!(
+        keyed * 4 >= tables * 3,
+        "{keyed} of {tables} tables keyed with more than 32 events"
+    );
+    let coverage = coverage_of(strategy, 40);
+    assert!(
+        coverage.high_local_moves > 0,
+        "no move on a local event >= 32: {coverage:#?}"
+    );
 }
 
 /// The random cases reach every rule: events of every kind execute,

@@ -495,6 +495,39 @@ pub(crate) fn wide_supervisor() -> impl Strategy<Value = SupervisorSpec> {
     supervisor_over(&WIDE, alphabet, 0.8, 1..=8)
 }
 
+/// A supervisor of the wide family whose rows repeat: 24–40 states, each
+/// with one of 1–3 patterns of defined events (about 80 % of a row) over
+/// many or every event, its targets random. Rows that repeat make the
+/// table backend store them keyed, a dictionary of rows; with more than
+/// 32 local events the rows of that dictionary are packed, not one a
+/// word ([`executor::table::keyed_stride`]).
+pub(crate) fn keyed_wide_supervisor() -> impl Strategy<Value = SupervisorSpec> {
+    let alphabet = prop_oneof![
+        picks(40..=90).prop_map(AlphabetSpec::Picked),
+        Just(AlphabetSpec::Every),
+    ];
+    let events = *WIDE.events.end();
+    let patterns = vec(vec(proptest::bool::weighted(0.8), events), 1..=3);
+    let state = (any::<Pick>(), vec(any::<Pick>(), events));
+    (alphabet, any::<Pick>(), patterns, vec(state, 24..=40)).prop_map(
+        |(alphabet, initial, patterns, states)| SupervisorSpec {
+            alphabet,
+            initial,
+            rows: states
+                .into_iter()
+                .map(|(pattern, targets)| {
+                    let pattern = &patterns[pattern.index(patterns.len())];
+                    pattern
+                        .iter()
+                        .zip(targets)
+                        .map(|(&defined, target)| defined.then_some(target))
+                        .collect()
+                })
+                .collect(),
+        },
+    )
+}
+
 /// A supervisor of a `shape` project over `alphabet`, with a transition
 /// on each (state, event) pair with probability `defined`.
 pub(crate) fn supervisor_over(

@@ -224,7 +224,7 @@ fn main() -> ! {
     let mut a = [u32::MAX; SLOT_WORDS];
     let mut b = [u32::MAX; SLOT_WORDS];
     let mut plc = Plc {
-        endpoint: Endpoint::new(Loader::new(&CRC, None, wiring)),
+        endpoint: Endpoint::new(Loader::new(&CRC, None, &check)),
         store: RamSlots::new(&mut a, &mut b),
         check,
         budget: usize::from(config.rom_test_bytes_per_scan / 4).max(1),
