@@ -594,6 +594,26 @@ fn copy_set(config: &Config<'_>, k: usize, allowed: &mut [u32]) {
     }
 }
 
+/// [`copy_set`] that tells whether `allowed` changed: the new state's set
+/// is compared with the words in RAM rather than with the old state's
+/// set number, which would be one more packed read a move.
+#[inline]
+fn update_set(config: &Config<'_>, k: usize, allowed: &mut [u32]) -> bool {
+    let w = allowed.len();
+    match config.event_masks.get(k * w..k * w + w) {
+        // Word by word: slice equality would call `memcmp`.
+        Some(set) if set.iter().zip(allowed.iter()).all(|(a, b)| a == b) => false,
+        Some(set) => {
+            allowed.copy_from_slice(set);
+            true
+        }
+        None => {
+            allowed.fill(0);
+            true
+        }
+    }
+}
+
 /// Supervisor `j`'s words of the `allowed` sets (empty past the last).
 #[inline]
 fn allowed_of(allowed: &mut [u32], event_words: usize, j: usize) -> &mut [u32] {
@@ -854,17 +874,10 @@ fn execute<P: Program, M: Memory>(
             let spec = sup;
             let ew = ram.feasible.len();
             let allowed = allowed_of(ram.allowed, ew, j);
-            match (
-                config.stored_set(spec, state),
-                config.stored_set(spec, next),
-            ) {
+            match config.stored_set(spec, next) {
                 // Most moves keep the set: nothing to copy or AND.
-                (Some(old), Some(new)) if old == new => {}
-                (Some(_), Some(new)) => {
-                    copy_set(config, new, allowed);
-                    moved = true;
-                }
-                _ => {
+                Some(new) => moved |= update_set(config, new, allowed),
+                None => {
                     refresh_allowed(program, config, j, next, allowed);
                     moved = true;
                 }

@@ -69,7 +69,7 @@
 
 #[cfg(doc)]
 use crate::program::Span;
-use crate::program::{Config, Index, Program, UnexpectedPolicy};
+use crate::program::{Config, Index, Layouts, Program, UnexpectedPolicy};
 use crate::table::{Rows, SupervisorTable, TableProgram};
 use crc::{Crc, CRC_32_MPEG_2};
 
@@ -257,6 +257,7 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
     /// header, the name and a table's header is words as stored.
     fn run(&self, r: usize) -> Option<Run<'a>> {
         let c = &self.config;
+        let layouts = self.program.layouts();
         Some(Run::Words(match r {
             0 => return Some(Run::Header),
             1 => return Some(Run::Name(c.name.as_bytes())),
@@ -280,14 +281,18 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
                 let r = r - CONFIG_RUNS;
                 let table = self.table(r / TABLE_RUNS)?;
                 match r % TABLE_RUNS {
-                    0 => return Some(Run::TableHeader(table_header(&table))),
+                    0 => return Some(Run::TableHeader(table_header(&table, layouts))),
                     1 => table.defined,
                     2 => table.targets,
+                    // Only the layouts the program uses: a compiled
+                    // program links no arm of the others.
                     _ => match table.rows {
-                        Rows::Dense => &[],
-                        Rows::Sparse { row_starts, .. } => row_starts,
-                        Rows::Net { fields } => fields,
-                        Rows::Keyed { states, .. } => states,
+                        Rows::Sparse { row_starts, .. } if layouts.has(Layouts::SPARSE) => {
+                            row_starts
+                        }
+                        Rows::Net { fields } if layouts.has(Layouts::NET) => fields,
+                        Rows::Keyed { states, .. } if layouts.has(Layouts::KEYED) => states,
+                        _ => &[],
                     },
                 }
             }
@@ -361,23 +366,25 @@ fn name_word(bytes: &[u8], k: usize) -> u32 {
 /// 2 net, 3 keyed), widths (row-start bits; `start_bits | key_bits << 8`
 /// when keyed), and the word counts of `defined`, `targets` and
 /// `row_starts` (`fields`, `states`).
-fn table_header(t: &SupervisorTable<'_>) -> [u32; TABLE_HEADER_WORDS] {
+fn table_header(t: &SupervisorTable<'_>, layouts: Layouts) -> [u32; TABLE_HEADER_WORDS] {
+    // Only the arms of `layouts` ([`Stream::run`]); a table of another
+    // layout is not in the program.
     let (layout, widths, row_starts) = match t.rows {
-        Rows::Dense => (0, 0, 0),
-        Rows::Net { fields } => (2, 0, fields.len()),
+        Rows::Net { fields } if layouts.has(Layouts::NET) => (2, 0, fields.len()),
         Rows::Sparse {
             row_starts,
             start_bits,
-        } => (1, u32::from(start_bits), row_starts.len()),
+        } if layouts.has(Layouts::SPARSE) => (1, u32::from(start_bits), row_starts.len()),
         Rows::Keyed {
             states,
             key_bits,
             start_bits,
-        } => (
+        } if layouts.has(Layouts::KEYED) => (
             3,
             u32::from(start_bits) | u32::from(key_bits) << 8,
             states.len(),
         ),
+        _ => (0, 0, 0),
     };
     [
         t.events.into(),

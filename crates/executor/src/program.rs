@@ -588,8 +588,8 @@ record!(SupervisorSpec, 6);
 /// supervisor's states share few distinct sets, each stored once.
 ///
 /// A move then copies `w` words instead of scattering its enabled row
-/// over the event numbers, and none when the new state's set is the old
-/// one's (docs/semantics.md, "Feasible").
+/// over the event numbers, and changes none when the new state's set
+/// holds the events already in RAM (docs/semantics.md, "Feasible").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct AllowedSets {
     /// Packed set numbers, one per state (span of [`Config::allowed_index`]).
