@@ -1,6 +1,7 @@
 //! The scan cycle (docs/semantics.md, "One scan").
 
 use crate::bits;
+use crate::image::{CrcEngine, TableCrc};
 use crate::inputs;
 use crate::memory::{Memory, Ram};
 use crate::pacing::{Pacer, ScanStart};
@@ -18,8 +19,9 @@ use crate::timers::{due, earliest};
 pub struct SizeMismatch;
 
 /// A running controller: a program, its memory, the scan counter and the
-/// fault state.
-pub struct Controller<P: Program, M: Memory> {
+/// fault state; `C` computes the image CRC (in software by default, or a
+/// board's CRC unit: [`Controller::new_proven_with_crc`]).
+pub struct Controller<P: Program, M: Memory, C: CrcEngine = TableCrc> {
     program: P,
     /// Crate-visible so that tests can simulate a flipped RAM bit.
     pub(crate) memory: M,
@@ -46,6 +48,8 @@ pub struct Controller<P: Program, M: Memory> {
     /// The image passed the structure check at construction
     /// ([`crate::validate`]); if not, no reset leaves fault mode.
     well_formed: bool,
+    /// Computes the image CRC.
+    crc: C,
 }
 
 impl<P: Program, M: Memory> Controller<P, M> {
@@ -56,7 +60,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
     /// reset leaves fault mode. From the first scan on, the CRC is checked
     /// again in the background, a share per scan.
     pub fn new(program: P, memory: M) -> Result<Self, SizeMismatch> {
-        Self::start::<true>(program, memory)
+        Self::start::<true>(program, memory, TableCrc)
     }
 
     /// [`Controller::new`] for a program whose image was proven when its
@@ -71,18 +75,32 @@ impl<P: Program, M: Memory> Controller<P, M> {
     /// safe output levels), as after a flaw of structure. For a program
     /// built any other way, use [`Controller::new`].
     pub fn new_proven(program: P, memory: M) -> Result<Self, SizeMismatch> {
-        Self::start::<false>(program, memory)
+        Self::start::<false>(program, memory, TableCrc)
+    }
+}
+
+impl<P: Program, M: Memory, C: CrcEngine> Controller<P, M, C> {
+    /// [`Controller::new_proven`] whose image CRC, at start-up and in the
+    /// background, `crc` computes: a board's CRC unit
+    /// ([`crate::image::CrcEngine`]). The controller owns it, so nothing
+    /// else feeds it between two shares of a pass.
+    pub fn new_proven_with_crc(program: P, memory: M, crc: C) -> Result<Self, SizeMismatch> {
+        Self::start::<false>(program, memory, crc)
     }
 
     /// A controller in its initial state once its image is checked: its
     /// structure when `CHECK_STRUCTURE`, and its CRC.
     #[inline]
-    fn start<const CHECK_STRUCTURE: bool>(program: P, mut memory: M) -> Result<Self, SizeMismatch> {
+    fn start<const CHECK_STRUCTURE: bool>(
+        program: P,
+        mut memory: M,
+        mut crc: C,
+    ) -> Result<Self, SizeMismatch> {
         if !memory.fits(&program.config()) {
             return Err(SizeMismatch);
         }
         let well_formed = !CHECK_STRUCTURE || crate::validate::validate(&program).is_ok();
-        let rom_test = RomTest::new(&program);
+        let rom_test = RomTest::new(&program, &mut crc);
         let verified = rom_test.status().verified;
         // A proven image is run only once its CRC matched; a checked one
         // as soon as its structure is sound.
@@ -106,6 +124,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
             range_check: 0,
             rom_test,
             well_formed,
+            crc,
         };
         if fault.is_some() {
             controller.counters.faults += 1;
@@ -214,7 +233,8 @@ impl<P: Program, M: Memory> Controller<P, M> {
     /// background test (whose pass goes on where it was); a mismatch is a
     /// `Corrupt` fault.
     pub fn check_image(&mut self) -> bool {
-        let intact = crate::image::crc(&self.program) == self.program.recorded_crc();
+        let intact =
+            crate::image::crc_with(&self.program, &mut self.crc) == self.program.recorded_crc();
         self.rom_test.record(intact);
         if !intact {
             self.enter_fault(Fault::Corrupt);
@@ -259,7 +279,7 @@ impl<P: Program, M: Memory> Controller<P, M> {
     /// fault, which the scan that follows handles (safe image). `Some`
     /// with the verdict when this share completed a pass.
     pub fn check_image_share(&mut self) -> Option<bool> {
-        let verdict = self.rom_test.step(&self.program);
+        let verdict = self.rom_test.step(&self.program, &mut self.crc);
         if verdict == Some(false) {
             self.enter_fault(Fault::Corrupt);
         }

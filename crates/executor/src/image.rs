@@ -87,7 +87,70 @@ const _: () = assert!(
 );
 
 /// The CRC register before the first word.
-pub(crate) const CRC_START: u32 = CRC_32_MPEG_2.init;
+pub const CRC_START: u32 = CRC_32_MPEG_2.init;
+
+/// What computes the image CRC: the register after whole words fed most
+/// significant byte first ([`IMAGE_CRC`]'s algorithm). [`TableCrc`] in
+/// software, the default; a board with a CRC unit computing the same (an
+/// STM32's) may give the controller its own
+/// ([`crate::Controller::new_proven_with_crc`]): the image check then
+/// takes neither the software's 1 KiB table nor its instructions.
+pub trait CrcEngine {
+    /// The register after `words` fed to a register holding `crc`. An
+    /// engine whose register cannot be loaded with `crc` (an STM32F4's
+    /// CRC unit can only be reset to [`CRC_START`]) computes the words
+    /// another way when its register does not hold `crc`
+    /// ([`feed_bitwise`]): the value must not depend on what else used
+    /// the unit.
+    fn feed(&mut self, crc: u32, words: &[u32]) -> u32;
+}
+
+/// The software [`CrcEngine`]: one step of the `crc` crate's table
+/// ([`IMAGE_CRC`]`.table()`, the table its own `update` uses) per byte.
+/// The crate's `update` takes bytes: feeding it words would copy them
+/// byte-swapped into a buffer first, which costs more than the table
+/// steps themselves (in QEMU, Cortex-M4, the monolithic boiler's whole
+/// image: 6.8 instructions per byte through a buffer, 4.1 this way).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct TableCrc;
+
+impl CrcEngine for TableCrc {
+    #[inline]
+    fn feed(&mut self, mut crc: u32, words: &[u32]) -> u32 {
+        let table = &IMAGE_CRC.table()[0];
+        for &word in words {
+            crc ^= word;
+            for _ in 0..4 {
+                crc = table[(crc >> 24) as usize] ^ (crc << 8);
+            }
+        }
+        crc
+    }
+}
+
+/// The image CRC of `words` fed to a register holding `crc`, one bit at
+/// a time (no table): the fallback of a CRC unit whose register cannot be
+/// loaded, 274 bytes of code on a Cortex-M4 beside a board's unit where
+/// [`TableCrc`] would add its 1 KiB table. LLVM would turn a bit-by-bit
+/// CRC of a constant polynomial into a table of its own, and unroll the
+/// 32 steps of a word: the polynomial and the step count go through
+/// `black_box`, which it cannot see through.
+#[inline(never)]
+pub fn feed_bitwise(mut crc: u32, words: &[u32]) -> u32 {
+    let poly = core::hint::black_box(CRC_32_MPEG_2.poly);
+    let steps = core::hint::black_box(32u32);
+    for &word in words {
+        crc ^= word;
+        for _ in 0..steps {
+            crc = if crc & 0x8000_0000 != 0 {
+                crc << 1 ^ poly
+            } else {
+                crc << 1
+            };
+        }
+    }
+    crc
+}
 
 /// Runs of the configuration, before the tables.
 const CONFIG_RUNS: usize = 18;
@@ -134,8 +197,13 @@ impl Cursor {
 
 /// The CRC of `program`'s whole image.
 pub fn crc<P: Program + ?Sized>(program: &P) -> u32 {
+    crc_with(program, &mut TableCrc)
+}
+
+/// [`crc()`] computed by `engine`.
+pub fn crc_with<P: Program + ?Sized, E: CrcEngine + ?Sized>(program: &P, engine: &mut E) -> u32 {
     let mut cursor = Cursor::START;
-    advance(program, &mut cursor, usize::MAX);
+    advance(program, &mut cursor, usize::MAX, engine);
     cursor.crc
 }
 
@@ -200,13 +268,17 @@ pub fn table_image_crc(config: &Config<'_>, tables: &[SupervisorTable<'_>]) -> u
 /// program's configuration is a constant, so its fields fold into the code
 /// rather than being copied in every scan.
 #[inline(never)]
-pub(crate) fn advance<P: Program + ?Sized>(
+pub(crate) fn advance<P: Program + ?Sized, E: CrcEngine + ?Sized>(
     program: &P,
     cursor: &mut Cursor,
     mut budget: usize,
+    engine: &mut E,
 ) -> bool {
     let stream = Stream::of(program);
-    let mut feeder = Feeder::new(cursor.crc);
+    let mut feeder = Feeder {
+        engine,
+        crc: cursor.crc,
+    };
     let ended = loop {
         let Some(run) = stream.run(cursor.run) else {
             break true;
@@ -300,7 +372,13 @@ impl<'a, P: Program + ?Sized> Stream<'a, P> {
     }
 
     /// Feeds words `from..to` of `run`.
-    fn feed(&self, run: &Run<'_>, from: usize, to: usize, feeder: &mut Feeder) {
+    fn feed<E: CrcEngine + ?Sized>(
+        &self,
+        run: &Run<'_>,
+        from: usize,
+        to: usize,
+        feeder: &mut Feeder<'_, E>,
+    ) {
         match *run {
             // In range by construction (`to` is at most the run's length);
             // `get` keeps the panic path, and its formatting, out of the
@@ -422,35 +500,18 @@ impl Run<'_> {
     }
 }
 
-/// The CRC register, fed whole words: each word's four bytes, most
-/// significant first, one step of the `crc` crate's table each
-/// ([`IMAGE_CRC`]`.table()`, the table its own `update` uses). The crate's
-/// `update` takes bytes: feeding it words would copy them byte-swapped into
-/// a buffer first, which costs more than the table steps themselves (in
-/// QEMU, Cortex-M4, the monolithic boiler's whole image: 6.8 instructions
-/// per byte through a buffer, 4.1 this way).
-struct Feeder {
+/// The CRC register, fed whole words by `engine`.
+struct Feeder<'e, E: ?Sized> {
+    engine: &'e mut E,
     crc: u32,
 }
 
-impl Feeder {
-    fn new(crc: u32) -> Feeder {
-        Feeder { crc }
-    }
-
+impl<E: CrcEngine + ?Sized> Feeder<'_, E> {
     /// Out of line: every run pushes its records here, and one copy of the
     /// loop is kilobytes of flash less than one per kind of record.
     #[inline(never)]
     fn push(&mut self, words: &[u32]) {
-        let table = &IMAGE_CRC.table()[0];
-        let mut crc = self.crc;
-        for &word in words {
-            crc ^= word;
-            for _ in 0..4 {
-                crc = table[(crc >> 24) as usize] ^ (crc << 8);
-            }
-        }
-        self.crc = crc;
+        self.crc = self.engine.feed(self.crc, words);
     }
 
     /// The CRC register after every word pushed.

@@ -14,7 +14,7 @@
 //! advanced only by scans, so every target finds a corruption in the same
 //! scan.
 
-use crate::image::{self, Cursor};
+use crate::image::{self, CrcEngine, Cursor};
 use crate::program::Program;
 
 /// The background test's state.
@@ -45,10 +45,13 @@ pub struct ImageTest {
 impl RomTest {
     /// The full check of `program`'s image, done now; the first background
     /// pass starts at the next scan.
-    pub(crate) fn new<P: Program + ?Sized>(program: &P) -> RomTest {
+    pub(crate) fn new<P: Program + ?Sized, E: CrcEngine + ?Sized>(
+        program: &P,
+        engine: &mut E,
+    ) -> RomTest {
         RomTest {
             cursor: Cursor::START,
-            verified: image::crc(program) == program.recorded_crc(),
+            verified: image::crc_with(program, engine) == program.recorded_crc(),
             passes: 0,
         }
     }
@@ -56,9 +59,13 @@ impl RomTest {
     /// One scan's share: feeds `rom_test_bytes_per_scan / 4` words of
     /// `program`'s image (at least one). `Some(matched)` when this scan
     /// completed a pass.
-    pub(crate) fn step<P: Program + ?Sized>(&mut self, program: &P) -> Option<bool> {
+    pub(crate) fn step<P: Program + ?Sized, E: CrcEngine + ?Sized>(
+        &mut self,
+        program: &P,
+        engine: &mut E,
+    ) -> Option<bool> {
         let words = usize::from(program.config().rom_test_bytes_per_scan / 4).max(1);
-        if !image::advance(program, &mut self.cursor, words) {
+        if !image::advance(program, &mut self.cursor, words, engine) {
             return None;
         }
         let matched = self.cursor.crc() == program.recorded_crc();

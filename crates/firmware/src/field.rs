@@ -24,6 +24,7 @@ use crate::board::Nucleo;
 use crate::report::{self, Numbered};
 use crate::scan::{self, Board, Link, Startup, WATCHDOG_MS};
 use crc::Crc;
+use executor::image::TableCrc;
 use executor::{Controller, Program};
 use field_update::loader::{Endpoint, Loader, Outcome, Running};
 use field_update::slot::{choose, image_of, Choice, Valid};
@@ -90,7 +91,10 @@ pub fn run(mut board: Nucleo, startup: Startup) -> ! {
         next = match next {
             Some(valid) => run_slot(&mut board, &mut endpoint, check, valid),
             None => {
-                let mut controller = scan::built_in();
+                // Software CRC: a controller is made for each program
+                // switched in, and the CRC unit would have to move
+                // between them.
+                let mut controller = scan::built_in(TableCrc);
                 report::image_check(controller.fault(), program::PROGRAM.recorded_crc());
                 let mut link = Serial {
                     endpoint: &mut endpoint,

@@ -57,14 +57,15 @@ mod systick;
 fn main() -> ! {
     use defmt_rtt as _;
 
-    let (board, startup) = board::init();
+    let (board, startup, crc) = board::init();
     #[cfg(feature = "field-update")]
     {
+        let _ = crc;
         field::run(board, startup)
     }
     #[cfg(not(feature = "field-update"))]
     {
-        scan::run(board, startup)
+        scan::run(board, startup, crc)
     }
 }
 

@@ -8,6 +8,7 @@
 //! and the log stays readable.
 
 use crate::scan::{ResetCause, Startup};
+use executor::image::CrcEngine;
 use executor::memory::Memory;
 use executor::pacing::ScanStart;
 use executor::program::Index;
@@ -215,8 +216,8 @@ impl ScanTimes {
 
 /// The status line (`ticks_per_us`: the board timer's rate); starts a new
 /// scan-time window.
-pub fn status<P: Program, M: Memory>(
-    controller: &Controller<P, M>,
+pub fn status<P: Program, M: Memory, C: CrcEngine>(
+    controller: &Controller<P, M, C>,
     times: &mut ScanTimes,
     ticks_per_us: u32,
 ) {

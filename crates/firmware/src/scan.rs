@@ -27,6 +27,7 @@ use crate::report;
 use core::cell::Cell;
 use critical_section::Mutex;
 use embedded_hal::digital::{InputPin, OutputPin, PinState};
+use executor::image::CrcEngine;
 use executor::memory::Memory;
 use executor::pacing::Pacer;
 use executor::{Config, Controller, Program};
@@ -243,23 +244,24 @@ impl<B> Link<B> for () {
     }
 }
 
-/// The built-in program's controller; panics (at start-up) when the
-/// generated memory does not fit it.
+/// The built-in program's controller, its image CRC computed by `crc`;
+/// panics (at start-up) when the generated memory does not fit it.
 #[inline(always)]
-pub fn built_in() -> Controller<impl Program + 'static, program::Memory> {
-    match Controller::new_proven(&program::PROGRAM, program::Memory::new()) {
+pub fn built_in<C: CrcEngine>(crc: C) -> Controller<impl Program + 'static, program::Memory, C> {
+    match Controller::new_proven_with_crc(&program::PROGRAM, program::Memory::new(), crc) {
         Ok(c) => c,
         Err(e) => defmt::panic!("the generated memory does not fit the program: {}", e),
     }
 }
 
 /// Runs the project's scan cycle on `board` forever (the built-in
-/// program; with feature `field-update` the board runs `crate::field::run`
-/// instead).
+/// program, its image CRC computed by `crc`: the chip's CRC unit where it
+/// has one; with feature `field-update` the board runs
+/// `crate::field::run` instead).
 #[cfg_attr(feature = "field-update", allow(dead_code))]
-pub fn run<B: Board>(mut board: B, startup: Startup) -> ! {
+pub fn run<B: Board, C: CrcEngine>(mut board: B, startup: Startup, crc: C) -> ! {
     report::startup(&startup, WATCHDOG_MS);
-    let mut controller = built_in();
+    let mut controller = built_in(crc);
     report::image_check(controller.fault(), program::PROGRAM.recorded_crc());
     board.start_watchdog(WATCHDOG_MS);
     match scan_loop(
@@ -277,9 +279,9 @@ pub fn run<B: Board>(mut board: B, startup: Startup) -> ! {
 /// program and memory types, and the built-in program's loop stays one
 /// function as before.
 #[inline(always)]
-pub fn scan_loop<B: Board, P: Program, M: Memory, N: report::Names, L: Link<B>>(
+pub fn scan_loop<B: Board, P: Program, M: Memory, C: CrcEngine, N: report::Names, L: Link<B>>(
     board: &mut B,
-    controller: &mut Controller<P, M>,
+    controller: &mut Controller<P, M, C>,
     config: &Config<'_>,
     names: &N,
     link: &mut L,

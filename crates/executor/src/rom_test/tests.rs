@@ -581,6 +581,17 @@ fn an_intact_image_never_faults_and_passes_take_the_scans_they_should() {
     }
 }
 
+/// A scan record's executed events, states, outputs and fault, owned (a
+/// record borrows its controller).
+fn owned(r: &crate::ScanRecord<'_>) -> (Vec<Index>, Vec<u32>, Vec<bool>, Option<Fault>) {
+    (
+        r.executed.to_vec(),
+        r.states.to_vec(),
+        r.outputs.to_vec(),
+        r.fault,
+    )
+}
+
 #[test]
 fn the_background_test_does_not_change_the_trace() {
     // Same inputs, shares of one word and of the whole image per scan:
@@ -590,24 +601,8 @@ fn the_background_test_does_not_change_the_trace() {
     let mut b = Controller::new(&fast, Mem::new()).unwrap();
     for k in 0..5000u32 {
         let inputs = [k % 3 == 0, k % 997 == 5];
-        let ra = a.scan(10 * k, &inputs);
-        let (executed, states, outputs, fault) = (
-            ra.executed.to_vec(),
-            ra.states.to_vec(),
-            ra.outputs.to_vec(),
-            ra.fault,
-        );
-        let rb = b.scan(10 * k, &inputs);
-        assert_eq!(
-            (executed, states, outputs, fault),
-            (
-                rb.executed.to_vec(),
-                rb.states.to_vec(),
-                rb.outputs.to_vec(),
-                rb.fault
-            ),
-            "scan {k}"
-        );
+        let ra = owned(&a.scan(10 * k, &inputs));
+        assert_eq!(ra, owned(&b.scan(10 * k, &inputs)), "scan {k}");
     }
 }
 
@@ -929,4 +924,145 @@ fn a_keyed_table_runs_and_its_corruptions_are_refused() {
             count: STATES
         })
     );
+}
+
+/// A model of an STM32F4's CRC unit: a data register that only a reset
+/// loads (with [`image::CRC_START`]) and that every written word advances,
+/// one bit at a time. The register is shared with the test, which may use
+/// the unit between two scans as other code on a board would.
+struct ModelUnit {
+    register: std::rc::Rc<Cell<u32>>,
+    /// Words written to the register.
+    written: std::rc::Rc<Cell<usize>>,
+}
+
+impl ModelUnit {
+    fn write(&self, word: u32) {
+        self.register.set(bitwise(self.register.get(), &[word]));
+        self.written.set(self.written.get() + 1);
+    }
+}
+
+/// The engine as a board would write it for the unit
+/// ([`image::CrcEngine`]): the unit when its register holds `crc` (or
+/// after a reset when `crc` is the start value), else the software
+/// fallback.
+impl image::CrcEngine for ModelUnit {
+    fn feed(&mut self, crc: u32, words: &[u32]) -> u32 {
+        if self.register.get() != crc {
+            if crc != image::CRC_START {
+                return image::feed_bitwise(crc, words);
+            }
+            self.register.set(image::CRC_START);
+        }
+        words.iter().for_each(|&w| self.write(w));
+        self.register.get()
+    }
+}
+
+/// The image CRC's algorithm one bit at a time, as the STM32 reference
+/// manual describes its CRC unit: each word XORed into the register,
+/// then 32 shifts, the polynomial XORed in when a 1 is shifted out.
+fn bitwise(mut crc: u32, words: &[u32]) -> u32 {
+    for &word in words {
+        crc ^= word;
+        for _ in 0..32 {
+            let top = crc & 0x8000_0000 != 0;
+            crc <<= 1;
+            if top {
+                crc ^= 0x04C1_1DB7;
+            }
+        }
+    }
+    crc
+}
+
+#[test]
+fn the_unit_the_table_and_the_bitwise_fallback_agree_on_every_image_word() {
+    use image::CrcEngine;
+    for program in [ring(16), every_pool()] {
+        let mut words = Vec::new();
+        image::for_each_word(&program, |w| words.push(w));
+        let whole = image::crc(&program);
+        assert_eq!(bitwise(image::CRC_START, &words), whole);
+        // And from every register value the stream passes through.
+        let mut crc = image::CRC_START;
+        for chunk in words.chunks(7) {
+            let next = bitwise(crc, chunk);
+            assert_eq!(image::TableCrc.feed(crc, chunk), next);
+            assert_eq!(image::feed_bitwise(crc, chunk), next);
+            crc = next;
+        }
+        assert_eq!(crc, whole);
+    }
+    assert_eq!(
+        image::crc(&ring(16)),
+        ring(16).crc,
+        "the ring records its CRC"
+    );
+}
+
+/// A controller whose image CRC a CRC unit computes scans as one with the
+/// software CRC: the same checks, passes, verdicts and records, a flipped
+/// bit found in the same scan, also when other code used the unit between
+/// two scans (the engine then falls back to software for the rest of the
+/// pass, and the unit takes the next pass over).
+#[test]
+fn a_crc_unit_checks_the_image_as_the_software_does() {
+    let program = ring(16);
+    let (_, pass) = shares(&program);
+    let corrupt = with_table_bit_flipped(program, Part::Targets, 3, 5);
+    for disturb in [None, Some(pass / 2)] {
+        let software = Flippable::new(program, corrupt);
+        let hardware = Flippable::new(program, corrupt);
+        let register = std::rc::Rc::new(Cell::new(0x1234_5678));
+        let written = std::rc::Rc::new(Cell::new(0));
+        let unit = ModelUnit {
+            register: register.clone(),
+            written: written.clone(),
+        };
+        let mut a = Controller::new_proven(&software, Mem::new()).unwrap();
+        let mut b = Controller::new_proven_with_crc(&hardware, Mem::new(), unit).unwrap();
+        assert!(written.get() > 0, "the start-up check ran on the unit");
+        let flip_at = 3 * pass + 2;
+        let mut found = None;
+        for k in 0..5 * pass {
+            if k == flip_at {
+                software.flip();
+                hardware.flip();
+            }
+            if disturb.is_some_and(|d| k % pass == d) {
+                // Another user of the unit between two scans.
+                register.set(image::CRC_START);
+                register.set(bitwise(image::CRC_START, &[0xdead_beef]));
+            }
+            let inputs = [k % 3 == 0, false];
+            let ra = owned(&a.scan(10 * k as u32, &inputs));
+            let fault = ra.3;
+            assert_eq!(
+                ra,
+                owned(&b.scan(10 * k as u32, &inputs)),
+                "scan {k}, disturbed {disturb:?}"
+            );
+            assert_eq!(a.image_test(), b.image_test(), "scan {k}");
+            if found.is_none() && fault.is_some() {
+                found = Some(k);
+            }
+        }
+        let found = found.expect("the flipped bit is found");
+        assert!(found >= flip_at && found < flip_at + 2 * pass, "{found}");
+        // The start-up check and five passes; disturbed, the second half
+        // of each pass is computed in software.
+        let image_words = image::bytes(&program) / 4;
+        let least = match disturb {
+            None => 6 * image_words - 4,
+            Some(_) => 3 * image_words,
+        };
+        assert!(
+            written.get() >= least,
+            "the unit computed the passes: {} words of {image_words}, disturbed {disturb:?}",
+            written.get()
+        );
+        assert!(a.check_image() == b.check_image());
+    }
 }

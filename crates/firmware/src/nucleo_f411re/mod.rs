@@ -13,6 +13,7 @@
 //!   cycle counter.
 
 pub mod clocks;
+pub mod crc;
 pub mod edges;
 #[cfg(feature = "field-update")]
 pub mod flash;
@@ -43,8 +44,9 @@ pub struct Nucleo {
 }
 
 /// Sets the chip up: clocks, pins, edge latch, millisecond clock, cycle
-/// counter. The watchdog starts later, in [`Board::start_watchdog`].
-pub fn init() -> (Nucleo, Startup) {
+/// counter, and the CRC unit for the image check. The watchdog starts
+/// later, in [`Board::start_watchdog`].
+pub fn init() -> (Nucleo, Startup, crc::CrcUnit) {
     let (Some(dp), Some(mut cp)) = (pac::Peripherals::take(), cortex_m::Peripherals::take()) else {
         defmt::panic!("peripherals taken twice");
     };
@@ -52,6 +54,7 @@ pub fn init() -> (Nucleo, Startup) {
     let (mut rcc, source) = clocks::init(dp.RCC, &dp.PWR, &dp.FLASH);
     clocks::keep_debug_in_sleep(&dp.DBGMCU, &mut rcc);
 
+    let crc = crc::CrcUnit::new(stm32f4xx_hal::crc32::Crc32::new(dp.CRC, &mut rcc));
     let mut syscfg = dp.SYSCFG.constrain(&mut rcc);
     let mut exti = dp.EXTI;
     #[cfg_attr(not(feature = "field-update"), allow(clippy::let_unit_value))]
@@ -89,7 +92,7 @@ pub fn init() -> (Nucleo, Startup) {
         sysclk_hz,
         clock_source: source.name(),
     };
-    (board, startup)
+    (board, startup, crc)
 }
 
 #[cfg(feature = "field-update")]

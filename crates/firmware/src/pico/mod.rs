@@ -19,6 +19,7 @@ pub mod pins;
 
 use crate::scan::{Board, Changes, ResetCause, Startup};
 use crate::systick;
+use executor::image::TableCrc;
 use firmware::program::INPUT_WORDS;
 use fugit::MicrosDurationU32;
 use rp2040_hal::clocks::{init_clocks_and_plls, Clock};
@@ -62,8 +63,10 @@ fn last_reset(watchdog: &pac::WATCHDOG, chip: &pac::VREG_AND_CHIP_RESET) -> Rese
 }
 
 /// Sets the chip up: clocks, pins, edge latch, millisecond clock, timer.
-/// The watchdog starts later, in [`Board::start_watchdog`].
-pub fn init() -> (Pico, Startup) {
+/// The watchdog starts later, in [`Board::start_watchdog`]. The image CRC
+/// is computed in software: the RP2040 has no CRC unit of the image's
+/// algorithm outside its DMA sniffer.
+pub fn init() -> (Pico, Startup, TableCrc) {
     let (Some(mut dp), Some(cp)) = (pac::Peripherals::take(), cortex_m::Peripherals::take()) else {
         defmt::panic!("peripherals taken twice");
     };
@@ -101,7 +104,7 @@ pub fn init() -> (Pico, Startup) {
         sysclk_hz,
         clock_source: "Xosc",
     };
-    (board, startup)
+    (board, startup, TableCrc)
 }
 
 impl Board for Pico {
