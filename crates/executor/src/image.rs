@@ -105,6 +105,15 @@ pub trait CrcEngine {
     fn feed(&mut self, crc: u32, words: &[u32]) -> u32;
 }
 
+/// An engine lent rather than given: a firmware that makes one controller
+/// after another (field update) lends each its CRC unit in turn.
+impl<E: CrcEngine + ?Sized> CrcEngine for &mut E {
+    #[inline]
+    fn feed(&mut self, crc: u32, words: &[u32]) -> u32 {
+        (**self).feed(crc, words)
+    }
+}
+
 /// The software [`CrcEngine`]: one step of the `crc` crate's table
 /// ([`IMAGE_CRC`]`.table()`, the table its own `update` uses) per byte.
 /// The crate's `update` takes bytes: feeding it words would copy them

@@ -488,6 +488,69 @@ fn a_proven_image_whose_crc_does_not_match_never_runs_even_malformed() {
     }
 }
 
+/// A CRC engine lent to one controller after another, as a field-update
+/// firmware lends its CRC unit (`impl CrcEngine for &mut E`): it counts
+/// the words it is fed.
+struct Counted(usize);
+
+impl crate::image::CrcEngine for Counted {
+    fn feed(&mut self, crc: u32, words: &[u32]) -> u32 {
+        self.0 += words.len();
+        crate::image::TableCrc.feed(crc, words)
+    }
+}
+
+#[test]
+fn new_with_crc_checks_the_structure_and_a_lent_engine_serves_each_controller() {
+    let mut engine = Counted(0);
+    let conveyor = |config, intact| Conveyor { config, intact };
+    let sound = config(0, UnexpectedPolicy::Fault, None);
+    // A sound image on the lent engine runs as with the default one.
+    {
+        let mut lent =
+            Controller::new_with_crc(conveyor(sound, true), Mem::new(), &mut engine).unwrap();
+        let mut own = plain();
+        assert_eq!(lent.fault(), None);
+        for k in 0..32u32 {
+            let io = io(k % 4 == 1, false);
+            let want = own.scan(10 * k, &io);
+            let want = (want.fault, want.outputs.to_vec(), want.executed.to_vec());
+            let got = lent.scan(10 * k, &io);
+            assert_eq!(
+                (got.fault, got.outputs.to_vec(), got.executed.to_vec()),
+                want,
+                "scan {k}"
+            );
+        }
+        assert!(lent.check_image());
+    }
+    let fed = engine.0;
+    assert!(
+        fed > 0,
+        "the start-up check, the shares and check_image ran on the engine"
+    );
+    // A flaw of structure under a matching CRC: `new_with_crc` refuses to
+    // run it, as `new` does; `new_proven_with_crc` trusts the CRC.
+    let flawed = Config {
+        reset: Some(40),
+        ..sound
+    };
+    let checked =
+        Controller::new_with_crc(conveyor(flawed, true), Mem::new(), &mut engine).unwrap();
+    assert_eq!(checked.fault(), Some(Fault::Corrupt));
+    assert!(
+        engine.0 > fed,
+        "the next controller's check ran on the same engine"
+    );
+    let trusted =
+        Controller::new_proven_with_crc(conveyor(flawed, true), Mem::new(), &mut engine).unwrap();
+    assert_eq!(trusted.fault(), None);
+    // And a CRC that does not match is a fault on any engine.
+    let mismatch =
+        Controller::new_with_crc(conveyor(sound, false), Mem::new(), &mut engine).unwrap();
+    assert_eq!(mismatch.fault(), Some(Fault::Corrupt));
+}
+
 #[test]
 fn a_corrupt_image_starts_in_fault_mode_and_reset_cannot_clear_it() {
     let config = config(0, UnexpectedPolicy::Fault, None);

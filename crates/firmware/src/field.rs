@@ -18,13 +18,15 @@
 //!   runs the new program: a fresh controller (initial states), whose
 //!   initial outputs are written at once, paced on its own scan period,
 //!   the watchdog's timeout set for that period.
+//! - Every program's image check runs in the STM32's CRC unit, lent to
+//!   each controller in turn (`executor::image::CrcEngine` for `&mut`).
 
+use crate::board::crc::CrcUnit;
 use crate::board::flash;
 use crate::board::Nucleo;
 use crate::report::{self, Numbered};
 use crate::scan::{self, Board, Link, Startup, WATCHDOG_MS};
 use crc::Crc;
-use executor::image::TableCrc;
 use executor::{Controller, Program};
 use field_update::loader::{Endpoint, Loader, Outcome, Running};
 use field_update::slot::{choose, image_of, Choice, Valid};
@@ -75,7 +77,7 @@ impl Link<Nucleo> for Serial<'_, '_, '_> {
 
 /// Runs the newest valid slot's program, else the built-in one, and
 /// whatever the link switches to, forever.
-pub fn run(mut board: Nucleo, startup: Startup) -> ! {
+pub fn run(mut board: Nucleo, startup: Startup, mut crc: CrcUnit) -> ! {
     report::startup(&startup, WATCHDOG_MS);
     let check = ImageCheck::new(&CONFIG, program::board::WIRING);
     let choice: Choice = {
@@ -89,12 +91,9 @@ pub fn run(mut board: Nucleo, startup: Startup) -> ! {
     let mut next = choice.running;
     loop {
         next = match next {
-            Some(valid) => run_slot(&mut board, &mut endpoint, check, valid),
+            Some(valid) => run_slot(&mut board, &mut endpoint, check, valid, &mut crc),
             None => {
-                // Software CRC: a controller is made for each program
-                // switched in, and the CRC unit would have to move
-                // between them.
-                let mut controller = scan::built_in(TableCrc);
+                let mut controller = scan::built_in(&mut crc);
                 report::image_check(controller.fault(), program::PROGRAM.recorded_crc());
                 let mut link = Serial {
                     endpoint: &mut endpoint,
@@ -132,6 +131,7 @@ fn run_slot(
     endpoint: &mut Endpoint<'_>,
     check: ImageCheck,
     valid: Valid,
+    crc: &mut CrcUnit,
 ) -> Option<Valid> {
     let image = image_of(flash::words(valid.slot), &valid.header);
     let mut loaded = Loaded::new();
@@ -142,7 +142,7 @@ fn run_slot(
             return None;
         }
     };
-    let Ok(mut controller) = Controller::new_proven(&program, room) else {
+    let Ok(mut controller) = Controller::new_proven_with_crc(&program, room, crc) else {
         report::slot_refused(valid.slot, firmware::update::REFUSED_NO_ROOM);
         return None;
     };

@@ -60,8 +60,7 @@ fn main() -> ! {
     let (board, startup, crc) = board::init();
     #[cfg(feature = "field-update")]
     {
-        let _ = crc;
-        field::run(board, startup)
+        field::run(board, startup, crc)
     }
     #[cfg(not(feature = "field-update"))]
     {
