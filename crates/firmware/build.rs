@@ -16,7 +16,7 @@
 //! board's, `stm32f411re.x` or with feature `pico` `rp2040.x`, or QEMU's,
 //! from `layout/`) is copied to `OUT_DIR/plc-layout.x`,
 //! which the workspace root's `memory.x` includes. With feature
-//! `field-update` the Nucleo's layout is written from `src/slots.rs`
+//! `field-update` the board's layout is written from `src/slots/`
 //! instead: `FLASH` ends where the first field-update slot begins.
 //!
 //! Feature `board` (the default): the board binary links defmt's linker
@@ -27,7 +27,7 @@ use std::path::{Path, PathBuf};
 
 /// The field-update slots' addresses, shared with the firmware.
 #[allow(dead_code)]
-#[path = "src/slots.rs"]
+#[path = "src/slots/mod.rs"]
 mod slots;
 
 fn env(name: &str) -> Option<String> {
@@ -100,17 +100,22 @@ fn main() {
 
     // The root memory.x (found first by the linker) includes plc-layout.x.
     let pico = std::env::var_os("CARGO_FEATURE_PICO").is_some();
-    // Feature `field-update` (the Nucleo's): FLASH ends where slot A
-    // begins, written from src/slots.rs.
+    // Feature `field-update`: FLASH ends where the board's slot A
+    // begins, written from src/slots/.
     let field_update = std::env::var_os("CARGO_FEATURE_FIELD_UPDATE").is_some();
-    if field_update && !(qemu || guard_bench || pico) {
+    if field_update && !(qemu || guard_bench) {
         let mut script = String::new();
-        slots::write_linker_layout(&mut script).expect("formats");
+        if pico {
+            slots::rp2040::write_linker_layout(&mut script)
+        } else {
+            slots::stm32f411re::write_linker_layout(&mut script)
+        }
+        .expect("formats");
         if let Err(e) = std::fs::write(out.join("plc-layout.x"), script) {
             eprintln!("error: writing plc-layout.x: {e}");
             std::process::exit(1);
         }
-        println!("cargo:rerun-if-changed=src/slots.rs");
+        println!("cargo:rerun-if-changed=src/slots");
     } else {
         let layout = manifest.join(if qemu || guard_bench {
             "layout/mps2-an386.x"

@@ -355,11 +355,14 @@ fn ci() -> Result {
         .cargo("clippy")
         .args(["--", "-D", "warnings"])
         .env("PLC_PROJECT", "models/press.plc.toml"))?;
-    // The Raspberry Pi Pico's firmware (RP2040, thumbv6m), on its press.
-    run(size::Firmware::PICO
-        .cargo("clippy")
-        .args(["--", "-D", "warnings"])
-        .env("PLC_PROJECT", "models/press_pico.plc.toml"))?;
+    // The Raspberry Pi Pico's firmware (RP2040, thumbv6m), on its press,
+    // without and with field update.
+    for pico in [size::Firmware::PICO, size::Firmware::PICO_FIELD_UPDATE] {
+        run(pico
+            .cargo("clippy")
+            .args(["--", "-D", "warnings"])
+            .env("PLC_PROJECT", "models/press_pico.plc.toml"))?;
+    }
     run(cargo()
         .args([
             "clippy",

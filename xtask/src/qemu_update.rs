@@ -1,5 +1,6 @@
 //! `cargo xtask qemu-update`: the field-update harness in QEMU
-//! (mps2-an386, Cortex-M4; `crates/firmware/src/bin/qemu_update.rs`).
+//! (mps2-an386; `crates/firmware/src/bin/qemu_update/`), built for the
+//! Cortex-M4 and for the Cortex-M0+ (both boards' instruction sets).
 //!
 //! The press is built in; the press with the lesson's state 7 is the
 //! update (`codegen image --version 1.1.0`). Each records its scenario
@@ -27,28 +28,32 @@ pub fn run_task(_args: &[String]) -> Result {
         .args(["image", UPDATE, "-o"])
         .arg(&slot)
         .args(["--version", "1.1.0"]))?;
-    let mut cmd = firmware_build("qemu-update", "qemu-update", "thumbv7em-none-eabihf");
-    cmd.env("PLC_PROJECT", BUILT_IN)
-        .env("PLC_BACKEND", "table")
-        .env("PLC_SCENARIO", &built_in)
-        .env("PLC_UPDATE_SCENARIO", &update)
-        .env("PLC_UPDATE_IMAGE", &slot);
-    run(&mut cmd)?;
-    let elf = crate::target_dir().join("thumbv7em-none-eabihf/release/qemu-update");
-    let copy = dir.join("qemu-update.elf");
-    std::fs::copy(&elf, &copy).map_err(|e| format!("{}: {e}", copy.display()))?;
-    let (status, stdout) = run_elf(&qemu, &copy)?;
-    let last = stdout
-        .lines()
-        .rev()
-        .find(|l| l.starts_with("update: loads="))
-        .ok_or_else(|| format!("{}: no result line (exit {status})", copy.display()))?;
-    if status.success() && last.contains(" mismatches=0 ") && last.ends_with(" failures=0") {
-        eprintln!("xtask: qemu-update passed");
-        Ok(())
-    } else {
-        Err(format!("qemu-update: {last} (exit {status})"))
+    // The Cortex-M4 build (the Nucleo's instruction set), then the
+    // Cortex-M0+ one (the Pico's): ARMv6-M is a subset of ARMv7-M, so its
+    // image runs on the same machine.
+    for target in ["thumbv7em-none-eabihf", "thumbv6m-none-eabi"] {
+        let mut cmd = firmware_build("qemu-update", "qemu-update", target);
+        cmd.env("PLC_PROJECT", BUILT_IN)
+            .env("PLC_BACKEND", "table")
+            .env("PLC_SCENARIO", &built_in)
+            .env("PLC_UPDATE_SCENARIO", &update)
+            .env("PLC_UPDATE_IMAGE", &slot);
+        run(&mut cmd)?;
+        let elf = crate::target_dir().join(format!("{target}/release/qemu-update"));
+        let copy = dir.join(format!("qemu-update-{target}.elf"));
+        std::fs::copy(&elf, &copy).map_err(|e| format!("{}: {e}", copy.display()))?;
+        let (status, stdout) = run_elf(&qemu, &copy)?;
+        let last = stdout
+            .lines()
+            .rev()
+            .find(|l| l.starts_with("update: loads="))
+            .ok_or_else(|| format!("{}: no result line (exit {status})", copy.display()))?;
+        if !(status.success() && last.contains(" mismatches=0 ") && last.ends_with(" failures=0")) {
+            return Err(format!("qemu-update ({target}): {last} (exit {status})"));
+        }
+        eprintln!("xtask: qemu-update passed on {target}");
     }
+    Ok(())
 }
 
 /// The environment the harness's build needs, for a clippy run after

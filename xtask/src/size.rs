@@ -6,8 +6,8 @@
 //! Nucleo image also the executor's code (`code_share`: inlined code
 //! counted by its source), checked against `executor_code`; and the
 //! first image's code by source in full. The press is also built with
-//! feature `field-update` (board `nucleo+update`), reported without
-//! budgets.
+//! feature `field-update` for both boards (`nucleo+update`,
+//! `pico+update`), reported without budgets.
 
 use crate::budgets::{self, Budgets};
 use crate::{cargo, code_share, root, run, Result};
@@ -90,13 +90,21 @@ impl Firmware {
     /// [`FIELD_UPDATE_MODEL`] and reported, not checked against a budget.
     pub const NUCLEO_FIELD_UPDATE: Firmware = Firmware {
         board: "nucleo+update",
-        features: "field-update",
+        features: "nucleo-f411re,field-update",
         target: "thumbv7em-none-eabihf",
     };
     /// The Raspberry Pi Pico (RP2040).
     pub const PICO: Firmware = Firmware {
         board: "pico",
         features: "pico",
+        target: "thumbv6m-none-eabi",
+    };
+    /// The Raspberry Pi Pico with field update (the slots in the flash's
+    /// last 256 KiB, the link on UART0). Built for [`FIELD_UPDATE_MODEL`]
+    /// and reported, not checked against a budget.
+    pub const PICO_FIELD_UPDATE: Firmware = Firmware {
+        board: "pico+update",
+        features: "pico,field-update",
         target: "thumbv6m-none-eabi",
     };
 
@@ -130,7 +138,7 @@ impl Firmware {
         let (flash, ram) = llvm_size(&elf)?;
         Ok(Built {
             board: self.board,
-            pico: self.features == "pico",
+            pico: self.target == Firmware::PICO.target,
             flash,
             ram,
             code: code_share::by_source(&elf)?,
@@ -138,8 +146,8 @@ impl Firmware {
     }
 }
 
-/// The model whose Nucleo image is also built with feature
-/// `field-update` (its row has no budgets).
+/// The model whose board images are also built with feature
+/// `field-update` (their rows have no budgets).
 pub const FIELD_UPDATE_MODEL: &str = "press";
 
 /// A board firmware built.
@@ -181,11 +189,15 @@ pub fn run_task(args: &[String]) -> Result {
         if let Some(project) = &model.pico_project {
             builds.push(Firmware::PICO.build(project)?);
         }
-        let field_update = if model.board && name == FIELD_UPDATE_MODEL {
-            Some(Firmware::NUCLEO_FIELD_UPDATE.build(&model.project)?)
-        } else {
-            None
-        };
+        let mut field_update = Vec::new();
+        if name == FIELD_UPDATE_MODEL {
+            if model.board {
+                field_update.push(Firmware::NUCLEO_FIELD_UPDATE.build(&model.project)?);
+            }
+            if let Some(project) = &model.pico_project {
+                field_update.push(Firmware::PICO_FIELD_UPDATE.build(project)?);
+            }
+        }
         for built in builds {
             failures.extend(model.check_board(name, built.pico, built.flash, built.ram));
             let (bf, br, bx) = if built.pico {
@@ -198,7 +210,7 @@ pub fn run_task(args: &[String]) -> Result {
             };
             rows.push((name.clone(), built, bf, br, bx));
         }
-        if let Some(built) = field_update {
+        for built in field_update {
             rows.push((name.clone(), built, None, None, None));
         }
     }

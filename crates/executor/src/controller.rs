@@ -888,9 +888,9 @@ fn execute<P: Program, M: Memory>(
     now: u32,
 ) -> Option<bool> {
     let ram = &mut memory.ram();
-    let spec = &config.event(e);
+    let event = &config.event(e);
     let mut moved = false;
-    for m in config.members_of(spec.members) {
+    for m in config.members_of(event.members) {
         let j = m.supervisor as usize;
         let sup = &config.supervisor(j);
         let state = *ram.states.get(j)?;
@@ -904,10 +904,9 @@ fn execute<P: Program, M: Memory>(
             return None;
         }
         if next != state {
-            let spec = sup;
             let ew = ram.feasible.len();
             let allowed = allowed_of(ram.allowed, ew, j);
-            match config.stored_set(spec, next) {
+            match config.stored_set(sup, next) {
                 // Most moves keep the set: nothing to copy or AND.
                 Some(new) => moved |= update_set(config, new, allowed),
                 None => {
@@ -924,7 +923,7 @@ fn execute<P: Program, M: Memory>(
         refresh_feasible(ram);
     }
     let mut timers = false;
-    for action in config.actions_of(spec.actions) {
+    for action in config.actions_of(event.actions) {
         match action {
             Action::Set(o) => ram.latched[o as usize] = true,
             Action::Clear(o) => ram.latched[o as usize] = false,

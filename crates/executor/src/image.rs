@@ -93,8 +93,10 @@ pub const CRC_START: u32 = CRC_32_MPEG_2.init;
 /// significant byte first ([`IMAGE_CRC`]'s algorithm). [`TableCrc`] in
 /// software, the default; a board with a CRC unit computing the same (an
 /// STM32's) may give the controller its own
-/// ([`crate::Controller::new_proven_with_crc`]): the image check then
-/// takes neither the software's 1 KiB table nor its instructions.
+/// ([`crate::Controller::new_proven_with_crc`], or
+/// [`crate::Controller::new_with_crc`] for a program whose structure is
+/// checked at start-up too): the image check then takes neither the
+/// software's 1 KiB table nor its instructions.
 pub trait CrcEngine {
     /// The register after `words` fed to a register holding `crc`. An
     /// engine whose register cannot be loaded with `crc` (an STM32F4's

@@ -199,7 +199,10 @@ impl<'c> Loader<'c> {
                     });
                 }
                 let slot = self.running.map_or(Slot::A, |r| r.slot.other());
-                if store.erase(slot).is_err() {
+                // The header and the image, not the whole slot: a small
+                // program's erase (the pause of the control) is short
+                // where the flash erases small units (the Pico's).
+                if store.erase(slot, HEADER_WORDS + words as usize).is_err() {
                     return refuse(Refusal::Flash);
                 }
                 let sequence = self

@@ -39,8 +39,12 @@ pub trait SlotStore {
     /// The slot's words as the program reads them (memory-mapped flash).
     fn contents(&self, slot: Slot) -> &[u32];
 
-    /// Erases the whole slot (every word becomes `0xFFFF_FFFF`).
-    fn erase(&mut self, slot: Slot) -> Result<(), Self::Error>;
+    /// Erases at least the slot's first `words` words (every one becomes
+    /// `0xFFFF_FFFF`): the header and the image a load announced. A store
+    /// erases whole units of its flash, so it may erase more (the
+    /// STM32F411's unit is the slot, a 128 KiB sector); the words after
+    /// the image are never read.
+    fn erase(&mut self, slot: Slot, words: usize) -> Result<(), Self::Error>;
 
     /// Programs `words` at word `offset` of an erased part of the slot.
     fn program(&mut self, slot: Slot, offset: usize, words: &[u32]) -> Result<(), Self::Error>;
@@ -229,8 +233,13 @@ impl SlotStore for RamSlots<'_> {
         }
     }
 
-    fn erase(&mut self, slot: Slot) -> Result<(), RamSlotError> {
-        self.words_mut(slot).fill(u32::MAX);
+    /// Erases exactly the first `words` words (all of the slot when it
+    /// has fewer), leaving the rest as it was: what comes after an image
+    /// must not matter.
+    fn erase(&mut self, slot: Slot, words: usize) -> Result<(), RamSlotError> {
+        let slot = self.words_mut(slot);
+        let end = words.min(slot.len());
+        slot[..end].fill(u32::MAX);
         Ok(())
     }
 

@@ -172,6 +172,46 @@ fn loads_alternate_between_slots_and_the_newest_valid_slot_runs() {
 }
 
 #[test]
+fn a_load_erases_its_header_and_image_only_and_the_old_tail_does_not_matter() {
+    let (mut a, mut b) = fresh();
+    let mut slots = RamSlots::new(&mut a, &mut b);
+    let mut loader = Loader::new(&CRC, None, &LengthCheck);
+    // A long image in A, another in B: B runs.
+    for (len, seed) in [(200, 3), (220, 4)] {
+        let words = image(len, seed);
+        let crc = crc_of_words(&CRC, &words);
+        let outcome = load(&mut loader, &mut slots, &words, crc, 64);
+        assert!(matches!(outcome, Outcome::Switched(_)), "{outcome:?}");
+    }
+    let old_tail: Vec<u32> = slots.contents(Slot::A)[HEADER_WORDS + 50..].to_vec();
+    assert!(old_tail[..150].iter().all(|&w| w != u32::MAX));
+    // A short image goes into A, over the first one's head only.
+    let short = image(50, 5);
+    let outcome = load(
+        &mut loader,
+        &mut slots,
+        &short,
+        crc_of_words(&CRC, &short),
+        64,
+    );
+    let Outcome::Switched(three) = outcome else {
+        panic!("{outcome:?}")
+    };
+    assert_eq!((three.slot, three.header.sequence), (Slot::A, 3));
+    let slot = slots.contents(Slot::A);
+    assert_eq!(slot[HEADER_WORDS..HEADER_WORDS + 50], short[..]);
+    assert_eq!(
+        slot[HEADER_WORDS + 50..],
+        old_tail[..],
+        "not erased, not read"
+    );
+    // The short image runs, at start-up too.
+    let choice = choose(&slots, &CRC, &mut LengthCheck);
+    assert_eq!(choice.running, Some(three));
+    assert_eq!(choice.rejected, [None, None]);
+}
+
+#[test]
 fn a_refused_image_leaves_the_running_program_and_no_valid_slot() {
     let (mut a, mut b) = fresh();
     let mut slots = RamSlots::new(&mut a, &mut b);
@@ -325,7 +365,7 @@ fn an_image_of_other_wiring_is_refused_before_the_erase_and_never_chosen() {
         image_crc: crc_of_words(&CRC, &words),
         wiring: WIRING ^ 0x100,
     };
-    slots.erase(Slot::A).unwrap();
+    slots.erase(Slot::A, SLOT_WORDS).unwrap();
     slots.program(Slot::A, 0, &header.to_words(&CRC)).unwrap();
     slots.program(Slot::A, HEADER_WORDS, &words).unwrap();
     let choice = choose(&slots, &CRC, &mut LengthCheck);
@@ -342,7 +382,7 @@ fn an_image_of_other_wiring_is_refused_before_the_erase_and_never_chosen() {
         wiring: WIRING,
         ..header
     };
-    slots.erase(Slot::A).unwrap();
+    slots.erase(Slot::A, SLOT_WORDS).unwrap();
     slots.program(Slot::A, 0, &header.to_words(&CRC)).unwrap();
     slots.program(Slot::A, HEADER_WORDS, &words).unwrap();
     let running = choose(&slots, &CRC, &mut LengthCheck).running;
@@ -368,9 +408,9 @@ impl SlotStore for Counting<'_> {
         self.slots.contents(slot)
     }
 
-    fn erase(&mut self, slot: Slot) -> Result<(), Self::Error> {
+    fn erase(&mut self, slot: Slot, words: usize) -> Result<(), Self::Error> {
         *self.erases += 1;
-        self.slots.erase(slot)
+        self.slots.erase(slot, words)
     }
 
     fn program(&mut self, slot: Slot, offset: usize, words: &[u32]) -> Result<(), Self::Error> {

@@ -1,6 +1,8 @@
-//! Field update on the Nucleo-F411RE (feature `field-update`; see
+//! Field update on every board (feature `field-update`; see
 //! docs/field-update.md): which program runs at start-up, the serial link
 //! between scans, and the switch to a program loaded while the PLC scans.
+//! A board gives its slots, its link and its watchdog through
+//! [`UpdateBoard`]; everything else is here.
 //!
 //! - Start-up: `field_update::slot::choose` over the two flash slots
 //!   with the firmware's [`ImageCheck`]; the newest valid slot's program
@@ -10,33 +12,64 @@
 //!   slot was passed over.
 //! - Each scan, after the outputs are written and the watchdog fed: the
 //!   bytes the link received go to `Endpoint::receive` (a `Begin` erases
-//!   the slot not running: no scan for 1–4 s, outputs held, the watchdog
-//!   widened, `nucleo_f411re::flash`), its answers are sent, and
+//!   the slot not running: no scan for up to 4 s, outputs held, the
+//!   watchdog widened, the board's `flash`), its answers are sent, and
 //!   `Endpoint::poll` advances a committed load's check by the
 //!   program's `rom_test_bytes_per_scan` (as the QEMU harness does).
 //! - When `poll` reports `Switched`, the scan loop ends and the next scan
 //!   runs the new program: a fresh controller (initial states), whose
 //!   initial outputs are written at once, paced on its own scan period,
 //!   the watchdog's timeout set for that period.
-//! - Every program's image check runs in the STM32's CRC unit, lent to
-//!   each controller in turn (`executor::image::CrcEngine` for `&mut`).
+//! - Every program's image check runs in the board's CRC engine (the
+//!   STM32's CRC unit, the RP2040's software table), lent to each
+//!   controller in turn (`executor::image::CrcEngine` for `&mut`).
 
-use crate::board::crc::CrcUnit;
-use crate::board::flash;
-use crate::board::Nucleo;
+use crate::link::Port;
 use crate::report::{self, Numbered};
 use crate::scan::{self, Board, Link, Startup, WATCHDOG_MS};
 use crc::Crc;
+use embedded_hal_nb::serial::Write;
+use executor::image::CrcEngine;
 use executor::{Controller, Program};
 use field_update::loader::{Endpoint, Loader, Outcome, Running};
-use field_update::slot::{choose, image_of, Choice, Valid};
+use field_update::slot::{choose, image_of, Choice, Slot, SlotStore, Valid};
 use field_update::CRC_ALGORITHM;
 use firmware::program::{self, CONFIG};
+use firmware::slots::SlotMap;
 use firmware::update::{ImageCheck, Loaded};
 use firmware::MCU;
 
 /// Slot headers, images and frames.
 static CRC: Crc<u32> = Crc::<u32>::new(&CRC_ALGORITHM);
+
+/// The address of `slot` on a board whose slots are `map`.
+pub const fn address(map: &SlotMap, slot: Slot) -> u32 {
+    match slot {
+        Slot::A => map.a,
+        Slot::B => map.b,
+    }
+}
+
+/// What field update needs of a board beyond the scan loop's [`Board`].
+pub trait UpdateBoard: Board {
+    /// Its two slots in flash.
+    type Slots<'a>: SlotStore
+    where
+        Self: 'a;
+    /// Its link's transmitter.
+    type Tx: Write<u8>;
+
+    /// The slots (with the watchdog, which an erase starts again with a
+    /// longer timeout, then with `watchdog_ms`) and the serial link.
+    fn update_parts(&mut self, watchdog_ms: u32) -> (Self::Slots<'_>, &mut Port<Self::Tx>);
+
+    /// The words of `slot` where the flash is mapped.
+    fn slot_words(slot: Slot) -> &'static [u32];
+
+    /// Starts the running watchdog again with `timeout_ms` (a switched-in
+    /// program's scan period may differ from the built-in one's).
+    fn set_watchdog_timeout(&mut self, timeout_ms: u32);
+}
 
 /// The link between two scans of the program `running`.
 struct Serial<'e, 'c, 'n> {
@@ -49,10 +82,10 @@ struct Serial<'e, 'c, 'n> {
     watchdog_ms: u32,
 }
 
-impl Link<Nucleo> for Serial<'_, '_, '_> {
+impl<B: UpdateBoard> Link<B> for Serial<'_, '_, '_> {
     type Switch = Valid;
 
-    fn after_scan(&mut self, board: &mut Nucleo) -> Option<Valid> {
+    fn after_scan(&mut self, board: &mut B) -> Option<Valid> {
         let (mut store, port) = board.update_parts(self.watchdog_ms);
         while let Some(byte) = port.read() {
             if let Some(frame) = self.endpoint.receive(byte, &mut store, self.running) {
@@ -77,7 +110,7 @@ impl Link<Nucleo> for Serial<'_, '_, '_> {
 
 /// Runs the newest valid slot's program, else the built-in one, and
 /// whatever the link switches to, forever.
-pub fn run(mut board: Nucleo, startup: Startup, mut crc: CrcUnit) -> ! {
+pub fn run<B: UpdateBoard, C: CrcEngine>(mut board: B, startup: Startup, mut crc: C) -> ! {
     report::startup(&startup, WATCHDOG_MS);
     let check = ImageCheck::new(&CONFIG, program::board::WIRING);
     let choice: Choice = {
@@ -126,14 +159,14 @@ fn budget(config: &executor::Config<'_>) -> usize {
 
 /// Runs the program of slot `valid` from flash until the link switches
 /// to another; `None` (the built-in program next) when it does not load.
-fn run_slot(
-    board: &mut Nucleo,
+fn run_slot<B: UpdateBoard, C: CrcEngine>(
+    board: &mut B,
     endpoint: &mut Endpoint<'_>,
     check: ImageCheck,
     valid: Valid,
-    crc: &mut CrcUnit,
+    crc: &mut C,
 ) -> Option<Valid> {
-    let image = image_of(flash::words(valid.slot), &valid.header);
+    let image = image_of(B::slot_words(valid.slot), &valid.header);
     let mut loaded = Loaded::new();
     let (program, room) = match loaded.program(image, valid.header.image_crc, &check) {
         Ok(p) => p,

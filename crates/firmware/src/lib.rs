@@ -10,9 +10,13 @@
 //! - [`edges`]: change counts of edge-latched inputs, lost edges, the EXTI
 //!   line map;
 //! - [`levels`]: active-low pins;
+//! - [`pause`]: the milliseconds a flash erase or write kept the
+//!   millisecond clock's tick from counting;
 //! - [`icount`]: instruction counts in QEMU (SysTick under `-icount`);
-//! - [`slots`]: where the field-update slots are in the STM32F411's
-//!   flash (feature `field-update`);
+//! - [`slots`]: where the field-update slots are in each board's flash
+//!   (feature `field-update`);
+//! - [`rx_queue`]: the bytes a serial link's interrupt received, until the
+//!   scan loop takes them;
 //! - [`update`]: field update, what a loaded image must pass and the
 //!   memory it runs in.
 //!
@@ -29,6 +33,8 @@ pub mod edges;
 pub mod hostline;
 pub mod icount;
 pub mod levels;
+pub mod pause;
+pub mod rx_queue;
 pub mod slots;
 pub mod update;
 

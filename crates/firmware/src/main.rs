@@ -11,9 +11,9 @@
 //!   `thumbv7em-none-eabihf`;
 //! - `pico`: the RP2040 on a Raspberry Pi Pico, `thumbv6m-none-eabi`.
 //!
-//! With feature `field-update` (Nucleo-F411RE only) the program may come
-//! from a flash slot and be replaced over the serial link while the PLC
-//! scans (`field`, docs/field-update.md).
+//! With feature `field-update` the program may come from a flash slot and
+//! be replaced over the serial link while the PLC scans (`field`, over
+//! the board's `field::UpdateBoard`; docs/field-update.md).
 //!
 //! The program image is checked when the controller starts (a mismatch
 //! starts it in fault mode, `Corrupt`), which the log reports.
@@ -31,7 +31,7 @@ compile_error!("the board firmware is built for one board: features `nucleo-f411
     target_os = "none",
     not(any(feature = "nucleo-f411re", feature = "pico"))
 ))]
-compile_error!("the board firmware needs a board feature: `nucleo-f411re` (the default) or `pico`");
+compile_error!("the board firmware needs a board feature: `nucleo-f411re` (the default) or `pico` (field update: `--features field-update` on the Nucleo, `--no-default-features --features pico,field-update` on the Pico)");
 
 #[cfg(all(target_os = "none", feature = "nucleo-f411re"))]
 mod nucleo_f411re;
@@ -43,6 +43,8 @@ mod pico;
 use pico as board;
 #[cfg(all(target_os = "none", feature = "field-update"))]
 mod field;
+#[cfg(all(target_os = "none", feature = "field-update"))]
+mod link;
 #[cfg(target_os = "none")]
 mod panic;
 #[cfg(target_os = "none")]

@@ -1,21 +1,26 @@
 //! The field-update slots in the STM32F411RE's flash (feature
-//! `field-update`): sectors 6 and 7 (`firmware::slots`), erased and
+//! `field-update`): sectors 6 and 7 (`firmware::slots::stm32f411re`), erased and
 //! programmed through stm32f4xx-hal's `flash` module (the data cache reset
 //! after each through the PAC: the HAL does not), read where they are
 //! mapped.
 //!
 //! Erasing a 128 KiB sector stalls the core for 1–4 s (RM0383 and the
 //! datasheet: typically 2 s, at most 4 s at the HAL's 8-bit parallelism;
-//! every fetch from flash waits). No scan runs meanwhile: outputs keep
+//! every fetch from flash waits, the SysTick handler's too: the
+//! millisecond clock is set right after it from the cycle counter,
+//! `systick::across`). No scan runs meanwhile: outputs keep
 //! the levels the last scan wrote, and the watchdog, whose scan-period
 //! timeout would reset the chip, is started again with
 //! [`ERASE_WATCHDOG_MS`] just before the erase and with its scan timeout
 //! just after. Programming is byte by byte (16 µs a byte at most: 4 ms
 //! for a 256-byte `Data` chunk), inside the scan's link share.
 
+use crate::field;
+use crate::systick;
+use cortex_m::peripheral::DWT;
 use field_update::protocol::ERASE_MS;
 use field_update::slot::{Slot, SlotStore};
-use firmware::slots::{FLASH_ORIGIN, SECTOR_A, SECTOR_B, SLOT_A, SLOT_B, SLOT_BYTES};
+use firmware::slots::stm32f411re::{FLASH_ORIGIN, SECTOR_A, SECTOR_B, SLOTS};
 use stm32f4xx_hal::flash::{self, FlashExt};
 use stm32f4xx_hal::pac::FLASH;
 use stm32f4xx_hal::prelude::*;
@@ -26,8 +31,12 @@ use stm32f4xx_hal::watchdog::IndependentWatchdog;
 /// `Begin`'s answer), well below the IWDG's 32 s.
 pub const ERASE_WATCHDOG_MS: u32 = 2 * ERASE_MS;
 
+/// Cycle-counter ticks a millisecond (`clocks`: 100 MHz), which keep
+/// the millisecond clock true across an erase ([`systick::across`]).
+const TICKS_PER_MS: u32 = super::clocks::SYSCLK_HZ / 1_000;
+
 /// Words of a slot.
-const SLOT_WORDS: usize = (SLOT_BYTES / 4) as usize;
+const SLOT_WORDS: usize = SLOTS.words();
 
 /// The two slots: the flash controller, and the watchdog while a sector
 /// is erased.
@@ -53,18 +62,10 @@ impl<'w> FlashSlots<'w> {
     }
 }
 
-/// A slot's address.
-const fn address(slot: Slot) -> u32 {
-    match slot {
-        Slot::A => SLOT_A,
-        Slot::B => SLOT_B,
-    }
-}
-
 /// The words of `slot` where the flash is mapped.
 pub fn words(slot: Slot) -> &'static [u32] {
     // SAFETY: the slot is SLOT_BYTES of the chip's memory-mapped flash
-    // (firmware::slots, checked against the sector map at compile time),
+    // (firmware::slots::stm32f411re, checked against the sector map at compile time),
     // word-aligned, always readable, and outside the linker's FLASH region
     // (build.rs), so nothing of the firmware lives there. Its contents
     // change only through `FlashSlots::erase`/`program`, which take the
@@ -72,7 +73,7 @@ pub fn words(slot: Slot) -> &'static [u32] {
     // words the running program borrows.
     #[allow(unsafe_code)]
     unsafe {
-        core::slice::from_raw_parts(address(slot) as *const u32, SLOT_WORDS)
+        core::slice::from_raw_parts(field::address(&SLOTS, slot) as *const u32, SLOT_WORDS)
     }
 }
 
@@ -100,7 +101,9 @@ impl SlotStore for FlashSlots<'_> {
         words(slot)
     }
 
-    fn erase(&mut self, slot: Slot) -> Result<(), flash::Error> {
+    /// Erases the slot's sector, whatever `_words`: the sector is the
+    /// STM32F411's erase unit here.
+    fn erase(&mut self, slot: Slot, _words: usize) -> Result<(), flash::Error> {
         let sector = match slot {
             Slot::A => SECTOR_A,
             Slot::B => SECTOR_B,
@@ -108,7 +111,10 @@ impl SlotStore for FlashSlots<'_> {
         if let Some(w) = self.watchdog.as_deref_mut() {
             w.start(ERASE_WATCHDOG_MS.millis());
         }
-        let result = self.flash.unlocked().erase(sector);
+        let flash = &mut *self.flash;
+        let result = systick::across(DWT::cycle_count, TICKS_PER_MS, || {
+            flash.unlocked().erase(sector)
+        });
         if let Some(w) = self.watchdog.as_deref_mut() {
             w.start(self.watchdog_ms.millis());
         }
@@ -120,13 +126,14 @@ impl SlotStore for FlashSlots<'_> {
         if offset.saturating_add(words.len()) > SLOT_WORDS {
             return Err(flash::Error::ProgrammingSequence);
         }
-        let start = (address(slot) - FLASH_ORIGIN) as usize + offset * 4;
-        let mut unlocked = self.flash.unlocked();
-        let result = words
-            .iter()
-            .enumerate()
-            .try_for_each(|(i, word)| unlocked.program(start + i * 4, word.to_le_bytes().iter()));
-        drop(unlocked);
+        let start = (field::address(&SLOTS, slot) - FLASH_ORIGIN) as usize + offset * 4;
+        let flash = &mut *self.flash;
+        let result = systick::across(DWT::cycle_count, TICKS_PER_MS, || {
+            let mut unlocked = flash.unlocked();
+            words.iter().enumerate().try_for_each(|(i, word)| {
+                unlocked.program(start + i * 4, word.to_le_bytes().iter())
+            })
+        });
         self.reset_data_cache();
         result
     }

@@ -96,19 +96,22 @@ pub fn init() -> (Nucleo, Startup, crc::CrcUnit) {
 }
 
 #[cfg(feature = "field-update")]
-impl Nucleo {
-    /// The field-update parts: the slots (with the watchdog, which an
-    /// erase restarts with a longer timeout) and the serial link.
-    pub fn update_parts(&mut self, watchdog_ms: u32) -> (flash::FlashSlots<'_>, &mut serial::Port) {
+impl crate::field::UpdateBoard for Nucleo {
+    type Slots<'a> = flash::FlashSlots<'a>;
+    type Tx = stm32f4xx_hal::serial::Tx<pac::USART2>;
+
+    fn update_parts(&mut self, watchdog_ms: u32) -> (flash::FlashSlots<'_>, &mut serial::Port) {
         (
             flash::FlashSlots::new(&mut self.flash, self.watchdog.as_mut(), watchdog_ms),
             &mut self.port,
         )
     }
 
-    /// Starts the running watchdog again with `timeout_ms` (a switched-in
-    /// program's scan period may differ from the built-in one's).
-    pub fn set_watchdog_timeout(&mut self, timeout_ms: u32) {
+    fn slot_words(slot: field_update::slot::Slot) -> &'static [u32] {
+        flash::words(slot)
+    }
+
+    fn set_watchdog_timeout(&mut self, timeout_ms: u32) {
         if let Some(w) = &mut self.watchdog {
             w.start(stm32f4xx_hal::prelude::_fugit_ExtU32::millis(timeout_ms));
         }

@@ -12,10 +12,16 @@
 //!   TIMER (the Cortex-M0+ has no cycle counter);
 //! - the second-stage bootloader of the Pico's W25Q080 flash
 //!   ([`BOOT2`]), which the boot ROM runs from the flash's first 256
-//!   bytes (`layout/rp2040.x`).
+//!   bytes (`layout/rp2040.x`);
+//! - with feature `field-update`: [`flash`], the program slots in the
+//!   flash's last 256 KiB, and [`serial`], the link on UART0.
 
 pub mod edges;
+#[cfg(feature = "field-update")]
+pub mod flash;
 pub mod pins;
+#[cfg(feature = "field-update")]
+pub mod serial;
 
 use crate::scan::{Board, Changes, ResetCause, Startup};
 use crate::systick;
@@ -43,6 +49,12 @@ pub struct Pico {
     io: pins::Io,
     timer: Timer,
     watchdog: Watchdog,
+    /// Whether [`Board::start_watchdog`] started it (an erase widens a
+    /// running watchdog only).
+    #[cfg(feature = "field-update")]
+    watchdog_started: bool,
+    #[cfg(feature = "field-update")]
+    port: serial::Port,
 }
 
 /// Why the chip started: the watchdog's REASON (its timer, or a forced
@@ -88,8 +100,18 @@ pub fn init() -> (Pico, Startup, TableCrc) {
     let sio = Sio::new(dp.SIO);
     let bank =
         rp2040_hal::gpio::Pins::new(dp.IO_BANK0, dp.PADS_BANK0, sio.gpio_bank0, &mut dp.RESETS);
-    let io = pins::configure(bank);
+    #[cfg_attr(not(feature = "field-update"), allow(clippy::let_unit_value))]
+    let (io, link) = pins::configure(bank);
     edges::start(&io);
+    #[cfg(feature = "field-update")]
+    let port = serial::start(
+        dp.UART0,
+        link,
+        &mut dp.RESETS,
+        clocks.peripheral_clock.freq().to_Hz(),
+    );
+    #[cfg(not(feature = "field-update"))]
+    let () = link;
 
     let timer = Timer::new(dp.TIMER, &mut dp.RESETS, &clocks);
     systick::start(cp.SYST, sysclk_hz);
@@ -98,6 +120,10 @@ pub fn init() -> (Pico, Startup, TableCrc) {
         io,
         timer,
         watchdog,
+        #[cfg(feature = "field-update")]
+        watchdog_started: false,
+        #[cfg(feature = "field-update")]
+        port,
     };
     let startup = Startup {
         reset,
@@ -105,6 +131,28 @@ pub fn init() -> (Pico, Startup, TableCrc) {
         clock_source: "Xosc",
     };
     (board, startup, TableCrc)
+}
+
+#[cfg(feature = "field-update")]
+impl crate::field::UpdateBoard for Pico {
+    type Slots<'a> = flash::FlashSlots<'a>;
+    type Tx = rp2040_hal::uart::Writer<pac::UART0, serial::LinkPins>;
+
+    fn update_parts(&mut self, watchdog_ms: u32) -> (flash::FlashSlots<'_>, &mut serial::Port) {
+        let watchdog = self.watchdog_started.then_some(&mut self.watchdog);
+        let slots = flash::FlashSlots::new(watchdog, watchdog_ms, self.timer);
+        (slots, &mut self.port)
+    }
+
+    fn slot_words(slot: field_update::slot::Slot) -> &'static [u32] {
+        flash::words(slot)
+    }
+
+    fn set_watchdog_timeout(&mut self, timeout_ms: u32) {
+        if self.watchdog_started {
+            self.watchdog.start(MicrosDurationU32::millis(timeout_ms));
+        }
+    }
 }
 
 impl Board for Pico {
@@ -127,6 +175,10 @@ impl Board for Pico {
     fn start_watchdog(&mut self, timeout_ms: u32) {
         self.watchdog.pause_on_debug(true);
         self.watchdog.start(MicrosDurationU32::millis(timeout_ms));
+        #[cfg(feature = "field-update")]
+        {
+            self.watchdog_started = true;
+        }
     }
 
     fn feed_watchdog(&mut self) {

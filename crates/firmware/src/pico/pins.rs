@@ -5,7 +5,8 @@
 //! Every GPIO of the bank goes through [`configure`]; which input or
 //! output (if any) it carries is looked up in the pin map, and an unused
 //! pin stays in its reset state. The pins the firmware keeps for itself
-//! (`MCU.reserved`: GP23, GP24, GP29 on the Pico) are never offered:
+//! (`MCU.reserved`: GP23, GP24, GP29 on the Pico; with feature
+//! `field-update` also GP0 and GP1, the link's) are never offered:
 //! validation refuses them too, and a const assertion below makes a
 //! hand-edited pin map fail to build.
 
@@ -79,18 +80,61 @@ macro_rules! claim_pins {
     };
 }
 
+/// The pins the field-update link keeps (feature `field-update`): UART0's
+/// TX and RX, GP0 and GP1.
+#[cfg(feature = "field-update")]
+pub type LinkPins = super::serial::LinkPins;
+/// The pins the field-update link keeps: none without feature
+/// `field-update`.
+#[cfg(not(feature = "field-update"))]
+pub type LinkPins = ();
+
+/// Whether the pin map gives GPIO `n` to a signal.
+#[cfg(feature = "field-update")]
+const fn uses(n: u8) -> bool {
+    let mut i = 0;
+    while i < INPUT_PINS.len() + OUTPUT_PINS.len() {
+        let spec = if i < INPUT_PINS.len() {
+            &INPUT_PINS[i]
+        } else {
+            &OUTPUT_PINS[i - INPUT_PINS.len()]
+        };
+        if is_gpio(spec, n) {
+            return true;
+        }
+        i += 1;
+    }
+    false
+}
+
+#[cfg(feature = "field-update")]
+const _: () = assert!(
+    !uses(0) && !uses(1),
+    "the pin map uses GP0 or GP1, which the firmware keeps with feature `field-update`: UART0, the field-update link; wire those signals to other pins or build without the feature"
+);
+
 /// Configures the pins of the pin map: inputs with their pull resistor,
 /// outputs push-pull at the level of signal 0 (the output image before
-/// the first scan).
-pub fn configure(bank: rp2040_hal::gpio::Pins) -> Io {
+/// the first scan). With feature `field-update`, GP0 and GP1 are not
+/// offered but returned for the link.
+pub fn configure(bank: rp2040_hal::gpio::Pins) -> (Io, LinkPins) {
     let mut io = Io::default();
+    let link;
+    #[cfg(not(feature = "field-update"))]
+    {
+        claim_pins!(io, bank, [gpio0 = 0, gpio1 = 1]);
+        link = ();
+    }
+    // Nor GP0/GP1 (UART0, the field-update link).
+    #[cfg(feature = "field-update")]
+    {
+        link = (bank.gpio0.reconfigure(), bank.gpio1.reconfigure());
+    }
     // GP23, GP24 and GP29 (`MCU.reserved`) are not offered.
     claim_pins!(
         io,
         bank,
         [
-            gpio0 = 0,
-            gpio1 = 1,
             gpio2 = 2,
             gpio3 = 3,
             gpio4 = 4,
@@ -118,7 +162,7 @@ pub fn configure(bank: rp2040_hal::gpio::Pins) -> Io {
             gpio28 = 28,
         ]
     );
-    io
+    (io, link)
 }
 
 /// Configures GPIO `n` for the signal it carries, if any.

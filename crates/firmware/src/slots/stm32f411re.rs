@@ -1,7 +1,7 @@
 //! Where the two field-update slots live in the STM32F411RE's flash
-//! (feature `field-update`): the one place that states it. `build.rs`
-//! writes the linker's `FLASH` region from these figures (it ends where
-//! slot A begins), and the board's slot store
+//! (the Nucleo-F411RE's, feature `field-update`): the one place that
+//! states it. `build.rs` writes the linker's `FLASH` region from these
+//! figures (it ends where slot A begins), and the board's slot store
 //! (`nucleo_f411re::flash`) erases and reads these sectors.
 //!
 //! The STM32F411RE has 512 KiB of flash in sectors 0–3 of 16 KiB, 4 of
@@ -38,12 +38,19 @@ const _: () = assert!(sector_start(SECTOR_A) == SLOT_A && sector_start(SECTOR_B)
 const _: () = assert!(sector_start(SECTOR_B) + SLOT_BYTES == FLASH_ORIGIN + FLASH_BYTES);
 const _: () = assert!(SLOT_A + SLOT_BYTES == SLOT_B);
 
+/// The two slots.
+pub const SLOTS: super::SlotMap = super::SlotMap {
+    a: SLOT_A,
+    b: SLOT_B,
+    bytes: SLOT_BYTES,
+};
+
 /// Writes the linker's memory regions of the board firmware with the
 /// slots kept out of `FLASH` (what `build.rs` writes as `plc-layout.x`).
 pub fn write_linker_layout(out: &mut impl core::fmt::Write) -> core::fmt::Result {
     write!(
         out,
-        "/* STM32F411RE with field-update slots (crates/firmware/src/slots.rs):\n \
+        "/* STM32F411RE with field-update slots (crates/firmware/src/slots/stm32f411re.rs):\n \
          * the firmware's flash ends at slot A ({SLOT_A:#010x}); slot B is at {SLOT_B:#010x},\n \
          * {} KiB each. Written by crates/firmware/build.rs. */\n\
          MEMORY\n{{\n  FLASH : ORIGIN = {FLASH_ORIGIN:#010x}, LENGTH = {}K\n  \
@@ -55,37 +62,13 @@ pub fn write_linker_layout(out: &mut impl core::fmt::Write) -> core::fmt::Result
 
 #[cfg(test)]
 mod tests {
+    use super::super::tests::{region, written};
     use super::*;
-
-    /// The number after `key` in `text` (hex with `0x`, or decimal
-    /// followed by `K`).
-    fn number_after(text: &str, key: &str) -> u32 {
-        let rest = &text[text.find(key).expect(key) + key.len()..];
-        let token: String = rest
-            .trim_start()
-            .chars()
-            .take_while(|c| c.is_ascii_alphanumeric())
-            .collect();
-        match token.strip_prefix("0x") {
-            Some(hex) => u32::from_str_radix(hex, 16).expect("hex"),
-            None => {
-                token
-                    .strip_suffix('K')
-                    .expect("K")
-                    .parse::<u32>()
-                    .expect("kib")
-                    * 1024
-            }
-        }
-    }
 
     #[test]
     fn the_linker_flash_region_ends_where_slot_a_begins() {
-        let mut script = String::new();
-        write_linker_layout(&mut script).expect("writes");
-        let flash = &script[script.find("FLASH :").expect("FLASH region")..];
-        let origin = number_after(flash, "ORIGIN =");
-        let length = number_after(flash, "LENGTH =");
+        let script = written(write_linker_layout);
+        let (origin, length) = region(&script, "FLASH");
         assert_eq!(origin, FLASH_ORIGIN);
         assert_eq!(origin + length, SLOT_A);
         // The slots are whole sectors, at the end of the chip's flash.
@@ -93,7 +76,8 @@ mod tests {
         assert_eq!(sector_start(SECTOR_B), SLOT_B);
         assert_eq!(SLOT_B + SLOT_BYTES, FLASH_ORIGIN + FLASH_BYTES);
         // The script without the slots covers the whole chip.
-        let plain = include_str!("../layout/stm32f411re.x");
-        assert_eq!(number_after(plain, "LENGTH ="), FLASH_BYTES);
+        let plain = include_str!("../../layout/stm32f411re.x");
+        assert_eq!(region(plain, "FLASH"), (FLASH_ORIGIN, FLASH_BYTES));
+        assert_eq!(region(&script, "RAM"), region(plain, "RAM"));
     }
 }
