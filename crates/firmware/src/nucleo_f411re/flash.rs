@@ -16,6 +16,7 @@
 //! for a 256-byte `Data` chunk), inside the scan's link share.
 
 use crate::field;
+use crate::scan::Board;
 use crate::systick;
 use cortex_m::peripheral::DWT;
 use field_update::protocol::ERASE_MS;
@@ -31,9 +32,9 @@ use stm32f4xx_hal::watchdog::IndependentWatchdog;
 /// `Begin`'s answer), well below the IWDG's 32 s.
 pub const ERASE_WATCHDOG_MS: u32 = 2 * ERASE_MS;
 
-/// Cycle-counter ticks a millisecond (`clocks`: 100 MHz), which keep
-/// the millisecond clock true across an erase ([`systick::across`]).
-const TICKS_PER_MS: u32 = super::clocks::SYSCLK_HZ / 1_000;
+/// Cycle-counter ticks a millisecond (the board's scan timer), which
+/// keep the millisecond clock true across an erase ([`systick::across`]).
+const TICKS_PER_MS: u32 = <super::Nucleo as Board>::TIMER_TICKS_PER_US * 1_000;
 
 /// Words of a slot.
 const SLOT_WORDS: usize = SLOTS.words();

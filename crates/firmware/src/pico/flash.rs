@@ -33,6 +33,7 @@
 
 use super::BOOT2;
 use crate::field;
+use crate::scan::Board;
 use crate::systick;
 use core::sync::atomic::{compiler_fence, Ordering};
 use field_update::protocol::ERASE_MS;
@@ -49,6 +50,9 @@ use rp2040_hal::{Timer, Watchdog};
 /// `Begin`'s answer), below the RP2040's 8.388 s.
 pub const ERASE_WATCHDOG_MS: u32 = 2 * ERASE_MS;
 const _: () = assert!(ERASE_WATCHDOG_MS <= firmware::MCU.watchdog.max_timeout_ms);
+
+/// Timer ticks a millisecond (the board's scan timer, 1 MHz).
+const TICKS_PER_MS: u32 = <super::Pico as Board>::TIMER_TICKS_PER_US * 1_000;
 
 /// Words of a slot.
 const SLOT_WORDS: usize = SLOTS.words();
@@ -92,7 +96,7 @@ impl<'w> FlashSlots<'w> {
     /// clock set right after it from the 1 MHz timer.
     fn paused(&self, operation: impl FnOnce()) {
         let timer = self.timer;
-        systick::across(|| timer.get_counter_low(), 1_000, operation);
+        systick::across(|| timer.get_counter_low(), TICKS_PER_MS, operation);
     }
 
     fn restart_watchdog(&mut self, ms: u32) {
@@ -214,7 +218,8 @@ mod rom {
         });
     }
 
-    /// Erases `bytes` (whole 64 KiB blocks) at `offset` in the flash.
+    /// Erases `bytes` at `offset` in the flash: 64 KiB blocks where the
+    /// range covers them, 4 KiB sectors elsewhere (`erase_bytes`).
     pub fn erase(offset: u32, bytes: u32) {
         // SAFETY: interrupts are masked and the one core runs; `erase_in_ram`
         // is in RAM and touches only the stack and the ROM until XIP is

@@ -10,9 +10,9 @@
 //!   cause;
 //! - the millisecond clock is `crate::systick`, scan durations the 1 MHz
 //!   TIMER (the Cortex-M0+ has no cycle counter);
-//! - the second-stage bootloader of the Pico's W25Q080 flash
-//!   ([`BOOT2`]), which the boot ROM runs from the flash's first 256
-//!   bytes (`layout/rp2040.x`);
+//! - [`BOOT2`], the second-stage bootloader (W25Q080 family, which the
+//!   Pico's W25Q16JV flash belongs to), which the boot ROM runs from the
+//!   flash's first 256 bytes (`layout/rp2040.x`);
 //! - with feature `field-update`: [`flash`], the program slots in the
 //!   flash's last 256 KiB, and [`serial`], the link on UART0.
 
@@ -32,8 +32,9 @@ use rp2040_hal::clocks::{init_clocks_and_plls, Clock};
 use rp2040_hal::pac;
 use rp2040_hal::{Sio, Timer, Watchdog};
 
-/// The second-stage bootloader for the Pico's W25Q080 QSPI flash: the boot
-/// ROM copies these 256 bytes (the `.boot2` section, placed at the start
+/// The second-stage bootloader for the W25Q080 family of QSPI flash (the
+/// Pico's W25Q16JV is one, and the Pico SDK's board file picks the same
+/// bootloader for it): the boot ROM copies these 256 bytes (the `.boot2` section, placed at the start
 /// of flash by `layout/rp2040.x`) to SRAM, checks their CRC and runs them
 /// to set up execute-in-place.
 #[allow(unsafe_code)] // `link_section` places the bytes; nothing unsafe runs.
