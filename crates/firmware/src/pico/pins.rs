@@ -33,29 +33,48 @@ const fn is_gpio(spec: &Option<SignalPin>, n: u8) -> bool {
     }
 }
 
+/// Signals of the pin map: its inputs, then its outputs.
+const SIGNALS: usize = INPUT_PINS.len() + OUTPUT_PINS.len();
+
+/// Signal `i` of the pin map (`i < SIGNALS`): input `i`, then the outputs.
+const fn signal(i: usize) -> Option<SignalPin> {
+    if i < INPUT_PINS.len() {
+        INPUT_PINS[i]
+    } else {
+        OUTPUT_PINS[i - INPUT_PINS.len()]
+    }
+}
+
+/// Whether the pin map gives GPIO `n` to a signal.
+const fn uses(n: u8) -> bool {
+    let mut i = 0;
+    while i < SIGNALS {
+        if is_gpio(&signal(i), n) {
+            return true;
+        }
+        i += 1;
+    }
+    false
+}
+
 /// Whether the pin map gives a pin the firmware keeps for itself
 /// (`MCU.reserved`), or a pin of another chip, to a signal.
 const fn a_pin_not_offered() -> bool {
     let mut i = 0;
-    while i < INPUT_PINS.len() + OUTPUT_PINS.len() {
-        let spec = if i < INPUT_PINS.len() {
-            INPUT_PINS[i]
-        } else {
-            OUTPUT_PINS[i - INPUT_PINS.len()]
-        };
-        if let Some(s) = spec {
+    while i < SIGNALS {
+        if let Some(s) = signal(i) {
             if s.pin.port != boards::PinId::BANK || s.pin.number >= 30 {
                 return true;
             }
-            let mut r = 0;
-            while r < MCU.reserved.len() {
-                if is_gpio(&spec, MCU.reserved[r].pin.number) {
-                    return true;
-                }
-                r += 1;
-            }
         }
         i += 1;
+    }
+    let mut r = 0;
+    while r < MCU.reserved.len() {
+        if uses(MCU.reserved[r].pin.number) {
+            return true;
+        }
+        r += 1;
     }
     false
 }
@@ -88,24 +107,6 @@ pub type LinkPins = super::serial::LinkPins;
 /// `field-update`.
 #[cfg(not(feature = "field-update"))]
 pub type LinkPins = ();
-
-/// Whether the pin map gives GPIO `n` to a signal.
-#[cfg(feature = "field-update")]
-const fn uses(n: u8) -> bool {
-    let mut i = 0;
-    while i < INPUT_PINS.len() + OUTPUT_PINS.len() {
-        let spec = if i < INPUT_PINS.len() {
-            &INPUT_PINS[i]
-        } else {
-            &OUTPUT_PINS[i - INPUT_PINS.len()]
-        };
-        if is_gpio(spec, n) {
-            return true;
-        }
-        i += 1;
-    }
-    false
-}
 
 #[cfg(feature = "field-update")]
 const _: () = assert!(
