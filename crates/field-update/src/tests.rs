@@ -5,7 +5,7 @@ use crate::frame::{self, FrameError, FrameReader, MAX_FRAME};
 use crate::header::{SlotHeader, HEADER_WORDS};
 use crate::loader::{Loader, Outcome, Reply};
 use crate::protocol::{data_requests, Refusal, Request, Response};
-use crate::slot::{choose, Check, RamSlots, Rejected, Slot, SlotStore};
+use crate::slot::{choose, Check, RamSlots, Rejected, Slot, SlotStore, Valid};
 use crate::{crc_of_words, CRC_ALGORITHM};
 use crc::Crc;
 use proptest::prelude::*;
@@ -92,6 +92,20 @@ fn load(
     unreachable!("Commit is answered later")
 }
 
+/// [`load`] of `words` under their own CRC, which must switch to them:
+/// the slot and header now running.
+fn load_switched(
+    loader: &mut Loader<'_>,
+    slots: &mut RamSlots<'_>,
+    words: &[u32],
+    budget: usize,
+) -> Valid {
+    match load(loader, slots, words, crc_of_words(&CRC, words), budget) {
+        Outcome::Switched(valid) => valid,
+        outcome => panic!("{outcome:?}"),
+    }
+}
+
 /// Encodes `request` as a frame, reads it back byte by byte as the PLC
 /// does, and hands it to the loader.
 fn through_link(loader: &mut Loader<'_>, slots: &mut RamSlots<'_>, request: &Request<'_>) -> Reply {
@@ -122,30 +136,10 @@ fn loads_alternate_between_slots_and_the_newest_valid_slot_runs() {
     let mut slots = RamSlots::new(&mut a, &mut b);
     let mut loader = Loader::new(&CRC, None, &LengthCheck);
 
-    let first = image(100, 1);
-    let outcome = load(
-        &mut loader,
-        &mut slots,
-        &first,
-        crc_of_words(&CRC, &first),
-        16,
-    );
-    let Outcome::Switched(one) = outcome else {
-        panic!("{outcome:?}")
-    };
+    let one = load_switched(&mut loader, &mut slots, &image(100, 1), 16);
     assert_eq!((one.slot, one.header.sequence), (Slot::A, 1));
 
-    let second = image(200, 2);
-    let outcome = load(
-        &mut loader,
-        &mut slots,
-        &second,
-        crc_of_words(&CRC, &second),
-        1000,
-    );
-    let Outcome::Switched(two) = outcome else {
-        panic!("{outcome:?}")
-    };
+    let two = load_switched(&mut loader, &mut slots, &image(200, 2), 1000);
     assert_eq!(
         (two.slot, two.header.sequence, two.header.version),
         (Slot::B, 2, 0x0001_0200)
@@ -178,25 +172,13 @@ fn a_load_erases_its_header_and_image_only_and_the_old_tail_does_not_matter() {
     let mut loader = Loader::new(&CRC, None, &LengthCheck);
     // A long image in A, another in B: B runs.
     for (len, seed) in [(200, 3), (220, 4)] {
-        let words = image(len, seed);
-        let crc = crc_of_words(&CRC, &words);
-        let outcome = load(&mut loader, &mut slots, &words, crc, 64);
-        assert!(matches!(outcome, Outcome::Switched(_)), "{outcome:?}");
+        load_switched(&mut loader, &mut slots, &image(len, seed), 64);
     }
     let old_tail: Vec<u32> = slots.contents(Slot::A)[HEADER_WORDS + 50..].to_vec();
     assert!(old_tail[..150].iter().all(|&w| w != u32::MAX));
     // A short image goes into A, over the first one's head only.
     let short = image(50, 5);
-    let outcome = load(
-        &mut loader,
-        &mut slots,
-        &short,
-        crc_of_words(&CRC, &short),
-        64,
-    );
-    let Outcome::Switched(three) = outcome else {
-        panic!("{outcome:?}")
-    };
+    let three = load_switched(&mut loader, &mut slots, &short, 64);
     assert_eq!((three.slot, three.header.sequence), (Slot::A, 3));
     let slot = slots.contents(Slot::A);
     assert_eq!(slot[HEADER_WORDS..HEADER_WORDS + 50], short[..]);
@@ -217,11 +199,7 @@ fn a_refused_image_leaves_the_running_program_and_no_valid_slot() {
     let mut slots = RamSlots::new(&mut a, &mut b);
     let mut loader = Loader::new(&CRC, None, &LengthCheck);
     let good = image(40, 3);
-    let Outcome::Switched(running) =
-        load(&mut loader, &mut slots, &good, crc_of_words(&CRC, &good), 8)
-    else {
-        panic!("the good image is refused")
-    };
+    let running = load_switched(&mut loader, &mut slots, &good, 8);
 
     // Structurally wrong, with a matching CRC (a hostile image).
     let mut bad = image(40, 4);
